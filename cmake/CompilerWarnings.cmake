@@ -1,0 +1,9 @@
+# rt_set_warnings(target): the project's warning policy, applied to every
+# target we own (never to third-party headers, which are SYSTEM includes).
+function(rt_set_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
+                                           -Wno-sign-conversion)
+  if(RT_WARNINGS_AS_ERRORS)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()

@@ -1,0 +1,15 @@
+# Every dependency comes from a Debian 12 package (scripts/setup.sh installs
+# them); nothing is downloaded or vendored.
+find_package(Threads REQUIRED)
+find_package(Vulkan REQUIRED)
+find_package(glslang REQUIRED CONFIG)
+find_package(glm REQUIRED CONFIG)
+find_package(nlohmann_json REQUIRED CONFIG)
+find_package(CLI11 REQUIRED CONFIG)
+find_package(fmt REQUIRED CONFIG)
+find_package(tinyexr REQUIRED CONFIG)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
+if(RT_BUILD_TESTS)
+  find_package(doctest REQUIRED CONFIG)
+endif()

@@ -1,0 +1,140 @@
+// Ray-primitive intersection. Every routine takes a unit direction and the
+// open interval (tMin, tMax); on a hit it returns true, shrinks tMax to the
+// hit distance and writes the outward geometric normal (unit).
+#ifndef RT_INTERSECT_GLSL
+#define RT_INTERSECT_GLSL
+
+struct Ray {
+  vec3 origin;
+  vec3 direction;  // unit length
+};
+
+#ifdef RT_FEATURE_SPHERES
+// Distance to the sphere from the chord midpoint instead of the textbook
+// discriminant b^2 - c, which cancels catastrophically for small or distant
+// spheres (Ray Tracing Gems, ch. 7).
+bool intersectSphere(vec3 center, float radius, Ray ray, float tMin, inout float tMax,
+                     out vec3 normal) {
+  vec3 f = ray.origin - center;
+  float b = dot(f, ray.direction);
+  vec3 chord = f - b * ray.direction;
+  float discriminant = radius * radius - dot(chord, chord);
+  if (discriminant < 0.0) return false;
+  float c = dot(f, f) - radius * radius;
+  float q = -b - (b >= 0.0 ? 1.0 : -1.0) * sqrt(discriminant);
+  float t0 = c / q;
+  float t1 = q;
+  if (t0 > t1) {
+    float swapped = t0;
+    t0 = t1;
+    t1 = swapped;
+  }
+  float t = t0 > tMin ? t0 : t1;
+  if (!(t > tMin && t < tMax)) return false;
+  tMax = t;
+  normal = normalize(ray.origin + t * ray.direction - center);
+  return true;
+}
+#endif
+
+#ifdef RT_FEATURE_TRIANGLES
+// Moller-Trumbore; two-sided. The normal follows the winding (v0, v1, v2).
+bool intersectTriangle(vec3 v0, vec3 edge1, vec3 edge2, Ray ray, float tMin, inout float tMax,
+                       out vec3 normal) {
+  vec3 p = cross(ray.direction, edge2);
+  float det = dot(edge1, p);
+  if (det == 0.0) return false;
+  float invDet = 1.0 / det;
+  vec3 s = ray.origin - v0;
+  float u = dot(s, p) * invDet;
+  if (u < 0.0 || u > 1.0) return false;
+  vec3 q = cross(s, edge1);
+  float v = dot(ray.direction, q) * invDet;
+  if (v < 0.0 || u + v > 1.0) return false;
+  float t = dot(edge2, q) * invDet;
+  if (!(t > tMin && t < tMax)) return false;
+  tMax = t;
+  normal = normalize(cross(edge1, edge2));
+  return true;
+}
+#endif
+
+#ifdef RT_FEATURE_CYLINDERS
+// Finite cylinder with flat caps at center +- axis * halfHeight.
+bool intersectCylinderSide(vec3 center, vec3 axis, float radius, float halfHeight, Ray ray,
+                           float tMin, inout float tMax, inout vec3 normal) {
+  vec3 f = ray.origin - center;
+  vec3 dPerp = ray.direction - dot(ray.direction, axis) * axis;
+  vec3 fPerp = f - dot(f, axis) * axis;
+  float a = dot(dPerp, dPerp);
+  if (a == 0.0) return false;  // ray parallel to the axis never meets the side
+  float b = dot(fPerp, dPerp);
+  vec3 chord = fPerp - (b / a) * dPerp;
+  float discriminant = a * (radius * radius - dot(chord, chord));
+  if (discriminant < 0.0) return false;
+  float c = dot(fPerp, fPerp) - radius * radius;
+  float q = -b - (b >= 0.0 ? 1.0 : -1.0) * sqrt(discriminant);
+  float roots[2] = float[2](c / q, q / a);
+  if (roots[0] > roots[1]) roots = float[2](roots[1], roots[0]);
+  bool found = false;
+  for (int i = 0; i < 2 && !found; ++i) {
+    float t = roots[i];
+    if (!(t > tMin && t < tMax)) continue;
+    float along = dot(f + t * ray.direction, axis);
+    if (abs(along) > halfHeight) continue;
+    tMax = t;
+    normal = normalize(fPerp + t * dPerp);
+    found = true;
+  }
+  return found;
+}
+
+bool intersectCylinderCaps(vec3 center, vec3 axis, float radius, float halfHeight, Ray ray,
+                           float tMin, inout float tMax, inout vec3 normal) {
+  float denom = dot(ray.direction, axis);
+  if (denom == 0.0) return false;
+  bool found = false;
+  for (int side = -1; side <= 1; side += 2) {
+    vec3 capCenter = center + float(side) * halfHeight * axis;
+    float t = dot(capCenter - ray.origin, axis) / denom;
+    if (!(t > tMin && t < tMax)) continue;
+    vec3 offset = ray.origin + t * ray.direction - capCenter;
+    if (dot(offset, offset) > radius * radius) continue;
+    tMax = t;
+    normal = float(side) * axis;
+    found = true;
+  }
+  return found;
+}
+
+bool intersectCylinder(vec3 center, vec3 axis, float radius, float halfHeight, Ray ray,
+                       float tMin, inout float tMax, out vec3 normal) {
+  normal = axis;
+  bool side = intersectCylinderSide(center, axis, radius, halfHeight, ray, tMin, tMax, normal);
+  bool caps = intersectCylinderCaps(center, axis, radius, halfHeight, ray, tMin, tMax, normal);
+  return side || caps;
+}
+#endif
+
+bool intersectPrimitive(GpuPrimitive prim, Ray ray, float tMin, inout float tMax,
+                        out vec3 normal) {
+  normal = vec3(0.0, 0.0, 1.0);
+#ifdef RT_FEATURE_SPHERES
+  if (prim.kind == RT_PRIM_SPHERE) {
+    return intersectSphere(prim.a.xyz, prim.a.w, ray, tMin, tMax, normal);
+  }
+#endif
+#ifdef RT_FEATURE_TRIANGLES
+  if (prim.kind == RT_PRIM_TRIANGLE) {
+    return intersectTriangle(prim.a.xyz, prim.b.xyz, prim.c.xyz, ray, tMin, tMax, normal);
+  }
+#endif
+#ifdef RT_FEATURE_CYLINDERS
+  if (prim.kind == RT_PRIM_CYLINDER) {
+    return intersectCylinder(prim.a.xyz, prim.b.xyz, prim.a.w, prim.b.w, ray, tMin, tMax, normal);
+  }
+#endif
+  return false;
+}
+
+#endif

@@ -1,0 +1,71 @@
+// Blinn-Phong direct lighting from point lights, with shadow rays.
+#ifndef RT_SHADING_GLSL
+#define RT_SHADING_GLSL
+
+float lightAttenuation(float distance) {
+  float attenuation = sceneInfo.lightScale;
+  if (sceneInfo.lightFalloff == RT_FALLOFF_INVERSE_SQUARE) {
+    attenuation /= max(distance * distance, 1e-30);
+  }
+  return attenuation;
+}
+
+#ifdef RT_FEATURE_REFRACTION
+// Beyond this many transmissive surfaces a shadow ray counts as blocked.
+const int RT_MAX_SHADOW_CROSSINGS = 8;
+
+// Fraction of a light's intensity that reaches the end of `ray` through
+// transmissive surfaces. Shadow rays go straight (refraction does not bend
+// them: caustics need the path tracer), losing the Fresnel reflectance and
+// (1 - transmission) at each crossing; an opaque surface blocks all.
+float shadowTransmittance(Ray ray, vec3 lightPosition) {
+  float transmittance = 1.0;
+  for (int crossing = 0; crossing < RT_MAX_SHADOW_CROSSINGS; ++crossing) {
+    SurfaceHit hit;
+    if (!closestHit(ray, 0.0, length(lightPosition - ray.origin), hit)) return transmittance;
+    GpuMaterial blocker = materials[primitives[hit.primitiveIndex].materialIndex];
+    float cosine = dot(ray.direction, hit.normal);
+    float eta = cosine < 0.0 ? 1.0 / blocker.ior : blocker.ior;
+    float cosTransmitted;
+    float reflectance = dielectricReflectance(abs(cosine), eta, cosTransmitted);
+    transmittance *= blocker.transmission * (1.0 - reflectance);
+    if (transmittance < RT_MIN_BRANCH_WEIGHT) return 0.0;
+    ray = spawnRay(hitPosition(ray, hit), hit.normal, ray.direction);
+  }
+  return 0.0;
+}
+#endif
+
+// Share of a light that reaches p from `shadowRay`'s origin.
+float lightVisibility(Ray shadowRay, vec3 lightPosition) {
+#ifdef RT_FEATURE_REFRACTION
+  return shadowTransmittance(shadowRay, lightPosition);
+#else
+  return occluded(shadowRay, 0.0, length(lightPosition - shadowRay.origin)) ? 0.0 : 1.0;
+#endif
+}
+
+// Light reflected towards `toViewer` at p. `normal` is the shading normal
+// turned towards the viewer (surfaces are two-sided).
+vec3 directLighting(vec3 p, vec3 normal, vec3 toViewer, GpuMaterial material) {
+  vec3 radiance = vec3(0.0);
+  for (uint i = 0u; i < sceneInfo.pointLightCount; ++i) {
+    GpuPointLight light = pointLights[i];
+    vec3 toLight = light.position - p;
+    float distance = length(toLight);
+    if (!(distance > 0.0)) continue;
+    vec3 l = toLight / distance;
+    float cosine = dot(normal, l);
+    if (cosine <= 0.0) continue;  // light behind the surface as seen from the viewer
+    float visibility = lightVisibility(spawnRay(p, normal, l), light.position);
+    if (visibility <= 0.0) continue;
+    vec3 halfway = normalize(l + toViewer);
+    float highlight = pow(max(dot(normal, halfway), 0.0), material.specularExponent);
+    vec3 diffuse = material.kd * material.diffuseColor * light.diffuseIntensity * cosine;
+    vec3 specular = material.ks * material.specularColor * light.specularIntensity * highlight;
+    radiance += visibility * lightAttenuation(distance) * (diffuse + specular);
+  }
+  return radiance;
+}
+
+#endif

@@ -1,0 +1,45 @@
+#version 460
+// Render kernel: each invocation adds `sampleCount` samples to one pixel's
+// float32 accumulator. Feature defines (RT_FEATURE_*) are set per scene by
+// the host so that unused code is never compiled.
+#extension GL_GOOGLE_include_directive : require
+
+#include "gpu_types.h"
+
+layout(local_size_x = RT_WORKGROUP_SIZE_X, local_size_y = RT_WORKGROUP_SIZE_Y) in;
+
+layout(push_constant) uniform FrameParamsBlock { GpuFrameParams frame; };
+
+layout(std430, set = 0, binding = RT_BINDING_ACCUMULATION) buffer AccumulationBuffer {
+  vec4 accumulation[];  // rgb: sum of sample radiance, a: number of samples
+};
+
+#include "bindings.glsl"
+#include "rng.glsl"
+#include "intersect.glsl"
+#include "traverse.glsl"
+#include "geometry.glsl"
+#include "camera.glsl"
+#include "optics.glsl"
+#include "shading.glsl"
+#include "whitted.glsl"
+
+void main() {
+  uvec2 local = gl_GlobalInvocationID.xy;
+  if (any(greaterThanEqual(local, frame.tileSize))) return;
+  uvec2 pixel = frame.tileOrigin + local;
+  uint pixelIndex = pixel.y * sceneInfo.width + pixel.x;
+  // Samples are added one by one in index order, so the sum is the same
+  // however the sample range is split over dispatches.
+  vec4 sum = accumulation[pixelIndex];
+  for (uint s = frame.sampleBegin; s < frame.sampleBegin + frame.sampleCount; ++s) {
+    vec2 jitter = samplePair(frame.samplerKind, pixelIndex, s, frame.samplesTotal, RT_DIM_PIXEL,
+                             frame.seed);
+    vec2 lens = samplePair(frame.samplerKind, pixelIndex, s, frame.samplesTotal, RT_DIM_LENS,
+                           frame.seed);
+    Ray ray = cameraRay(vec2(pixel) + jitter, lens);
+    vec3 radiance = traceRadiance(ray, uvec3(pixelIndex, s, frame.seed));
+    sum += vec4(finiteOrZero(radiance), 1.0);
+  }
+  accumulation[pixelIndex] = sum;
+}

@@ -1,0 +1,43 @@
+#include "app/Progress.hpp"
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <string>
+
+namespace rt {
+
+ProgressBar::ProgressBar(uint64_t pixels, bool enabled)
+    : pixels_(pixels), enabled_(enabled), interactive_(::isatty(STDERR_FILENO) == 1) {}
+
+void ProgressBar::update(const RenderProgress& p) {
+  if (!enabled_ || p.samplesTotal == 0) return;
+  double fraction = p.samplesDone / p.samplesTotal;
+  double rate = p.elapsedSeconds > 0 ? p.samplesDone * double(pixels_) / p.elapsedSeconds : 0;
+  double eta = fraction > 0 ? p.elapsedSeconds * (1.0 - fraction) / fraction : 0;
+  std::string stats = fmt::format("{:5.1f}/{} spp  {:7.2f} Msamples/s  ETA {:5.1f} s", p.samplesDone,
+                                  p.samplesTotal, rate * 1e-6, eta);
+  if (interactive_) {
+    if (p.elapsedSeconds - lastDraw_ < 0.1 && fraction < 1.0) return;
+    lastDraw_ = p.elapsedSeconds;
+    constexpr int kWidth = 30;
+    int filled = static_cast<int>(fraction * kWidth);
+    std::fprintf(stderr, "\r[%s%s] %s", std::string(filled, '#').c_str(),
+                 std::string(kWidth - filled, '.').c_str(), stats.c_str());
+    std::fflush(stderr);
+    return;
+  }
+  int quarter = static_cast<int>(fraction * 4.0);
+  if (quarter > lastQuarter_) {
+    lastQuarter_ = quarter;
+    std::fprintf(stderr, "progress %3d%%  %s\n", quarter * 25, stats.c_str());
+  }
+}
+
+void ProgressBar::finish() {
+  if (enabled_ && interactive_) std::fprintf(stderr, "\n");
+}
+
+}  // namespace rt

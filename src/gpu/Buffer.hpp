@@ -1,0 +1,42 @@
+// A storage buffer with its memory. Prefers memory the host can map (lavapipe,
+// integrated GPUs, resizable BAR); otherwise transfers go through a staging
+// buffer.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstddef>
+
+namespace rt {
+
+class VulkanContext;
+
+class Buffer {
+ public:
+  Buffer(VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage);
+  ~Buffer();
+  Buffer(Buffer&& other) noexcept;
+  Buffer& operator=(Buffer&& other) noexcept;
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+
+  VkBuffer handle() const { return buffer_; }
+  VkDeviceSize size() const { return size_; }
+
+  void upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
+  void download(void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
+  void fillZero();
+
+ private:
+  void release();
+  void copyThroughStaging(void* hostData, VkDeviceSize bytes, VkDeviceSize offset, bool toDevice);
+
+  VulkanContext* context_ = nullptr;
+  VkBuffer buffer_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkDeviceSize size_ = 0;
+  void* mapped_ = nullptr;  // persistently mapped when host visible
+  bool coherent_ = false;
+};
+
+}  // namespace rt

@@ -1,0 +1,112 @@
+#include "gpu/ComputeKernel.hpp"
+
+#include "gpu/Buffer.hpp"
+#include "gpu/VulkanContext.hpp"
+
+namespace rt {
+
+ComputeKernel::ComputeKernel(VulkanContext& context, const std::vector<uint32_t>& spirv,
+                             const std::vector<uint32_t>& storageBindings,
+                             uint32_t pushConstantBytes)
+    : context_(context), pushConstantBytes_(pushConstantBytes) {
+  VkDevice device = context.device();
+  try {
+    VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    moduleInfo.codeSize = spirv.size() * sizeof(uint32_t);
+    moduleInfo.pCode = spirv.data();
+    vkCheck(vkCreateShaderModule(device, &moduleInfo, nullptr, &module_), "vkCreateShaderModule");
+
+    std::vector<VkDescriptorSetLayoutBinding> bindings;
+    for (uint32_t binding : storageBindings) {
+      bindings.push_back({binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                          VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+    }
+    VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    layoutInfo.bindingCount = static_cast<uint32_t>(bindings.size());
+    layoutInfo.pBindings = bindings.data();
+    vkCheck(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout_),
+            "vkCreateDescriptorSetLayout");
+
+    VkPushConstantRange pushRange{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes};
+    VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    pipelineLayoutInfo.setLayoutCount = 1;
+    pipelineLayoutInfo.pSetLayouts = &setLayout_;
+    pipelineLayoutInfo.pushConstantRangeCount = pushConstantBytes > 0 ? 1 : 0;
+    pipelineLayoutInfo.pPushConstantRanges = &pushRange;
+    vkCheck(vkCreatePipelineLayout(device, &pipelineLayoutInfo, nullptr, &pipelineLayout_),
+            "vkCreatePipelineLayout");
+
+    VkComputePipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    pipelineInfo.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    pipelineInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    pipelineInfo.stage.module = module_;
+    pipelineInfo.stage.pName = "main";
+    pipelineInfo.layout = pipelineLayout_;
+    vkCheck(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline_),
+            "vkCreateComputePipelines");
+
+    VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                  static_cast<uint32_t>(bindings.size())};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &poolSize;
+    vkCheck(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool_), "vkCreateDescriptorPool");
+    VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    setInfo.descriptorPool = pool_;
+    setInfo.descriptorSetCount = 1;
+    setInfo.pSetLayouts = &setLayout_;
+    vkCheck(vkAllocateDescriptorSets(device, &setInfo, &set_), "vkAllocateDescriptorSets");
+  } catch (...) {
+    destroy();
+    throw;
+  }
+}
+
+ComputeKernel::~ComputeKernel() { destroy(); }
+
+void ComputeKernel::destroy() {
+  VkDevice device = context_.device();
+  if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
+  if (pipeline_) vkDestroyPipeline(device, pipeline_, nullptr);
+  if (pipelineLayout_) vkDestroyPipelineLayout(device, pipelineLayout_, nullptr);
+  if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
+  if (module_) vkDestroyShaderModule(device, module_, nullptr);
+  pool_ = VK_NULL_HANDLE;
+  pipeline_ = VK_NULL_HANDLE;
+  pipelineLayout_ = VK_NULL_HANDLE;
+  setLayout_ = VK_NULL_HANDLE;
+  module_ = VK_NULL_HANDLE;
+}
+
+void ComputeKernel::bind(uint32_t binding, const Buffer& buffer) {
+  VkDescriptorBufferInfo bufferInfo{buffer.handle(), 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  write.dstSet = set_;
+  write.dstBinding = binding;
+  write.descriptorCount = 1;
+  write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  write.pBufferInfo = &bufferInfo;
+  vkUpdateDescriptorSets(context_.device(), 1, &write, 0, nullptr);
+}
+
+void ComputeKernel::recordDispatch(VkCommandBuffer commands, const void* pushConstants,
+                                   uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) const {
+  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+  vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_,
+                          0, nullptr);
+  if (pushConstantBytes_ > 0) {
+    vkCmdPushConstants(commands, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       pushConstantBytes_, pushConstants);
+  }
+  vkCmdDispatch(commands, groupsX, groupsY, groupsZ);
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.dstAccessMask =
+      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT;
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1,
+                       &barrier, 0, nullptr, 0, nullptr);
+}
+
+}  // namespace rt

@@ -1,0 +1,45 @@
+// One compute pipeline with its descriptor set of storage buffers and a push
+// constant block: the unit every pass (render, test kernels) is built from.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace rt {
+
+class Buffer;
+class VulkanContext;
+
+class ComputeKernel {
+ public:
+  // `storageBindings` lists the binding numbers of set 0 (all storage buffers).
+  ComputeKernel(VulkanContext& context, const std::vector<uint32_t>& spirv,
+                const std::vector<uint32_t>& storageBindings, uint32_t pushConstantBytes);
+  ~ComputeKernel();
+  ComputeKernel(const ComputeKernel&) = delete;
+  ComputeKernel& operator=(const ComputeKernel&) = delete;
+
+  // Points a binding at a buffer; only while no dispatch is in flight.
+  void bind(uint32_t binding, const Buffer& buffer);
+
+  // Records a dispatch followed by a barrier that makes its writes visible to
+  // the next dispatch and to transfers.
+  void recordDispatch(VkCommandBuffer commands, const void* pushConstants, uint32_t groupsX,
+                      uint32_t groupsY = 1, uint32_t groupsZ = 1) const;
+
+ private:
+  void destroy();
+
+  VulkanContext& context_;
+  uint32_t pushConstantBytes_ = 0;
+  VkShaderModule module_ = VK_NULL_HANDLE;
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+};
+
+}  // namespace rt

@@ -1,0 +1,86 @@
+// Instance, device and queue for compute work. Picks a discrete or
+// integrated GPU when one is present, otherwise a CPU implementation
+// (lavapipe); needs no display.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rt {
+
+// Throws rt::Error naming the call when a Vulkan function fails.
+void vkCheck(VkResult result, const char* call);
+
+struct DeviceDescription {
+  uint32_t index = 0;
+  std::string name;
+  std::string typeName;  // "discrete GPU", "integrated GPU", "CPU", ...
+  uint32_t apiVersion = 0;
+};
+
+struct ContextOptions {
+  bool validation = false;             // enable VK_LAYER_KHRONOS_validation
+  std::optional<uint32_t> deviceIndex;  // as listed by listDevices(); default: best
+  std::vector<const char*> instanceExtensions;  // e.g. for a window surface
+  std::vector<const char*> deviceExtensions;
+};
+
+class VulkanContext {
+ public:
+  explicit VulkanContext(const ContextOptions& options = {});
+  ~VulkanContext();
+  VulkanContext(const VulkanContext&) = delete;
+  VulkanContext& operator=(const VulkanContext&) = delete;
+
+  static std::vector<DeviceDescription> listDevices();
+
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
+  VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queueFamily() const { return queueFamily_; }
+  const DeviceDescription& description() const { return description_; }
+  const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
+  bool validationEnabled() const { return messenger_ != VK_NULL_HANDLE; }
+
+  // Validation warnings and errors reported so far (0 when validation is off).
+  uint32_t validationMessageCount() const { return validationMessages_; }
+
+  // Index of a memory type allowed by typeBits with all `required` flags,
+  // preferring one that also has `preferred`. Throws when none exists.
+  uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
+                          VkMemoryPropertyFlags preferred = 0) const;
+  VkMemoryPropertyFlags memoryTypeFlags(uint32_t typeIndex) const;
+
+  // Records commands with `record`, submits them and waits for completion.
+  void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
+
+ private:
+  void destroy();
+  void createInstance(const ContextOptions& options);
+  void pickPhysicalDevice(const ContextOptions& options);
+  void createDevice(const ContextOptions& options);
+  static VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(
+      VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+      const VkDebugUtilsMessengerCallbackDataEXT* data, void* self);
+
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties properties_{};
+  VkPhysicalDeviceMemoryProperties memoryProperties_{};
+  DeviceDescription description_;
+  VkDevice device_ = VK_NULL_HANDLE;
+  uint32_t queueFamily_ = 0;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  VkCommandPool commandPool_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  uint32_t validationMessages_ = 0;
+};
+
+}  // namespace rt

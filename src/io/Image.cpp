@@ -1,0 +1,154 @@
+#include "io/Image.hpp"
+
+#include <fmt/format.h>
+#include <stb_image.h>
+#include <stb_image_write.h>
+#include <tinyexr.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <string>
+
+#include "io/AtomicFile.hpp"
+#include "util/Error.hpp"
+
+namespace rt {
+namespace {
+
+std::string lowerExtension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+float srgbEncode(float linear) {
+  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+float applyCurve(float value, ToneCurve curve) {
+  if (!(value > 0.0f)) return 0.0f;  // also maps NaN to black
+  switch (curve) {
+    case ToneCurve::Reinhard: return value / (1.0f + value);
+    case ToneCurve::Clamp: break;
+  }
+  return std::min(value, 1.0f);
+}
+
+uint8_t quantize(float unit) {
+  return static_cast<uint8_t>(std::lround(std::clamp(unit, 0.0f, 1.0f) * 255.0f));
+}
+
+void writePpm(const std::filesystem::path& path, const Image8& image) {
+  std::string bytes = fmt::format("P6\n{} {}\n255\n", image.width, image.height);
+  bytes.append(reinterpret_cast<const char*>(image.rgb.data()), image.rgb.size());
+  writeFileAtomically(path, bytes.data(), bytes.size());
+}
+
+void appendBytes(void* context, void* data, int size) {
+  static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<size_t>(size));
+}
+
+void writePng(const std::filesystem::path& path, const Image8& image) {
+  std::string bytes;
+  int ok = stbi_write_png_to_func(appendBytes, &bytes, static_cast<int>(image.width),
+                                  static_cast<int>(image.height), 3, image.rgb.data(),
+                                  static_cast<int>(image.width * 3));
+  if (!ok) throw Error(fmt::format("{}: PNG encoding failed", path.string()));
+  writeFileAtomically(path, bytes.data(), bytes.size());
+}
+
+std::vector<float> exposed(const ImageF& image, float exposure, int channels) {
+  std::vector<float> out;
+  out.reserve(size_t(image.width) * image.height * channels);
+  for (size_t i = 0; i < size_t(image.width) * image.height; ++i) {
+    for (int c = 0; c < channels; ++c) {
+      float v = image.rgba[i * 4 + c];
+      out.push_back(c == 3 ? v : v * exposure);
+    }
+  }
+  return out;
+}
+
+void writeHdr(const std::filesystem::path& path, const ImageF& image, float exposure) {
+  std::vector<float> rgb = exposed(image, exposure, 3);
+  std::string bytes;
+  int ok = stbi_write_hdr_to_func(appendBytes, &bytes, static_cast<int>(image.width),
+                                  static_cast<int>(image.height), 3, rgb.data());
+  if (!ok) throw Error(fmt::format("{}: HDR encoding failed", path.string()));
+  writeFileAtomically(path, bytes.data(), bytes.size());
+}
+
+void writeExr(const std::filesystem::path& path, const ImageF& image, float exposure) {
+  std::vector<float> rgba = exposed(image, exposure, 4);
+  writeAtomically(path, [&](const std::filesystem::path& tmp) {
+    const char* error = nullptr;
+    int status = SaveEXR(rgba.data(), static_cast<int>(image.width), static_cast<int>(image.height),
+                         4, 0, tmp.c_str(), &error);
+    if (status != TINYEXR_SUCCESS) {
+      std::string message = error ? error : "unknown error";
+      if (error) FreeEXRErrorMessage(error);
+      throw Error(fmt::format("{}: EXR encoding failed: {}", path.string(), message));
+    }
+  });
+}
+
+}  // namespace
+
+Image8 toneMap(const ImageF& image, const ToneMapping& mapping) {
+  Image8 out{image.width, image.height, {}};
+  out.rgb.reserve(size_t(image.width) * image.height * 3);
+  for (size_t i = 0; i < size_t(image.width) * image.height; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      float v = applyCurve(image.rgba[i * 4 + c] * mapping.exposure, mapping.curve);
+      out.rgb.push_back(quantize(mapping.srgbEncode ? srgbEncode(v) : v));
+    }
+  }
+  return out;
+}
+
+bool isSupportedImageExtension(const std::filesystem::path& path) {
+  std::string ext = lowerExtension(path);
+  return ext == ".ppm" || ext == ".png" || ext == ".exr" || ext == ".hdr";
+}
+
+void writeImage(const std::filesystem::path& path, const ImageF& image, const ToneMapping& mapping) {
+  std::string ext = lowerExtension(path);
+  if (ext == ".ppm") return writePpm(path, toneMap(image, mapping));
+  if (ext == ".png") return writePng(path, toneMap(image, mapping));
+  if (ext == ".exr") return writeExr(path, image, mapping.exposure);
+  if (ext == ".hdr") return writeHdr(path, image, mapping.exposure);
+  throw Error(fmt::format("{}: unsupported output format '{}' (use .png, .ppm, .exr or .hdr)",
+                          path.string(), ext));
+}
+
+Image8 readImage8(const std::filesystem::path& path) {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  stbi_uc* data = stbi_load(path.c_str(), &width, &height, &channels, 3);
+  if (!data) throw Error(fmt::format("{}: cannot read image: {}", path.string(), stbi_failure_reason()));
+  Image8 image{static_cast<uint32_t>(width), static_cast<uint32_t>(height), {}};
+  image.rgb.assign(data, data + size_t(width) * height * 3);
+  stbi_image_free(data);
+  return image;
+}
+
+ImageF readExr(const std::filesystem::path& path) {
+  float* rgba = nullptr;
+  int width = 0;
+  int height = 0;
+  const char* error = nullptr;
+  if (LoadEXR(&rgba, &width, &height, path.c_str(), &error) != TINYEXR_SUCCESS) {
+    std::string message = error ? error : "unknown error";
+    if (error) FreeEXRErrorMessage(error);
+    throw Error(fmt::format("{}: cannot read EXR: {}", path.string(), message));
+  }
+  ImageF image{static_cast<uint32_t>(width), static_cast<uint32_t>(height), {}};
+  image.rgba.assign(rgba, rgba + size_t(width) * height * 4);
+  std::free(rgba);
+  return image;
+}
+
+}  // namespace rt

@@ -1,0 +1,49 @@
+// Images in memory: linear float RGBA as rendered, and 8-bit RGB as written
+// to PNG/PPM or read back for comparisons.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace rt {
+
+struct ImageF {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<float> rgba;  // row-major, top row first, linear radiance
+  float* pixel(uint32_t x, uint32_t y) { return &rgba[(size_t(y) * width + x) * 4]; }
+  const float* pixel(uint32_t x, uint32_t y) const { return &rgba[(size_t(y) * width + x) * 4]; }
+};
+
+struct Image8 {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<uint8_t> rgb;  // row-major, top row first
+};
+
+// How linear radiance becomes display values (see README "Conventions").
+enum class ToneCurve { Clamp, Reinhard };
+
+struct ToneMapping {
+  float exposure = 1.0f;  // linear scale before the curve
+  ToneCurve curve = ToneCurve::Clamp;
+  bool srgbEncode = false;  // sRGB transfer function after the curve
+};
+
+Image8 toneMap(const ImageF& image, const ToneMapping& mapping);
+
+// Writes by extension: .ppm (binary P6) and .png are tone mapped to 8 bits;
+// .exr (float32 RGBA) and .hdr (RGBE) keep linear radiance, exposure applied.
+// The file appears atomically. Throws rt::Error naming the file.
+void writeImage(const std::filesystem::path& path, const ImageF& image, const ToneMapping& mapping);
+
+// True for the extensions writeImage understands.
+bool isSupportedImageExtension(const std::filesystem::path& path);
+
+// Reads PNG/JPEG/PPM/... (8-bit RGB) through stb_image; throws rt::Error.
+Image8 readImage8(const std::filesystem::path& path);
+// Reads an OpenEXR file written by writeImage.
+ImageF readExr(const std::filesystem::path& path);
+
+}  // namespace rt

@@ -1,0 +1,44 @@
+#include "render/BatchIntersector.hpp"
+
+#include "gpu/Buffer.hpp"
+#include "gpu/ComputeKernel.hpp"
+#include "gpu/ShaderCompiler.hpp"
+#include "gpu/VulkanContext.hpp"
+#include "render/Features.hpp"
+#include "render/SceneBuffers.hpp"
+
+namespace rt {
+
+BatchIntersector::BatchIntersector(VulkanContext& context, const ShaderCompiler& compiler,
+                                   const Scene& scene)
+    : context_(context), flat_(flattenScene(scene)) {
+  buffers_ = std::make_unique<SceneBuffers>(context, flat_);
+  std::vector<uint32_t> spirv = compiler.compile("intersect_batch.comp", detectFeatures(scene).defines());
+  kernel_ = std::make_unique<ComputeKernel>(
+      context, spirv,
+      std::vector<uint32_t>{RT_BINDING_SCENE_INFO, RT_BINDING_PRIMITIVES, RT_BINDING_BVH_NODES,
+                            RT_BINDING_MATERIALS, RT_BINDING_POINT_LIGHTS, RT_BINDING_RAYS,
+                            RT_BINDING_HITS},
+      sizeof(gpu::GpuBatchParams));
+  buffers_->bindTo(*kernel_);
+}
+
+BatchIntersector::~BatchIntersector() = default;
+
+std::vector<gpu::GpuHit> BatchIntersector::intersect(const std::vector<gpu::GpuRay>& rays) {
+  std::vector<gpu::GpuHit> hits(rays.size());
+  if (rays.empty()) return hits;
+  Buffer rayBuffer(context_, rays.size() * sizeof(gpu::GpuRay), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  Buffer hitBuffer(context_, hits.size() * sizeof(gpu::GpuHit), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  rayBuffer.upload(rays.data(), rays.size() * sizeof(gpu::GpuRay));
+  kernel_->bind(RT_BINDING_RAYS, rayBuffer);
+  kernel_->bind(RT_BINDING_HITS, hitBuffer);
+  gpu::GpuBatchParams params{static_cast<uint32_t>(rays.size()), 0, 0, 0};
+  uint32_t groups = (params.rayCount + RT_BATCH_WORKGROUP_SIZE - 1) / RT_BATCH_WORKGROUP_SIZE;
+  context_.submitAndWait(
+      [&](VkCommandBuffer commands) { kernel_->recordDispatch(commands, &params, groups); });
+  hitBuffer.download(hits.data(), hits.size() * sizeof(gpu::GpuHit));
+  return hits;
+}
+
+}  // namespace rt

@@ -1,0 +1,76 @@
+#include "render/Features.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <variant>
+
+
+namespace rt {
+namespace {
+
+// Beyond this many pending rays the tracer follows one branch at random
+// (unbiased), which bounds per-invocation memory for deep glass scenes.
+constexpr uint32_t kMaxWhittedStack = 24;
+
+void addGeometryFeatures(const Shape& shape, ShaderFeatures& features) {
+  std::visit(
+      [&](const auto& geometry) {
+        using T = std::decay_t<decltype(geometry)>;
+        if constexpr (std::is_same_v<T, Sphere>) features.spheres = true;
+        if constexpr (std::is_same_v<T, Cylinder>) features.cylinders = true;
+        if constexpr (std::is_same_v<T, Triangle> || std::is_same_v<T, Quad> ||
+                      std::is_same_v<T, TriangleMesh>) {
+          features.triangles = true;
+        }
+      },
+      shape.geometry);
+}
+
+}  // namespace
+
+ShaderFeatures detectFeatures(const Scene& scene) {
+  ShaderFeatures features;
+  for (const Shape& shape : scene.shapes) addGeometryFeatures(shape, features);
+  bool shaded = scene.settings.mode != RenderMode::Binary && scene.settings.maxBounces > 0;
+  for (const Shape& shape : scene.shapes) {
+    const Material& material = scene.materials.at(shape.material);
+    features.reflection |= shaded && material.reflectivity > 0.0f;
+    features.refraction |= shaded && material.transmission > 0.0f;
+  }
+  features.thinLens =
+      scene.camera.type == CameraType::ThinLens && scene.camera.apertureRadius > 0.0f;
+  if (features.refraction) {
+    // Depth-first walk of a binary ray tree: at most one pending ray per level.
+    features.whittedStackSize = std::min(scene.settings.maxBounces + 1, kMaxWhittedStack);
+  }
+  return features;
+}
+
+ShaderDefines ShaderFeatures::defines() const {
+  ShaderDefines result;
+  auto flag = [&](bool on, const char* name) {
+    if (on) result.emplace_back(name, "1");
+  };
+  flag(spheres, "RT_FEATURE_SPHERES");
+  flag(triangles, "RT_FEATURE_TRIANGLES");
+  flag(cylinders, "RT_FEATURE_CYLINDERS");
+  flag(reflection, "RT_FEATURE_REFLECTION");
+  flag(refraction, "RT_FEATURE_REFRACTION");
+  flag(thinLens, "RT_FEATURE_THIN_LENS");
+  result.emplace_back("RT_WHITTED_STACK_SIZE", std::to_string(whittedStackSize));
+  return result;
+}
+
+std::string ShaderFeatures::summary() const {
+  std::string text;
+  for (const auto& [name, value] : defines()) {
+    if (name.rfind("RT_FEATURE_", 0) != 0) continue;
+    std::string feature = name.substr(11);
+    std::transform(feature.begin(), feature.end(), feature.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    text += (text.empty() ? "" : " ") + feature;
+  }
+  return text.empty() ? "none" : text;
+}
+
+}  // namespace rt

@@ -1,0 +1,29 @@
+// Which shader code a scene needs. Each feature becomes an RT_FEATURE_*
+// define, so a scene without (say) refraction never compiles or runs the
+// refraction code (the Mitsuba "variants" idea, chosen per scene at run time).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "gpu/ShaderCompiler.hpp"
+#include "scene/Scene.hpp"
+
+namespace rt {
+
+struct ShaderFeatures {
+  bool spheres = false;
+  bool triangles = false;  // also quads and meshes
+  bool cylinders = false;
+  bool reflection = false;
+  bool refraction = false;
+  bool thinLens = false;
+  uint32_t whittedStackSize = 1;  // pending rays of the ray tree
+
+  ShaderDefines defines() const;
+  std::string summary() const;  // e.g. "spheres triangles reflection"
+};
+
+ShaderFeatures detectFeatures(const Scene& scene);
+
+}  // namespace rt

@@ -1,0 +1,48 @@
+#include "render/SceneBuffers.hpp"
+
+#include <fmt/format.h>
+
+#include "gpu/ComputeKernel.hpp"
+#include "gpu/VulkanContext.hpp"
+#include "util/Error.hpp"
+
+namespace rt {
+namespace {
+
+// A storage buffer holding `items`; never empty (Vulkan forbids zero-sized
+// buffers), and checked against the device's storage buffer range.
+template <typename T>
+Buffer makeStorage(VulkanContext& context, const std::vector<T>& items, const char* what) {
+  VkDeviceSize bytes = std::max<VkDeviceSize>(sizeof(T), items.size() * sizeof(T));
+  if (bytes > context.limits().maxStorageBufferRange) {
+    throw Error(fmt::format("scene too large: {} need {} MiB, the device allows {} MiB per buffer",
+                            what, bytes >> 20, context.limits().maxStorageBufferRange >> 20));
+  }
+  Buffer buffer(context, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  if (!items.empty()) buffer.upload(items.data(), items.size() * sizeof(T));
+  return buffer;
+}
+
+}  // namespace
+
+SceneBuffers::SceneBuffers(VulkanContext& context, const FlatScene& scene)
+    : info_(makeStorage(context, std::vector<gpu::GpuSceneInfo>{scene.info}, "scene info")),
+      primitives_(makeStorage(context, scene.primitives, "primitives")),
+      bvhNodes_(makeStorage(context, scene.bvhNodes, "BVH nodes")),
+      materials_(makeStorage(context, scene.materials, "materials")),
+      pointLights_(makeStorage(context, scene.pointLights, "point lights")) {}
+
+void SceneBuffers::bindTo(ComputeKernel& kernel) const {
+  kernel.bind(RT_BINDING_SCENE_INFO, info_);
+  kernel.bind(RT_BINDING_PRIMITIVES, primitives_);
+  kernel.bind(RT_BINDING_BVH_NODES, bvhNodes_);
+  kernel.bind(RT_BINDING_MATERIALS, materials_);
+  kernel.bind(RT_BINDING_POINT_LIGHTS, pointLights_);
+}
+
+size_t SceneBuffers::bytes() const {
+  return info_.size() + primitives_.size() + bvhNodes_.size() + materials_.size() +
+         pointLights_.size();
+}
+
+}  // namespace rt

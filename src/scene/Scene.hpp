@@ -1,0 +1,112 @@
+// Host-side scene: what a scene file describes, in one neutral form that
+// both file families (and later glTF) are loaded into. Nothing here knows
+// about the GPU; src/render flattens it into buffers.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace rt {
+
+// Blinn-Phong material with Whitted-style mirror and refraction weights.
+struct Material {
+  glm::vec3 diffuseColor{0.8f};
+  glm::vec3 specularColor{1.0f};
+  float kd = 1.0f;
+  float ks = 0.0f;
+  float specularExponent = 1.0f;
+  float reflectivity = 0.0f;  // mirror weight (family A `kr`, B `reflectivity` when `isreflective`)
+  float transmission = 0.0f;  // refraction weight (family A `kt`, B 1.0 when `isrefractive`)
+  float ior = 1.0f;           // index of refraction inside the surface (`eta`, `refractiveindex`)
+  std::filesystem::path texture;  // resolved path of the diffuse texture, empty when none
+};
+
+struct Sphere {
+  glm::vec3 center{0.0f};
+  float radius = 1.0f;
+};
+
+struct Triangle {
+  glm::vec3 v0{0.0f}, v1{0.0f}, v2{0.0f};
+};
+
+// Planar quad, vertices in cyclic order (family A `plane`).
+struct Quad {
+  glm::vec3 v0{0.0f}, v1{0.0f}, v2{0.0f}, v3{0.0f};
+};
+
+// Finite capped cylinder (family B): caps at center +- axis * halfHeight.
+struct Cylinder {
+  glm::vec3 center{0.0f};
+  glm::vec3 axis{0.0f, 1.0f, 0.0f};  // unit length after loading
+  float radius = 1.0f;
+  float halfHeight = 1.0f;
+};
+
+struct TriangleMesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::uvec3> faces;  // indices into positions, validated on load
+};
+
+using Geometry = std::variant<Sphere, Triangle, Quad, Cylinder, TriangleMesh>;
+
+struct Shape {
+  Geometry geometry;
+  uint32_t material = 0;  // index into Scene::materials
+  std::string label;      // optional `id` from the file, for messages
+};
+
+struct PointLight {
+  glm::vec3 position{0.0f};
+  glm::vec3 diffuseIntensity{1.0f};   // family A `id`, family B / 2019 `intensity`
+  glm::vec3 specularIntensity{1.0f};  // family A `is`, family B / 2019 `intensity`
+};
+
+enum class CameraType { Pinhole, ThinLens };
+
+struct Camera {
+  CameraType type = CameraType::Pinhole;
+  uint32_t width = 800;
+  uint32_t height = 800;
+  float fovYDegrees = 45.0f;  // vertical field of view
+  glm::vec3 position{0.0f};
+  glm::vec3 forward{0.0f, 0.0f, -1.0f};  // unit view direction
+  glm::vec3 up{0.0f, 1.0f, 0.0f};        // as given; orthogonalised when rays are built
+  float exposure = 1.0f;                 // linear scale applied before tone mapping
+  float apertureRadius = 0.0f;           // thin lens: radius of the lens disc, 0 = pinhole
+  float focusDistance = 1.0f;            // thin lens: distance to the plane in focus
+};
+
+enum class RenderMode { Binary, Phong };
+
+enum class SamplerKind { Random, Jittered };
+
+// Which file family a scene came from; decides the lighting conventions
+// documented in README (falloff and intensity scale).
+enum class SceneFamily { PathOfLight, Rendering };
+
+struct RenderSettings {
+  RenderMode mode = RenderMode::Phong;
+  uint32_t maxBounces = 4;          // `nbounces`
+  uint32_t samplesPerPixel = 0;     // 0: not given in the file
+  SamplerKind sampler = SamplerKind::Jittered;
+};
+
+struct Scene {
+  std::filesystem::path sourcePath;
+  SceneFamily family = SceneFamily::PathOfLight;
+  RenderSettings settings;
+  Camera camera;
+  glm::vec3 backgroundColor{0.0f};
+  std::vector<PointLight> pointLights;
+  std::vector<Material> materials;
+  std::vector<Shape> shapes;
+  std::vector<std::string> warnings;  // unknown keys and ignored features, one line each
+};
+
+}  // namespace rt

@@ -1,0 +1,648 @@
+#include "scene/SceneLoader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <glm/geometric.hpp>
+#include <memory>
+#include <system_error>
+
+#include "scene/JsonReader.hpp"
+#include "util/Error.hpp"
+
+namespace rt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Larger images are typos (or hostile files), not render requests.
+constexpr int64_t kMaxImageSide = 16384;
+constexpr int64_t kMaxBounces = 64;
+// Family B files may omit nbounces.
+constexpr uint32_t kDefaultBounces = 4;
+constexpr int64_t kMaxSamplesPerPixel = int64_t{1} << 20;
+// |sin| of the angle below which up and forward give no usable image plane.
+constexpr float kParallelTolerance = 1e-4f;
+
+// The 2019 family-A file has no position/lookat/up. Its spheres sit at
+// z = 0.4 and 0.7 in front of the origin, so look down +z with y up.
+constexpr glm::vec3 kDefaultPosition{0.0f, 0.0f, 0.0f};
+constexpr glm::vec3 kDefaultForward{0.0f, 0.0f, 1.0f};
+constexpr glm::vec3 kDefaultUp{0.0f, 1.0f, 0.0f};
+
+// What shape reading needs besides the JSON itself.
+struct ShapeContext {
+  fs::path sceneDir;  // absolute folder of the scene file, for texture paths
+  RenderMode mode;
+};
+
+// ---------------------------------------------------------------- JSON text
+
+std::string withoutExceptionId(const char* what) {
+  // nlohmann prefixes "[json.exception.parse_error.101] "; users need only the rest.
+  const std::string_view message = what;
+  const size_t end = message.find("] ");
+  return std::string(end == std::string_view::npos ? message : message.substr(end + 2));
+}
+
+// Number overflow (e.g. 1e400) comes without an offset; point at the number's text.
+size_t offsetOfOverflow(std::string_view text, const std::string& message) {
+  const size_t open = message.find('\'');
+  const size_t close = message.rfind('\'');
+  if (open == std::string::npos || close <= open) return 0;
+  const size_t found = text.find(std::string_view(message).substr(open + 1, close - open - 1));
+  return found == std::string_view::npos ? 0 : found + 1;
+}
+
+Json parseJson(std::string_view text, const std::string& file) {
+  try {
+    return Json::parse(text.begin(), text.end());
+  } catch (const Json::parse_error& error) {
+    throw Error(file + ": byte " + std::to_string(error.byte) + ": " +
+                withoutExceptionId(error.what()));
+  } catch (const Json::out_of_range& error) {
+    const std::string message = withoutExceptionId(error.what());
+    throw Error(file + ": byte " + std::to_string(offsetOfOverflow(text, message)) + ": " +
+                message);
+  }
+}
+
+std::string readFileText(const fs::path& file) {
+  const auto cannotOpen = [&file](int code) {
+    return Error(file.string() + ": cannot open: " + std::strerror(code));
+  };
+  std::error_code ignored;
+  if (fs::is_directory(file, ignored)) throw cannotOpen(EISDIR);
+  struct Closer {
+    void operator()(std::FILE* stream) const { std::fclose(stream); }
+  };
+  const std::unique_ptr<std::FILE, Closer> stream(std::fopen(file.c_str(), "rb"));
+  if (!stream) throw cannotOpen(errno);
+  std::string text;
+  std::array<char, 1 << 16> buffer;
+  size_t count = 0;
+  while ((count = std::fread(buffer.data(), 1, buffer.size(), stream.get())) > 0) {
+    text.append(buffer.data(), count);
+  }
+  if (std::ferror(stream.get())) throw cannotOpen(errno);
+  return text;
+}
+
+// ---------------------------------------------------------- family detection
+
+const Json* findKey(const Json& object, std::string_view key) {
+  if (!object.is_object()) return nullptr;
+  const auto found = object.find(key);
+  return found == object.end() ? nullptr : &*found;
+}
+
+bool anyElement(const Json* array, bool (*predicate)(const Json&)) {
+  return array && array->is_array() && std::any_of(array->begin(), array->end(), predicate);
+}
+
+bool isFamilyBShape(const Json& shape) {
+  const Json* type = findKey(shape, "type");
+  if (type && *type == "cylinder") return true;
+  const Json* material = findKey(shape, "material");
+  return material && (findKey(*material, "specularcolor") || findKey(*material, "isreflective") ||
+                      findKey(*material, "isrefractive"));
+}
+
+bool hasIntensity(const Json& light) { return findKey(light, "intensity") != nullptr; }
+
+// Family B ("Rendering", 2023-24) when the file uses a key that only family B has:
+//  - a top-level `rendermode`;
+//  - camera `lookAt`, `upVector` or `exposure` (family A writes `lookat` and `up`
+//    and has no exposure);
+//  - a light with `intensity` in a scene with family-B shape keys (a cylinder, or
+//    material `specularcolor`/`isreflective`/`isrefractive`). `intensity` alone
+//    decides nothing: the family-A 2019 file uses it too.
+// Everything else is family A ("Path of Light"). The family only selects lighting
+// conventions downstream; which keys are read does not depend on it.
+SceneFamily detectFamily(const Json& root) {
+  if (findKey(root, "rendermode")) return SceneFamily::Rendering;
+  if (const Json* camera = findKey(root, "camera")) {
+    for (const char* key : {"lookAt", "upVector", "exposure"}) {
+      if (findKey(*camera, key)) return SceneFamily::Rendering;
+    }
+  }
+  if (const Json* scene = findKey(root, "scene")) {
+    if (anyElement(findKey(*scene, "lightsources"), hasIntensity) &&
+        anyElement(findKey(*scene, "shapes"), isFamilyBShape)) {
+      return SceneFamily::Rendering;
+    }
+  }
+  return SceneFamily::PathOfLight;
+}
+
+// ----------------------------------------------------------------- settings
+
+// Settings of the students' own renderers: accepted so their files load; no effect here.
+void ignoreRendererKeys(JsonObject& object) {
+  object.ignore({"bvh", "BVH", "use_bvh", "useBVH", "output"});
+}
+
+RenderMode readRenderMode(JsonObject& top) {
+  const std::optional<JsonNode> node = top.optional("rendermode");
+  if (!node) return RenderMode::Phong;
+  const std::string mode = node->string();
+  if (mode == "binary") return RenderMode::Binary;
+  if (mode == "phong") return RenderMode::Phong;
+  node->fail("rendermode '" + mode + "' is not supported yet (supported: \"binary\", \"phong\")");
+}
+
+uint32_t readBounces(JsonObject& top) {
+  const std::optional<JsonNode> node = top.optional("nbounces");
+  return node ? static_cast<uint32_t>(node->integer(0, kMaxBounces)) : kDefaultBounces;
+}
+
+SamplerKind parseSampler(const JsonNode& node) {
+  const std::string name = node.string();
+  if (name == "random") return SamplerKind::Random;
+  if (name == "jittered" || name == "jittering") return SamplerKind::Jittered;
+  node.fail("unknown sampler '" + name + "' (expected \"random\" or \"jittered\")");
+}
+
+uint32_t parseSampleCount(const JsonNode& node) {
+  return static_cast<uint32_t>(node.integer(1, kMaxSamplesPerPixel));
+}
+
+// Students put sampling keys at the top level or in the camera. Either place is
+// fine; both is fine only when they agree.
+template <typename Parse>
+auto readFromEither(const std::optional<JsonNode>& first, const std::optional<JsonNode>& second,
+                    Parse parse) -> std::optional<decltype(parse(*first))> {
+  if (!first && !second) return std::nullopt;
+  if (!first) return parse(*second);
+  const auto value = parse(*first);
+  if (second && parse(*second) != value) {
+    second->fail("conflicts with '" + first->path() + "': give the setting once");
+  }
+  return value;
+}
+
+void readSampling(JsonObject& top, JsonObject& camera, RenderSettings& settings) {
+  const auto samplerAt = [](JsonObject& object) {
+    return object.optionalOneOf({"sampler", "method"});
+  };
+  const auto samplesAt = [](JsonObject& object) {
+    return object.optionalOneOf({"nsamples", "samples", "spp"});
+  };
+  if (const auto sampler = readFromEither(samplerAt(top), samplerAt(camera), parseSampler)) {
+    settings.sampler = *sampler;
+  }
+  if (const auto samples = readFromEither(samplesAt(top), samplesAt(camera), parseSampleCount)) {
+    settings.samplesPerPixel = *samples;
+  }
+}
+
+// ------------------------------------------------------------------- camera
+
+glm::vec3 unitVector(const JsonNode& node) {
+  const glm::vec3 value = node.vec3();
+  const float length = glm::length(value);
+  if (!(length > 0.0f && std::isfinite(length))) node.fail("must be a non-zero, finite vector");
+  return value / length;
+}
+
+// Family A `lookat` is a view direction, family B `lookAt` a target point
+// (both verified against the official renders; see README).
+glm::vec3 readForward(JsonObject& camera, glm::vec3 position) {
+  const std::optional<JsonNode> direction = camera.optional("lookat");
+  const std::optional<JsonNode> target = camera.optional("lookAt");
+  if (direction && target) {
+    target->fail(
+        "conflicts with 'camera.lookat': lookat is a view direction, lookAt a target point");
+  }
+  if (direction) return unitVector(*direction);
+  if (!target) return kDefaultForward;
+  const glm::vec3 offset = target->vec3() - position;
+  const float length = glm::length(offset);
+  if (!(length > 0.0f && std::isfinite(length))) {
+    target->fail("target point must differ from the camera position");
+  }
+  return offset / length;
+}
+
+// `up` is kept as given (the ray builder orthogonalises it) but must span an
+// image plane with the view direction.
+glm::vec3 readUp(JsonObject& camera, glm::vec3 forward) {
+  const std::optional<JsonNode> node = camera.optionalOneOf({"up", "upVector"});
+  const glm::vec3 up = node ? node->vec3() : kDefaultUp;
+  const std::string path = node ? node->path() : camera.childPath("up");
+  const float length = glm::length(up);
+  if (!(length > 0.0f && std::isfinite(length))) {
+    camera.diagnostics().fail(path, "must be a non-zero, finite vector");
+  }
+  if (glm::length(glm::cross(forward, up / length)) < kParallelTolerance) {
+    camera.diagnostics().fail(path, node ? "is parallel to the view direction"
+                                         : "missing, and the default up (0, 1, 0) is parallel "
+                                           "to the view direction");
+  }
+  return up;
+}
+
+CameraType readCameraType(const JsonNode& node) {
+  const std::string type = node.string();
+  if (type == "pinhole") return CameraType::Pinhole;
+  if (type == "thinlens") return CameraType::ThinLens;
+  node.fail("unknown camera type '" + type + "' (expected \"pinhole\" or \"thinlens\")");
+}
+
+uint32_t readImageSide(const JsonNode& node) {
+  return static_cast<uint32_t>(node.integer(1, kMaxImageSide));
+}
+
+float readFov(const JsonNode& node) {
+  const float degrees = node.floatValue();
+  if (!(degrees > 0.0f && degrees < 180.0f)) {
+    node.fail("must be between 0 and 180 degrees (exclusive), got " + formatNumber(degrees));
+  }
+  return degrees;
+}
+
+// Thin-lens keys as the students spelled them.
+struct LensKeys {
+  std::optional<JsonNode> aperture;        // lens diameter, or a fraction of f with f and d
+  std::optional<JsonNode> lensRadius;      // lens radius
+  std::optional<JsonNode> focusDistance;   // distance to the plane in focus
+  std::optional<JsonNode> focalLength;     // seed report: f
+  std::optional<JsonNode> sensorDistance;  // seed report: lens-to-sensor distance d
+};
+
+std::optional<JsonNode> readFocusDistanceKey(JsonObject& camera) {
+  return camera.optionalOneOf({"focusdistance", "focus_dist", "focalDistance", "focal_length"});
+}
+
+LensKeys readLensKeys(JsonObject& camera) {
+  LensKeys keys;
+  keys.aperture = camera.optional("aperture");
+  keys.lensRadius = camera.optional("lensRadius");
+  if (keys.aperture && keys.lensRadius) {
+    keys.lensRadius->fail(
+        "conflicts with 'camera.aperture': give the lens diameter (aperture) or its radius "
+        "(lensRadius)");
+  }
+  keys.focusDistance = readFocusDistanceKey(camera);
+  keys.focalLength = camera.optionalOneOf({"f", "focal"});
+  keys.sensorDistance = camera.optional("d");
+  return keys;
+}
+
+// The seed report's lens: focal length f and lens-to-sensor distance d fix the
+// focus distance by the thin lens equation 1/f = 1/d + 1/focus, and `aperture`
+// is the lens diameter as a fraction of f (0.0625 for f/16).
+void applySeedReportLens(const LensKeys& keys, JsonObject& camera, Camera& out) {
+  if (!keys.focalLength) {
+    camera.diagnostics().fail(
+        camera.childPath("f"),
+        "missing: the lens-to-sensor distance 'd' needs the focal length 'f'");
+  }
+  if (!keys.sensorDistance) {
+    camera.diagnostics().fail(
+        camera.childPath("d"),
+        "missing: the focal length 'f' needs the lens-to-sensor distance 'd'");
+  }
+  if (keys.focusDistance) {
+    keys.focusDistance->fail("conflicts with 'f' and 'd', which already fix the focus distance");
+  }
+  const float focal = keys.focalLength->positiveFloat();
+  const float sensor = keys.sensorDistance->positiveFloat();
+  if (!(sensor > focal)) {
+    keys.sensorDistance->fail("must be greater than the focal length f = " + formatNumber(focal) +
+                              " for the lens to focus");
+  }
+  out.focusDistance = focal * sensor / (sensor - focal);
+  if (keys.aperture) out.apertureRadius = keys.aperture->nonNegativeFloat() * focal / 2.0f;
+  if (keys.lensRadius) out.apertureRadius = keys.lensRadius->nonNegativeFloat();
+}
+
+void applyDirectLens(const LensKeys& keys, JsonObject& camera, Camera& out) {
+  if (keys.aperture) out.apertureRadius = keys.aperture->nonNegativeFloat() / 2.0f;
+  if (keys.lensRadius) out.apertureRadius = keys.lensRadius->nonNegativeFloat();
+  if (keys.focusDistance) {
+    out.focusDistance = keys.focusDistance->positiveFloat();
+  } else if (out.apertureRadius > 0.0f) {
+    camera.diagnostics().fail(camera.childPath("focusdistance"),
+                              "missing: a thin lens with an aperture needs a focus distance "
+                              "(focusdistance, focus_dist, focalDistance or focal_length)");
+  }
+}
+
+void readThinLens(JsonObject& camera, Camera& out) {
+  const LensKeys keys = readLensKeys(camera);
+  if (keys.focalLength || keys.sensorDistance) {
+    applySeedReportLens(keys, camera, out);
+  } else {
+    applyDirectLens(keys, camera, out);
+  }
+  if (out.apertureRadius > 0.0f) return;
+  // A lens without an aperture images like a pinhole; render it as one.
+  out.type = CameraType::Pinhole;
+  if (!keys.aperture && !keys.lensRadius) {
+    camera.diagnostics().warn(camera.childPath("type"),
+                              "thinlens camera without 'aperture' or 'lensRadius' renders as a "
+                              "pinhole");
+  }
+}
+
+void warnLensKeysOnPinhole(JsonObject& camera) {
+  for (const char* key : {"aperture", "lensRadius", "focusdistance", "focus_dist", "focalDistance",
+                          "focal_length", "f", "focal", "d"}) {
+    camera.ignoreWithWarning(
+        key, std::string("thin lens key '") + key + "' ignored: the camera type is \"pinhole\"");
+  }
+}
+
+Camera readCamera(JsonObject& camera) {
+  Camera out;
+  out.type = readCameraType(camera.required("type"));
+  out.width = readImageSide(camera.required("width"));
+  out.height = readImageSide(camera.required("height"));
+  out.fovYDegrees = readFov(camera.required("fov"));
+  const std::optional<JsonNode> position = camera.optional("position");
+  out.position = position ? position->vec3() : kDefaultPosition;
+  out.forward = readForward(camera, out.position);
+  out.up = readUp(camera, out.forward);
+  if (const std::optional<JsonNode> exposure = camera.optional("exposure")) {
+    out.exposure = exposure->positiveFloat();
+  }
+  if (out.type == CameraType::ThinLens) {
+    readThinLens(camera, out);
+  } else {
+    warnLensKeysOnPinhole(camera);
+  }
+  return out;
+}
+
+// ------------------------------------------------------------------- lights
+
+bool isAreaLightType(std::string type) {
+  std::transform(type.begin(), type.end(), type.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return type.find("area") != std::string::npos;
+}
+
+// `intensity` (2019 and family B) sets both terms; family A gives `is`
+// (specular) and `id` (diffuse) separately.
+PointLight readPointLight(JsonObject& light) {
+  PointLight out;
+  out.position = light.required("position").vec3();
+  const std::optional<JsonNode> intensity = light.optional("intensity");
+  const std::optional<JsonNode> specular = light.optional("is");
+  const std::optional<JsonNode> diffuse = light.optional("id");
+  if (intensity) {
+    if (specular || diffuse) {
+      (specular ? specular : diffuse)->fail("conflicts with 'intensity': give intensity or is/id");
+    }
+    out.diffuseIntensity = out.specularIntensity = intensity->nonNegativeVec3();
+    return out;
+  }
+  if (!specular && !diffuse) {
+    light.diagnostics().fail(light.childPath("intensity"),
+                             "missing: a pointlight needs 'intensity', or both 'is' and 'id'");
+  }
+  out.specularIntensity = light.required("is").nonNegativeVec3();
+  out.diffuseIntensity = light.required("id").nonNegativeVec3();
+  return out;
+}
+
+void readLight(const JsonNode& node, Scene& scene) {
+  JsonObject light = node.object();
+  const JsonNode typeNode = light.required("type");
+  const std::string type = typeNode.string();
+  if (isAreaLightType(type)) typeNode.fail("area lights are not supported yet");
+  if (type != "pointlight") {
+    typeNode.fail("unknown light type '" + type + "' (expected \"pointlight\")");
+  }
+  scene.pointLights.push_back(readPointLight(light));
+  light.reportUnknownKeys();
+}
+
+// ---------------------------------------------------------------- materials
+
+// Texture paths in family A are relative to a build folder beside examples/,
+// so "../textures/x.jpg" works from the scene's own folder; the README also
+// allows the folder above it.
+fs::path resolveTexture(const JsonNode& node, const fs::path& sceneDir) {
+  const fs::path written = node.nonEmptyString();
+  const fs::path parentDir = sceneDir.parent_path();
+  for (const fs::path& base : {sceneDir, parentDir}) {
+    const fs::path candidate = (base / written).lexically_normal();
+    std::error_code ignored;
+    if (fs::is_regular_file(candidate, ignored)) return candidate;
+  }
+  if (written.is_absolute()) node.fail("texture file not found: " + written.string());
+  node.fail("texture file not found: " + written.string() + " (looked in " + sceneDir.string() +
+            " and " + parentDir.string() + ")");
+}
+
+// Family A: `kr`. Family B: `reflectivity`, which counts only when `isreflective` is true.
+float readReflectivity(JsonObject& material) {
+  const std::optional<JsonNode> kr = material.optional("kr");
+  const std::optional<JsonNode> isReflective = material.optional("isreflective");
+  const std::optional<JsonNode> reflectivity = material.optional("reflectivity");
+  if (kr && (isReflective || reflectivity)) {
+    kr->fail("conflicts with 'isreflective'/'reflectivity': give one mirror weight");
+  }
+  if (kr) return kr->floatInRange(0.0f, 1.0f);
+  const float weight = reflectivity ? reflectivity->floatInRange(0.0f, 1.0f) : 1.0f;
+  if (isReflective) return isReflective->boolean() ? weight : 0.0f;
+  if (reflectivity) reflectivity->warn("ignored: it only applies with \"isreflective\": true");
+  return 0.0f;
+}
+
+// Family A: `kt` weight. Family B: `isrefractive` means fully transmissive.
+void readRefraction(JsonObject& material, Material& out) {
+  const std::optional<JsonNode> kt = material.optional("kt");
+  const std::optional<JsonNode> isRefractive = material.optional("isrefractive");
+  if (kt && isRefractive) kt->fail("conflicts with 'isrefractive': give one transmission weight");
+  if (kt) out.transmission = kt->floatInRange(0.0f, 1.0f);
+  if (isRefractive) out.transmission = isRefractive->boolean() ? 1.0f : 0.0f;
+  if (const std::optional<JsonNode> ior =
+          material.optionalOneOf({"eta", "ior", "refractiveIndex", "refractiveindex"})) {
+    out.ior = ior->positiveFloat();
+  }
+}
+
+Material readMaterial(JsonObject& material, const fs::path& sceneDir) {
+  Material out;
+  out.ks = material.required("ks").nonNegativeFloat();
+  out.kd = material.required("kd").nonNegativeFloat();
+  out.specularExponent = material.required("specularexponent").nonNegativeFloat();
+  out.diffuseColor = material.required("diffusecolor").nonNegativeVec3();
+  if (const std::optional<JsonNode> specular = material.optional("specularcolor")) {
+    out.specularColor = specular->nonNegativeVec3();
+  }
+  out.reflectivity = readReflectivity(material);
+  readRefraction(material, out);
+  if (const std::optional<JsonNode> texture =
+          material.optionalOneOf({"tPath", "texture", "texture_file", "texturepath"})) {
+    out.texture = resolveTexture(*texture, sceneDir);
+  }
+  // The coursework's texture sizes do not match the real images; the image file decides.
+  material.ignore({"tWidth", "tHeight"});
+  material.reportUnknownKeys();
+  return out;
+}
+
+// Shapes without a material are normal in binary mode (only hit/miss is drawn).
+uint32_t addShapeMaterial(JsonObject& shape, const ShapeContext& context, Scene& scene) {
+  Material material;
+  if (const std::optional<JsonNode> node = shape.optional("material")) {
+    JsonObject object = node->object();
+    material = readMaterial(object, context.sceneDir);
+  } else if (context.mode != RenderMode::Binary) {
+    shape.diagnostics().warn(shape.childPath("material"), "missing; the default material is used");
+  }
+  scene.materials.push_back(std::move(material));
+  return static_cast<uint32_t>(scene.materials.size() - 1);
+}
+
+// ------------------------------------------------------------------- shapes
+
+Sphere readSphere(JsonObject& shape) {
+  return {shape.required("center").vec3(), shape.required("radius").positiveFloat()};
+}
+
+Quad readQuad(JsonObject& shape) {
+  return {shape.required("v0").vec3(), shape.required("v1").vec3(), shape.required("v2").vec3(),
+          shape.required("v3").vec3()};
+}
+
+Triangle readTriangle(JsonObject& shape) {
+  return {shape.required("v0").vec3(), shape.required("v1").vec3(), shape.required("v2").vec3()};
+}
+
+// Family B `height` is the half-length: the caps are at center +- axis * height.
+Cylinder readCylinder(JsonObject& shape) {
+  return {shape.required("center").vec3(), unitVector(shape.required("axis")),
+          shape.required("radius").positiveFloat(), shape.required("height").positiveFloat()};
+}
+
+uint32_t readVertexIndex(const JsonNode& node, size_t vertexCount) {
+  const int64_t index = node.integer();
+  if (index < 0 || static_cast<uint64_t>(index) >= vertexCount) {
+    node.fail("vertex index " + std::to_string(index) + " is out of range (the mesh has " +
+              std::to_string(vertexCount) + " vertices)");
+  }
+  return static_cast<uint32_t>(index);
+}
+
+// Polygons with more than three corners become a triangle fan around the
+// first corner, which is right for the convex faces the files contain.
+void appendFace(const JsonNode& face, TriangleMesh& mesh) {
+  const std::vector<JsonNode> corners = face.array();
+  if (corners.size() < 3) {
+    face.fail("a face needs at least 3 vertex indices, got " + std::to_string(corners.size()));
+  }
+  std::vector<uint32_t> indices;
+  for (const JsonNode& corner : corners) {
+    indices.push_back(readVertexIndex(corner, mesh.positions.size()));
+  }
+  for (size_t i = 1; i + 1 < indices.size(); ++i) {
+    mesh.faces.emplace_back(indices[0], indices[i], indices[i + 1]);
+  }
+}
+
+TriangleMesh readTrimesh(JsonObject& shape) {
+  if (const std::optional<JsonNode> file =
+          shape.optionalOneOf({"mPath", "plyPath", "file", "path"})) {
+    file->fail("PLY meshes are not supported yet");
+  }
+  for (const char* key : {"center", "pos", "scale", "sizeScale"}) {
+    shape.ignoreWithWarning(key,
+                            std::string("mesh placement '") + key +
+                                "' is only applied to PLY meshes; ignored for inline vertices");
+  }
+  TriangleMesh mesh;
+  const JsonNode vertices = shape.required("vertices");
+  for (const JsonNode& vertex : vertices.array()) mesh.positions.push_back(vertex.vec3());
+  if (mesh.positions.empty()) vertices.fail("must list at least one vertex");
+  const JsonNode faces = shape.required("faces");
+  for (const JsonNode& face : faces.array()) appendFace(face, mesh);
+  if (mesh.faces.empty()) faces.fail("must list at least one face");
+  return mesh;
+}
+
+Geometry readGeometry(const JsonNode& typeNode, JsonObject& shape) {
+  const std::string type = typeNode.string();
+  if (type == "sphere") return readSphere(shape);
+  if (type == "plane") return readQuad(shape);
+  if (type == "triangle") return readTriangle(shape);
+  if (type == "cylinder") return readCylinder(shape);
+  if (type == "trimesh") return readTrimesh(shape);
+  if (type == "ply") typeNode.fail("PLY meshes are not supported yet");
+  typeNode.fail("unknown shape type '" + type +
+                "' (expected sphere, plane, triangle, cylinder or trimesh)");
+}
+
+void readShape(const JsonNode& node, const ShapeContext& context, Scene& scene) {
+  JsonObject object = node.object();
+  Shape shape;
+  shape.geometry = readGeometry(object.required("type"), object);
+  if (const std::optional<JsonNode> id = object.optional("id")) shape.label = id->string();
+  shape.material = addShapeMaterial(object, context, scene);
+  ignoreRendererKeys(object);
+  object.reportUnknownKeys();
+  scene.shapes.push_back(std::move(shape));
+}
+
+// -------------------------------------------------------------------- scene
+
+void readSceneObject(JsonObject& object, const ShapeContext& context, Scene& scene) {
+  if (const std::optional<JsonNode> background = object.optional("backgroundcolor")) {
+    scene.backgroundColor = background->nonNegativeVec3();
+  }
+  if (const std::optional<JsonNode> lights = object.optional("lightsources")) {
+    for (const JsonNode& light : lights->array()) readLight(light, scene);
+  }
+  for (const JsonNode& shape : object.required("shapes").array()) {
+    readShape(shape, context, scene);
+  }
+  ignoreRendererKeys(object);
+  for (const char* key : {"sampler", "method", "nsamples", "samples", "spp"}) {
+    object.ignoreWithWarning(key, std::string("'") + key +
+                                      "' inside scene is ignored: sampling settings are read at "
+                                      "the top level or in camera");
+  }
+  object.reportUnknownKeys();
+}
+
+fs::path absoluteFolderOf(const fs::path& file) {
+  std::error_code failed;
+  const fs::path absolute = fs::absolute(file, failed);
+  return (failed ? file : absolute).lexically_normal().parent_path();
+}
+
+}  // namespace
+
+Scene parseScene(std::string_view jsonText, const fs::path& file) {
+  Diagnostics diagnostics(file.string());
+  const Json document = parseJson(jsonText, file.string());
+  Scene scene;
+  scene.sourcePath = file;
+  scene.family = detectFamily(document);
+  JsonObject top = JsonNode(document, "", diagnostics).object();
+  scene.settings.maxBounces = readBounces(top);
+  scene.settings.mode = readRenderMode(top);
+  JsonObject camera = top.required("camera").object();
+  scene.camera = readCamera(camera);
+  readSampling(top, camera, scene.settings);
+  camera.reportUnknownKeys();
+  JsonObject sceneObject = top.required("scene").object();
+  readSceneObject(sceneObject, {absoluteFolderOf(file), scene.settings.mode}, scene);
+  ignoreRendererKeys(top);
+  top.reportUnknownKeys();
+  scene.warnings = diagnostics.takeWarnings();
+  return scene;
+}
+
+Scene loadScene(const fs::path& file) { return parseScene(readFileText(file), file); }
+
+}  // namespace rt

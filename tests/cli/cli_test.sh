@@ -1,0 +1,96 @@
+#!/usr/bin/env bash
+# Command-line behaviour of build/raytracer: usage, exit codes, one-line
+# errors that name the file and the JSON path or byte offset, and no output
+# file after a failure.
+# Usage: cli_test.sh RAYTRACER SHARED_DIR SCRATCH_DIR
+set -u
+RAYTRACER=$1
+SHARED=$2
+SCRATCH=$3
+rm -rf "$SCRATCH"
+mkdir -p "$SCRATCH"
+passed=0
+failed=0
+
+pass() { passed=$((passed + 1)); }
+fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
+
+# expect_error NAME PATTERN ARGS...: exits non-zero, prints exactly one line
+# on stderr matching PATTERN, and leaves no output file.
+expect_error() {
+  local name=$1 pattern=$2
+  shift 2
+  rm -f "$SCRATCH/out.png"
+  "$RAYTRACER" "$@" >"$SCRATCH/stdout" 2>"$SCRATCH/stderr"
+  local status=$?
+  local lines
+  lines=$(grep -vc '^warning: ' "$SCRATCH/stderr")
+  if [[ $status -eq 0 ]]; then fail "$name: exit status 0"; return; fi
+  if [[ $lines -ne 1 ]]; then fail "$name: expected one error line, got $lines: $(cat "$SCRATCH/stderr")"; return; fi
+  if ! grep -Eq -- "$pattern" "$SCRATCH/stderr"; then fail "$name: '$(cat "$SCRATCH/stderr")' does not match '$pattern'"; return; fi
+  if ls "$SCRATCH" | grep -q '^out\.png'; then fail "$name: an output file was left behind"; return; fi
+  pass
+}
+
+write() { printf '%s' "$2" >"$SCRATCH/$1"; }
+
+GOOD='{"nbounces":2,"camera":{"type":"pinhole","width":32,"height":24,"fov":45,"position":[0,0,0],"lookat":[0,0,-1],"up":[0,1,0]},
+"scene":{"backgroundcolor":[0.1,0.1,0.1],"lightsources":[{"type":"pointlight","position":[0,2,0],"is":[5,5,5],"id":[5,5,5]}],
+"shapes":[{"type":"sphere","center":[0,0,-3],"radius":1,"material":{"ks":0.2,"kd":0.8,"specularexponent":10,"diffusecolor":[0.8,0.2,0.2]}}]}}'
+write good.json "$GOOD"
+
+# --- usage ---------------------------------------------------------------
+"$RAYTRACER" --help >"$SCRATCH/help" 2>&1 && grep -q -- "--spp" "$SCRATCH/help" && pass || fail "--help"
+"$RAYTRACER" --version 2>&1 | grep -Eq '^raytracer [0-9]+\.[0-9]+' && pass || fail "--version"
+"$RAYTRACER" --device list 2>&1 | grep -Eq '^0: ' && pass || fail "--device list"
+"$RAYTRACER" >/dev/null 2>&1; [[ $? -ne 0 ]] && pass || fail "no arguments must fail"
+
+# --- good renders, every output format -----------------------------------
+for ext in png ppm exr hdr; do
+  if "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/good.$ext" --spp 2 --offscreen -q && [[ -s "$SCRATCH/good.$ext" ]]; then
+    pass
+  else
+    fail "render to .$ext"
+  fi
+done
+head -c 2 "$SCRATCH/good.ppm" | grep -q P6 && pass || fail "PPM magic"
+head -c 8 "$SCRATCH/good.png" | grep -q PNG && pass || fail "PNG magic"
+"$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/sized.ppm" --size 20x10 -q && head -c 11 "$SCRATCH/sized.ppm" | grep -q "20 10" && pass || fail "--size"
+ls "$SCRATCH" | grep -q '\.tmp-' && fail "temporary files left behind" || pass
+
+# --- bad input -----------------------------------------------------------
+expect_error "missing scene" 'nope\.json.*cannot open' "$SCRATCH/nope.json" "$SCRATCH/out.png"
+write broken.json '{"camera": {"width": 10,}'
+expect_error "malformed JSON" 'broken\.json: byte [0-9]+' "$SCRATCH/broken.json" "$SCRATCH/out.png"
+write empty.json ''
+expect_error "empty file" 'empty\.json' "$SCRATCH/empty.json" "$SCRATCH/out.png"
+write wrongtype.json "${GOOD/\"kd\":0.8/\"kd\":\"high\"}"
+expect_error "wrong type" 'wrongtype\.json: scene\.shapes\[0\]\.material\.kd' "$SCRATCH/wrongtype.json" "$SCRATCH/out.png"
+write negradius.json "${GOOD/\"radius\":1/\"radius\":-1}"
+expect_error "negative radius" 'negradius\.json: scene\.shapes\[0\]\.radius' "$SCRATCH/negradius.json" "$SCRATCH/out.png"
+write huge.json "${GOOD/\"width\":32/\"width\":1000000000}"
+expect_error "absurd width" 'huge\.json: camera\.width' "$SCRATCH/huge.json" "$SCRATCH/out.png"
+write nocamera.json '{"scene":{"shapes":[]}}'
+expect_error "missing camera" 'nocamera\.json: camera' "$SCRATCH/nocamera.json" "$SCRATCH/out.png"
+expect_error "bad extension" 'out\.bmp.*unsupported' "$SCRATCH/good.json" "$SCRATCH/out.bmp"
+expect_error "unwritable output" 'cannot write' "$SCRATCH/good.json" "$SCRATCH/no/such/dir/out.png" -q
+expect_error "bad --size" '--size 0x10' "$SCRATCH/good.json" "$SCRATCH/out.png" --size 0x10
+expect_error "bad --spp" 'spp' "$SCRATCH/good.json" "$SCRATCH/out.png" --spp 0
+expect_error "bad --device" '--device 99' "$SCRATCH/good.json" "$SCRATCH/out.png" --device 99
+
+# --- official scenes load and render (small) -------------------------------
+if [[ -d "$SHARED/scene-format/official" ]]; then
+  while IFS= read -r scene; do
+    name=$(basename "$scene" .json)
+    if "$RAYTRACER" "$scene" "$SCRATCH/official-$name.png" --size 48x32 --spp 1 -q 2>"$SCRATCH/stderr"; then
+      pass
+    else
+      fail "official scene $scene: $(cat "$SCRATCH/stderr")"
+    fi
+  done < <(find "$SHARED/scene-format/official" -name '*.json' | sort)
+else
+  echo "skipped official scenes: $SHARED not found"
+fi
+
+echo "$passed passed, $failed failed"
+[[ $failed -eq 0 ]]

@@ -1,0 +1,119 @@
+#include <doctest/doctest.h>
+
+#include <fstream>
+
+#include "gpu/ComputeKernel.hpp"
+#include "gpu/ShaderCompiler.hpp"
+#include "gpu_types.h"
+#include "render/Features.hpp"
+#include "support/TestSupport.hpp"
+
+using namespace rt;
+
+namespace {
+
+std::filesystem::path scratchShaderDir(const std::string& name) {
+  std::filesystem::path dir = std::filesystem::path(RT_TEST_OUTPUT_DIR) / "shaders" / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy(RT_SOURCE_SHADER_DIR, dir, std::filesystem::copy_options::recursive);
+  return dir;
+}
+
+int lineOf(const std::filesystem::path& file, const std::string& needle) {
+  std::ifstream in(file);
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.find(needle) != std::string::npos) return number;
+  }
+  return -1;
+}
+
+void replaceInFile(const std::filesystem::path& file, const std::string& from, const std::string& to) {
+  std::ifstream in(file);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  size_t at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, from.size(), to);
+  std::ofstream(file) << text;
+}
+
+ShaderDefines allFeatures() {
+  ShaderFeatures features;
+  features.spheres = features.triangles = features.cylinders = true;
+  features.reflection = features.refraction = features.thinLens = true;
+  features.whittedStackSize = 8;
+  return features.defines();
+}
+
+}  // namespace
+
+TEST_SUITE("shader-compiler") {
+  TEST_CASE("every kernel compiles with all features, and the device accepts it") {
+    struct Entry {
+      const char* file;
+      std::vector<uint32_t> bindings;
+      uint32_t pushBytes;
+    };
+    std::vector<uint32_t> scene = {RT_BINDING_SCENE_INFO, RT_BINDING_PRIMITIVES, RT_BINDING_BVH_NODES,
+                                   RT_BINDING_MATERIALS, RT_BINDING_POINT_LIGHTS};
+    auto with = [&](uint32_t a, uint32_t b = ~0u) {
+      auto list = scene;
+      list.push_back(a);
+      if (b != ~0u) list.push_back(b);
+      return list;
+    };
+    for (const Entry& entry : {Entry{"trace.comp", with(RT_BINDING_ACCUMULATION), sizeof(gpu::GpuFrameParams)},
+                               Entry{"intersect_batch.comp", with(RT_BINDING_RAYS, RT_BINDING_HITS),
+                                     sizeof(gpu::GpuBatchParams)}}) {
+      CAPTURE(entry.file);
+      std::vector<uint32_t> spirv = test::shaderCompiler().compile(entry.file, allFeatures());
+      REQUIRE(spirv.size() > 5);
+      CHECK(spirv[0] == 0x07230203u);
+      ComputeKernel kernel(test::gpu(), spirv, entry.bindings, entry.pushBytes);
+    }
+    test::checkNoValidationMessages();
+  }
+
+  TEST_CASE("feature defines change the code: no refraction means less code") {
+    ShaderFeatures minimal;
+    minimal.spheres = true;
+    ShaderCompiler compiler(RT_SOURCE_SHADER_DIR, "");
+    auto small = compiler.compile("trace.comp", minimal.defines());
+    auto large = compiler.compile("trace.comp", allFeatures());
+    CHECK(small.size() < large.size());
+  }
+
+  TEST_CASE("a compile error names the included file and its line") {
+    auto dir = scratchShaderDir("broken");
+    const std::string statement = "float attenuation = sceneInfo.lightScale;";
+    int line = lineOf(dir / "shading.glsl", statement);
+    REQUIRE(line > 0);
+    replaceInFile(dir / "shading.glsl", statement,
+                  "float attenuation = sceneInfo.lightScale + undefinedThing;");
+    ShaderCompiler compiler(dir, "");
+    try {
+      compiler.compile("trace.comp", allFeatures());
+      FAIL("the broken shader compiled");
+    } catch (const ShaderCompileError& e) {
+      std::string message = e.what();
+      CAPTURE(message);
+      CHECK(message.find("shading.glsl:" + std::to_string(line) + ":") != std::string::npos);
+      CHECK(message.find("undefinedThing") != std::string::npos);
+    }
+  }
+
+  TEST_CASE("the cache returns the same SPIR-V and follows source edits") {
+    auto dir = scratchShaderDir("cached");
+    auto cache = std::filesystem::path(RT_TEST_OUTPUT_DIR) / "shaders" / "cache";
+    std::filesystem::remove_all(cache);
+    ShaderCompiler compiler(dir, cache);
+    auto first = compiler.compile("intersect_batch.comp", allFeatures());
+    CHECK(std::distance(std::filesystem::directory_iterator(cache), {}) == 1);
+    CHECK(compiler.compile("intersect_batch.comp", allFeatures()) == first);
+    replaceInFile(dir / "intersect.glsl", "if (u < 0.0 || u > 1.0) return false;",
+                  "if (u < 0.0 || u > 1.0) return false;\n  u += 0.0;");
+    compiler.compile("intersect_batch.comp", allFeatures());
+    CHECK(std::distance(std::filesystem::directory_iterator(cache), {}) == 2);
+  }
+}

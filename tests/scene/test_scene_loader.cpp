@@ -1,0 +1,949 @@
+// Tests for rt::loadScene / rt::parseScene: the official and student files
+// under shared/scene-format, and hand-written bad inputs that must fail with
+// one line naming the file and the JSON path.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "scene/SceneLoader.hpp"
+#include "util/Error.hpp"
+
+// The build passes the absolute path of the shared folder; without it the
+// file-based tests are skipped, not failed.
+#ifndef RT_SHARED_DIR
+#define RT_SHARED_DIR ""
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+fs::path sceneFormatDir() { return fs::path(RT_SHARED_DIR) / "scene-format"; }
+
+bool sharedScenesAvailable() {
+  std::error_code ignored;
+  if (fs::is_directory(sceneFormatDir(), ignored)) return true;
+  MESSAGE("skipped: no shared scene folder at '" << sceneFormatDir().string() << "'");
+  return false;
+}
+
+std::vector<fs::path> jsonFilesUnder(const fs::path& folder) {
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+    if (entry.is_regular_file() && entry.path().extension() == ".json") {
+      files.push_back(entry.path());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+bool near(glm::vec3 a, glm::vec3 b) { return glm::length(a - b) < 1e-5f; }
+
+// A small valid family-A scene; each bad-input test breaks one thing in it.
+Json minimalScene() {
+  return Json::parse(R"({
+    "nbounces": 3,
+    "camera": {"type": "pinhole", "width": 64, "height": 48, "fov": 45,
+               "position": [0, 0, 0], "lookat": [0, 0, 1], "up": [0, 1, 0]},
+    "scene": {
+      "backgroundcolor": [0, 0, 0],
+      "lightsources": [{"type": "pointlight", "position": [0, 1, 0],
+                        "is": [1, 1, 1], "id": [2, 2, 2]}],
+      "shapes": [{"type": "sphere", "center": [0, 0, 3], "radius": 1,
+                  "material": {"ks": 0.1, "kd": 0.9, "specularexponent": 10,
+                               "diffusecolor": [1, 0, 0]}}]
+    }})");
+}
+
+Json& firstShape(Json& scene) { return scene["scene"]["shapes"][0]; }
+Json& firstMaterial(Json& scene) { return firstShape(scene)["material"]; }
+
+rt::Scene parse(const Json& document) { return rt::parseScene(document.dump(), "mem.json"); }
+
+// The rt::Error message of parsing `text`, or "" when it loads.
+std::string errorOfText(const std::string& text) {
+  try {
+    rt::parseScene(text, "mem.json");
+  } catch (const rt::Error& error) {
+    const std::string message = error.what();
+    CHECK_MESSAGE(!contains(message, "\n"), "error messages are one line: " << message);
+    return message;
+  }
+  return "";
+}
+
+std::string errorOf(const Json& document) { return errorOfText(document.dump()); }
+
+bool hasWarning(const rt::Scene& scene, const std::string& part) {
+  return std::any_of(scene.warnings.begin(), scene.warnings.end(),
+                     [&](const std::string& line) { return contains(line, part); });
+}
+
+// Every value's JSON pointer in `value`, the root included.
+void collectPointers(const Json& value, const Json::json_pointer& at,
+                     std::vector<Json::json_pointer>& out) {
+  out.push_back(at);
+  if (value.is_object()) {
+    for (const auto& [key, child] : value.items()) collectPointers(child, at / key, out);
+  } else if (value.is_array()) {
+    for (size_t i = 0; i < value.size(); ++i) collectPointers(value[i], at / i, out);
+  }
+}
+
+// Replaces or removes each value of `document` in turn: every variant must
+// either load or fail with rt::Error, never with another exception or a crash.
+// Returns how many variants were tried.
+size_t checkCorruptionsFailCleanly(const Json& document, const fs::path& file = "mem.json") {
+  const std::vector<Json> replacements = {
+      nullptr, "text", -1, 0, 2.5, 1e30, true, Json::array(), Json::object(), {1, 2, 3}};
+  std::vector<Json::json_pointer> pointers;
+  collectPointers(document, Json::json_pointer(), pointers);
+  size_t tried = 0;
+  for (const Json::json_pointer& pointer : pointers) {
+    std::vector<Json> variants;
+    for (const Json& replacement : replacements) {
+      variants.push_back(document);
+      variants.back()[pointer] = replacement;
+    }
+    if (!pointer.empty()) {
+      variants.push_back(document);
+      Json& parent = variants.back()[pointer.parent_pointer()];
+      if (parent.is_object()) {
+        parent.erase(pointer.back());
+      } else {
+        parent.erase(std::stoul(pointer.back()));
+      }
+    }
+    for (const Json& variant : variants) {
+      ++tried;
+      try {
+        rt::parseScene(variant.dump(), file);
+      } catch (const rt::Error&) {
+      } catch (const std::exception& error) {
+        FAIL("not an rt::Error at " << pointer.to_string() << ": " << error.what());
+      }
+    }
+  }
+  return tried;
+}
+
+// A scratch folder under the system temp dir, removed again at scope exit.
+class TempDir {
+ public:
+  TempDir() {
+    const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
+    path_ = fs::temp_directory_path() / ("rt_scene_loader_" + std::to_string(stamp));
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const fs::path& path() const { return path_; }
+  fs::path write(const fs::path& relative, const std::string& text) const {
+    const fs::path file = path_ / relative;
+    fs::create_directories(file.parent_path());
+    std::ofstream(file) << text;
+    return file;
+  }
+
+ private:
+  fs::path path_;
+};
+
+}  // namespace
+
+TEST_SUITE("scene loader: official files") {
+  TEST_CASE("2019 example: camera vectors default to looking down +z from the origin") {
+    if (!sharedScenesAvailable()) return;
+    const rt::Scene scene =
+        rt::loadScene(sceneFormatDir() / "official/cg-path-of-light-2019/example.json");
+    CHECK(scene.family == rt::SceneFamily::PathOfLight);
+    CHECK(scene.settings.maxBounces == 3);
+    CHECK(scene.camera.type == rt::CameraType::Pinhole);
+    CHECK(scene.camera.fovYDegrees == doctest::Approx(35.0));
+    CHECK(near(scene.camera.position, {0, 0, 0}));
+    CHECK(near(scene.camera.forward, {0, 0, 1}));
+    CHECK(near(scene.camera.up, {0, 1, 0}));
+    REQUIRE(scene.pointLights.size() == 1);
+    CHECK(near(scene.pointLights[0].diffuseIntensity, {1, 1, 1}));
+    CHECK(near(scene.pointLights[0].specularIntensity, {1, 1, 1}));
+    REQUIRE(scene.shapes.size() == 2);
+    const auto& sphere = std::get<rt::Sphere>(scene.shapes[1].geometry);
+    CHECK(near(sphere.center, {0.2f, 0.5f, 0.7f}));
+    CHECK(scene.materials[scene.shapes[1].material].specularExponent == doctest::Approx(10000));
+    // Both spheres lie in front of the default camera.
+    for (const rt::Shape& shape : scene.shapes) {
+      const auto& s = std::get<rt::Sphere>(shape.geometry);
+      CHECK(glm::dot(s.center - scene.camera.position, scene.camera.forward) > s.radius);
+    }
+  }
+
+  TEST_CASE("2021-2023 example: lookat is a direction, textures resolve, quads keep v0..v3") {
+    if (!sharedScenesAvailable()) return;
+    const rt::Scene scene = rt::loadScene(
+        sceneFormatDir() / "official/cg-path-of-light-2021-2023/examples/example.json");
+    CHECK(scene.family == rt::SceneFamily::PathOfLight);
+    CHECK(scene.shapes.size() == 5);
+    REQUIRE(scene.pointLights.size() == 1);
+    CHECK(near(scene.pointLights[0].diffuseIntensity, {100, 100, 100}));
+    CHECK(near(scene.pointLights[0].specularIntensity, {100, 100, 100}));
+    CHECK(near(scene.camera.position, {0.0f, -3.5f, 2.0f}));
+    CHECK(near(scene.camera.forward, glm::normalize(glm::vec3(0.0f, 1.0f, -0.1f))));
+    CHECK(near(scene.camera.up, {0.0f, 0.0f, 0.5f}));  // kept as given
+    CHECK(near(scene.backgroundColor, glm::vec3(0.01f)));
+
+    const rt::Material& sphereMaterial = scene.materials[scene.shapes[0].material];
+    CHECK(sphereMaterial.texture.filename() == "sky-map.jpg");
+    CHECK(fs::is_regular_file(sphereMaterial.texture));
+
+    CHECK(scene.shapes[2].label == "floor");
+    const auto& floor = std::get<rt::Quad>(scene.shapes[2].geometry);
+    CHECK(near(floor.v0, {-2, 8, 0}));
+    CHECK(near(floor.v3, {-2, 0, 0}));
+    CHECK(scene.materials[scene.shapes[2].material].reflectivity == doctest::Approx(0.3));
+    CHECK(std::holds_alternative<rt::Triangle>(scene.shapes[3].geometry));
+    CHECK(scene.warnings.empty());  // tWidth/tHeight are accepted silently
+  }
+
+  TEST_CASE("family B mirror_image: lookAt is a target, isreflective gates reflectivity") {
+    if (!sharedScenesAvailable()) return;
+    const rt::Scene scene =
+        rt::loadScene(sceneFormatDir() / "official/cgr-2023-2024/mirror_image.json");
+    CHECK(scene.family == rt::SceneFamily::Rendering);
+    CHECK(scene.settings.mode == rt::RenderMode::Phong);
+    CHECK(scene.settings.maxBounces == 8);
+    CHECK(scene.camera.exposure == doctest::Approx(0.1));
+    CHECK(near(scene.camera.forward, glm::normalize(glm::vec3(1.25f, -0.55f, 2.5f))));
+    REQUIRE(scene.shapes.size() == 7);
+    const auto& cylinder = std::get<rt::Cylinder>(scene.shapes[2].geometry);
+    CHECK(cylinder.halfHeight == doctest::Approx(0.5));
+    CHECK(cylinder.radius == doctest::Approx(0.25));
+    CHECK(near(cylinder.axis, {0, 1, 0}));
+    CHECK(scene.materials[scene.shapes[0].material].reflectivity == 0.0f);
+    for (size_t mirror : {5u, 6u}) {
+      CHECK(std::holds_alternative<rt::Triangle>(scene.shapes[mirror].geometry));
+      CHECK(scene.materials[scene.shapes[mirror].material].reflectivity == 1.0f);
+    }
+    CHECK(scene.materials[0].transmission == 0.0f);
+    CHECK(scene.warnings.empty());
+  }
+
+  TEST_CASE("family B binary_primitves: no materials, no lights, default bounces") {
+    if (!sharedScenesAvailable()) return;
+    const rt::Scene scene =
+        rt::loadScene(sceneFormatDir() / "official/cgr-2023-2024/binary_primitves.json");
+    CHECK(scene.family == rt::SceneFamily::Rendering);
+    CHECK(scene.settings.mode == rt::RenderMode::Binary);
+    CHECK(scene.settings.maxBounces == 4);
+    CHECK(scene.camera.width == 1200);
+    CHECK(scene.camera.height == 800);
+    CHECK(scene.pointLights.empty());
+    CHECK(scene.shapes.size() == 3);
+    CHECK(scene.materials.size() == 3);
+    CHECK(scene.warnings.empty());  // binary mode needs no materials
+  }
+
+  TEST_CASE("family B scene.json has two lights and six shapes") {
+    if (!sharedScenesAvailable()) return;
+    const rt::Scene scene = rt::loadScene(sceneFormatDir() / "official/cgr-2023-2024/scene.json");
+    CHECK(scene.settings.mode == rt::RenderMode::Binary);
+    CHECK(scene.pointLights.size() == 2);
+    CHECK(scene.shapes.size() == 6);
+    CHECK(near(scene.pointLights[1].specularIntensity, glm::vec3(0.5f)));
+  }
+
+  TEST_CASE("every official file loads without warnings") {
+    if (!sharedScenesAvailable()) return;
+    const std::vector<fs::path> files = jsonFilesUnder(sceneFormatDir() / "official");
+    CHECK(files.size() >= 6);
+    for (const fs::path& file : files) {
+      CAPTURE(file.string());
+      rt::Scene scene;
+      CHECK_NOTHROW(scene = rt::loadScene(file));
+      CHECK(scene.warnings.empty());
+      CHECK(!scene.shapes.empty());
+      CHECK(scene.materials.size() == scene.shapes.size());
+      CHECK(glm::length(scene.camera.forward) == doctest::Approx(1.0));
+    }
+  }
+}
+
+TEST_SUITE("scene loader: robustness") {
+  TEST_CASE("corrupting any single value of a scene fails cleanly") {
+    Json scene = minimalScene();
+    scene["camera"]["type"] = "thinlens";
+    scene["camera"]["aperture"] = 0.1;
+    scene["camera"]["focusdistance"] = 2;
+    scene["scene"]["shapes"].push_back({{"type", "trimesh"},
+                                        {"vertices", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+                                        {"faces", {{0, 1, 2}}}});
+    scene["scene"]["shapes"].push_back({{"type", "cylinder"},
+                                        {"center", {0, 0, 0}},
+                                        {"axis", {0, 1, 0}},
+                                        {"radius", 1},
+                                        {"height", 1},
+                                        {"material",
+                                         {{"ks", 0.1},
+                                          {"kd", 0.9},
+                                          {"specularexponent", 20},
+                                          {"diffusecolor", {0.5, 0.5, 0.8}},
+                                          {"specularcolor", {1, 1, 1}},
+                                          {"isreflective", true},
+                                          {"reflectivity", 1},
+                                          {"isrefractive", false},
+                                          {"refractiveindex", 1}}}});
+    CHECK(checkCorruptionsFailCleanly(scene) > 500);
+    if (!sharedScenesAvailable()) return;
+    // The file with textures, so the texture lookup is corrupted too.
+    const fs::path official =
+        sceneFormatDir() / "official/cg-path-of-light-2021-2023/examples/example.json";
+    std::ifstream stream(official);
+    CHECK(checkCorruptionsFailCleanly(Json::parse(stream), official) > 500);
+  }
+}
+
+TEST_SUITE("scene loader: student files") {
+  TEST_CASE("each student file loads or fails with one rt::Error line") {
+    if (!sharedScenesAvailable()) return;
+    const std::vector<fs::path> files = jsonFilesUnder(sceneFormatDir() / "student");
+    size_t loaded = 0;
+    for (const fs::path& file : files) {
+      CAPTURE(file.string());
+      try {
+        rt::loadScene(file);
+        ++loaded;
+      } catch (const rt::Error& error) {
+        const std::string message = error.what();
+        CHECK(!contains(message, "\n"));
+        CHECK(contains(message, file.string() + ": "));
+      } catch (const std::exception& error) {
+        FAIL("not an rt::Error: " << error.what());
+      }
+    }
+    MESSAGE(loaded << " of " << files.size() << " student scene files load");
+  }
+
+  TEST_CASE("known student files: what loads and why the others are rejected") {
+    if (!sharedScenesAvailable()) return;
+    const fs::path student = sceneFormatDir() / "student";
+    const auto errorOfFile = [&](const char* relative) -> std::string {
+      const fs::path file = student / relative;
+      if (!fs::exists(file)) return "(absent)";
+      try {
+        rt::loadScene(file);
+      } catch (const rt::Error& error) {
+        return error.what();
+      }
+      return "";
+    };
+    const auto expectRejected = [&](const char* relative, const std::string& why) {
+      const std::string error = errorOfFile(relative);
+      CAPTURE(relative);
+      CHECK((error == "(absent)" || contains(error, why)));
+    };
+    CHECK(errorOfFile("PeihengLu__CG_CW2/examples/example.json").empty());
+    CHECK(errorOfFile("chxag__CGR-Raytracing-CW2/Code/Jsons/complex_one.json").empty());
+    expectRejected("julie-o__CG-cw/demo.json",
+                   "scene.lightsources[0].type: area lights are not supported yet");
+    expectRejected("PeihengLu__CG_CW2/examples/example_trimesh.json",
+                   "scene.shapes[5].mPath: PLY meshes are not supported yet");
+    expectRejected("TsFreddie__RayTracer/examples/monkey_bvh_test.json",
+                   "scene.shapes[0].type: PLY meshes are not supported yet");
+    expectRejected("TsFreddie__RayTracer/examples/dof_test.json",
+                   "camera.type: unknown camera type 'thinlen'");
+    expectRejected("nizqleo__RayTracer/examples/triangle.json", "unknown shape type 'Traingle'");
+    expectRejected("TsFreddie__RayTracer/input_format.json", ": byte ");
+
+    const fs::path thinLens = student / "PeihengLu__CG_CW2/examples/example_thinlens.json";
+    if (fs::exists(thinLens)) {
+      const rt::Scene scene = rt::loadScene(thinLens);
+      CHECK(scene.camera.type == rt::CameraType::ThinLens);
+      CHECK(scene.camera.apertureRadius == doctest::Approx(0.1));
+      CHECK(scene.camera.focusDistance == doctest::Approx(6.5));
+    }
+  }
+}
+
+TEST_SUITE("scene loader: in-memory scenes") {
+  TEST_CASE("a minimal family-A scene") {
+    const rt::Scene scene = parse(minimalScene());
+    CHECK(scene.family == rt::SceneFamily::PathOfLight);
+    CHECK(scene.sourcePath == fs::path("mem.json"));
+    CHECK(scene.camera.width == 64);
+    CHECK(scene.camera.height == 48);
+    CHECK(scene.settings.samplesPerPixel == 0);
+    CHECK(scene.settings.mode == rt::RenderMode::Phong);
+    REQUIRE(scene.pointLights.size() == 1);
+    CHECK(near(scene.pointLights[0].specularIntensity, glm::vec3(1)));
+    CHECK(near(scene.pointLights[0].diffuseIntensity, glm::vec3(2)));
+    REQUIRE(scene.materials.size() == 1);
+    CHECK(scene.materials[0].kd == doctest::Approx(0.9));
+    CHECK(scene.materials[0].texture.empty());
+    CHECK(scene.warnings.empty());
+  }
+
+  TEST_CASE("JSON syntax errors report the byte offset") {
+    const std::string error = errorOfText("{\n  \"nbounces\": tru }");
+    CHECK(contains(error, "mem.json: byte "));
+    CHECK(contains(error, "syntax error"));
+    CHECK(!contains(error, "[json.exception"));
+    CHECK(contains(errorOfText(""), "mem.json: byte "));
+    CHECK(contains(errorOfText("{\"nbounces\": 3, // comment\n}"), "mem.json: byte "));
+    const std::string overflow = errorOfText("{\"nbounces\": 1e400}");
+    CHECK(contains(overflow, "mem.json: byte 14: "));
+    CHECK(contains(overflow, "overflow"));
+  }
+
+  TEST_CASE("wrong types name the exact JSON path") {
+    Json scene = minimalScene();
+    firstMaterial(scene)["kd"] = "0.9";
+    CHECK(errorOf(scene) == "mem.json: scene.shapes[0].material.kd: expected a number, got string");
+
+    scene = minimalScene();
+    firstMaterial(scene)["diffusecolor"] = {1, 0};
+    CHECK(errorOf(scene) ==
+          "mem.json: scene.shapes[0].material.diffusecolor: expected an array of 3 numbers, got "
+          "an array of 2");
+
+    scene = minimalScene();
+    scene["camera"]["position"][1] = nullptr;
+    CHECK(errorOf(scene) == "mem.json: camera.position[1]: expected a number, got null");
+
+    scene = minimalScene();
+    scene["scene"]["shapes"] = Json::object();
+    CHECK(errorOf(scene) == "mem.json: scene.shapes: expected an array, got object");
+
+    CHECK(errorOfText("[1, 2]") == "mem.json: (top level): expected an object, got an array of 2");
+  }
+
+  TEST_CASE("missing required keys") {
+    Json scene = minimalScene();
+    firstMaterial(scene).erase("kd");
+    CHECK(errorOf(scene) == "mem.json: scene.shapes[0].material.kd: missing required key");
+    scene = minimalScene();
+    scene.erase("camera");
+    CHECK(errorOf(scene) == "mem.json: camera: missing required key");
+    scene = minimalScene();
+    scene["scene"].erase("shapes");
+    CHECK(errorOf(scene) == "mem.json: scene.shapes: missing required key");
+    scene = minimalScene();
+    firstShape(scene).erase("radius");
+    CHECK(errorOf(scene) == "mem.json: scene.shapes[0].radius: missing required key");
+  }
+
+  TEST_CASE("value ranges") {
+    Json scene = minimalScene();
+    firstShape(scene)["radius"] = -1;
+    CHECK(errorOf(scene) == "mem.json: scene.shapes[0].radius: must be positive, got -1");
+    scene = minimalScene();
+    firstShape(scene)["radius"] = 1e39;  // finite double, but not a float
+    CHECK(contains(errorOf(scene), "scene.shapes[0].radius: number 1e+39 is out of range"));
+    scene = minimalScene();
+    firstMaterial(scene)["kd"] = -0.5;
+    CHECK(errorOf(scene) ==
+          "mem.json: scene.shapes[0].material.kd: must not be negative, got -0.5");
+    scene = minimalScene();
+    firstMaterial(scene)["diffusecolor"][2] = -1;
+    CHECK(
+        contains(errorOf(scene), "scene.shapes[0].material.diffusecolor[2]: must not be negative"));
+    scene = minimalScene();
+    firstMaterial(scene)["kr"] = 1.5;
+    CHECK(contains(errorOf(scene), "material.kr: must be between 0 and 1, got 1.5"));
+    scene = minimalScene();
+    scene["scene"]["lightsources"][0]["is"][0] = -1;
+    CHECK(contains(errorOf(scene), "scene.lightsources[0].is[0]: must not be negative"));
+  }
+
+  TEST_CASE("image size, fov and bounces") {
+    Json scene = minimalScene();
+    scene["camera"]["width"] = 1e9;
+    CHECK(errorOf(scene) == "mem.json: camera.width: must be between 1 and 16384, got 1000000000");
+    scene["camera"]["width"] = 1000000000;
+    CHECK(errorOf(scene) == "mem.json: camera.width: must be between 1 and 16384, got 1000000000");
+    scene["camera"]["width"] = 0;
+    CHECK(contains(errorOf(scene), "camera.width: must be between 1 and 16384, got 0"));
+    scene["camera"]["width"] = 800.5;
+    CHECK(contains(errorOf(scene), "camera.width: expected an integer, got 800.5"));
+    scene["camera"]["width"] = 800.0;  // an integral float is still an integer
+    CHECK(parse(scene).camera.width == 800);
+    scene["camera"]["height"] = 16385;
+    CHECK(contains(errorOf(scene), "camera.height: must be between 1 and 16384"));
+
+    scene = minimalScene();
+    for (double fov : {0.0, 180.0, -10.0}) {
+      scene["camera"]["fov"] = fov;
+      CHECK(contains(errorOf(scene), "camera.fov: must be between 0 and 180 degrees"));
+    }
+    scene["camera"]["fov"] = 179.5;
+    CHECK(parse(scene).camera.fovYDegrees == doctest::Approx(179.5));
+
+    scene = minimalScene();
+    scene["nbounces"] = -1;
+    CHECK(errorOf(scene) == "mem.json: nbounces: must be between 0 and 64, got -1");
+    scene["nbounces"] = 65;
+    CHECK(contains(errorOf(scene), "nbounces: must be between 0 and 64, got 65"));
+    scene["nbounces"] = 0;
+    CHECK(parse(scene).settings.maxBounces == 0);
+    scene.erase("nbounces");
+    CHECK(parse(scene).settings.maxBounces == 4);
+  }
+
+  TEST_CASE("camera vectors") {
+    Json scene = minimalScene();
+    scene["camera"]["lookat"] = {0, 0, 0};
+    CHECK(contains(errorOf(scene), "camera.lookat: must be a non-zero, finite vector"));
+
+    scene = minimalScene();
+    scene["camera"]["up"] = {0, 0, 0};
+    CHECK(contains(errorOf(scene), "camera.up: must be a non-zero, finite vector"));
+    scene["camera"]["up"] = {0, 0, 2};
+    CHECK(errorOf(scene) == "mem.json: camera.up: is parallel to the view direction");
+
+    scene = minimalScene();
+    scene["camera"].erase("up");
+    scene["camera"]["lookat"] = {0, -3, 0};
+    CHECK(contains(errorOf(scene), "camera.up: missing, and the default up (0, 1, 0) is parallel"));
+
+    scene = minimalScene();
+    scene["camera"]["lookat"] = {0, 0, 4};
+    scene["camera"]["up"] = {0, 3, 1};  // neither unit nor orthogonal: kept as given
+    const rt::Scene loaded = parse(scene);
+    CHECK(near(loaded.camera.forward, {0, 0, 1}));
+    CHECK(near(loaded.camera.up, {0, 3, 1}));
+
+    scene = minimalScene();
+    scene["camera"]["lookAt"] = {1, 1, 1};
+    CHECK(contains(errorOf(scene), "camera.lookAt: conflicts with 'camera.lookat'"));
+
+    scene = minimalScene();
+    scene["camera"]["upVector"] = {0, 1, 0};
+    CHECK(contains(errorOf(scene), "camera.upVector: conflicts with 'camera.up'"));
+  }
+
+  TEST_CASE("family B camera: lookAt is a target point") {
+    Json scene = minimalScene();
+    scene["camera"].erase("lookat");
+    scene["camera"].erase("up");
+    scene["camera"]["position"] = {1, 2, 3};
+    scene["camera"]["lookAt"] = {1, 2, 7};
+    scene["camera"]["upVector"] = {0, 1, 0};
+    scene["camera"]["exposure"] = 0.25;
+    rt::Scene loaded = parse(scene);
+    CHECK(loaded.family == rt::SceneFamily::Rendering);
+    CHECK(near(loaded.camera.forward, {0, 0, 1}));
+    CHECK(loaded.camera.exposure == doctest::Approx(0.25));
+
+    scene["camera"]["lookAt"] = {1, 2, 3};
+    CHECK(contains(errorOf(scene), "camera.lookAt: target point must differ from the camera"));
+    scene["camera"]["lookAt"] = {1, 2, 7};
+    scene["camera"]["exposure"] = 0;
+    CHECK(contains(errorOf(scene), "camera.exposure: must be positive"));
+  }
+
+  TEST_CASE("render mode") {
+    Json scene = minimalScene();
+    scene["rendermode"] = "pathtracer";
+    CHECK(errorOf(scene) ==
+          "mem.json: rendermode: rendermode 'pathtracer' is not supported yet (supported: "
+          "\"binary\", \"phong\")");
+    scene["rendermode"] = "binary";
+    firstShape(scene).erase("material");
+    rt::Scene loaded = parse(scene);
+    CHECK(loaded.settings.mode == rt::RenderMode::Binary);
+    CHECK(loaded.family == rt::SceneFamily::Rendering);
+    CHECK(loaded.materials.size() == 1);
+    CHECK(loaded.warnings.empty());
+
+    scene["rendermode"] = "phong";
+    loaded = parse(scene);
+    CHECK(hasWarning(loaded, "scene.shapes[0].material: missing; the default material is used"));
+  }
+
+  TEST_CASE("lights") {
+    Json scene = minimalScene();
+    scene["scene"]["lightsources"].push_back(
+        {{"type", "arealight"}, {"v0", {0, 0, 0}}, {"v1", {1, 0, 0}}, {"v2", {1, 1, 0}}});
+    CHECK(errorOf(scene) ==
+          "mem.json: scene.lightsources[1].type: area lights are not supported yet");
+
+    scene = minimalScene();
+    scene["scene"]["lightsources"][0]["type"] = "spotlight";
+    CHECK(contains(errorOf(scene), "scene.lightsources[0].type: unknown light type 'spotlight'"));
+
+    scene = minimalScene();
+    scene["scene"]["lightsources"][0]["intensity"] = {1, 1, 1};
+    CHECK(contains(errorOf(scene), "scene.lightsources[0].is: conflicts with 'intensity'"));
+
+    scene = minimalScene();
+    Json& light = scene["scene"]["lightsources"][0];
+    light.erase("is");
+    light.erase("id");
+    CHECK(contains(errorOf(scene), "scene.lightsources[0].intensity: missing"));
+    light["id"] = {1, 1, 1};
+    CHECK(errorOf(scene) == "mem.json: scene.lightsources[0].is: missing required key");
+    light.erase("id");
+    light["intensity"] = {0.5, 0.25, 1};
+    const rt::Scene loaded = parse(scene);
+    CHECK(near(loaded.pointLights[0].diffuseIntensity, {0.5f, 0.25f, 1}));
+    CHECK(near(loaded.pointLights[0].specularIntensity, {0.5f, 0.25f, 1}));
+    CHECK(loaded.family == rt::SceneFamily::PathOfLight);  // intensity alone is the 2019 format
+
+    scene["scene"].erase("lightsources");
+    CHECK(parse(scene).pointLights.empty());
+  }
+
+  TEST_CASE("shape types") {
+    Json scene = minimalScene();
+    firstShape(scene)["type"] = "PlanerQuad";
+    CHECK(contains(errorOf(scene), "scene.shapes[0].type: unknown shape type 'PlanerQuad'"));
+    firstShape(scene)["type"] = "ply";
+    CHECK(errorOf(scene) == "mem.json: scene.shapes[0].type: PLY meshes are not supported yet");
+
+    scene = minimalScene();
+    firstShape(scene) = {{"type", "plane"}, {"v2", {1, 1, 0}}, {"v0", {0, 0, 0}},
+                         {"v3", {0, 1, 0}}, {"v1", {1, 0, 0}}, {"id", "floor"}};
+    rt::Scene loaded = parse(scene);
+    const auto& quad = std::get<rt::Quad>(loaded.shapes[0].geometry);
+    CHECK(near(quad.v0, {0, 0, 0}));
+    CHECK(near(quad.v1, {1, 0, 0}));
+    CHECK(near(quad.v2, {1, 1, 0}));
+    CHECK(near(quad.v3, {0, 1, 0}));
+    CHECK(loaded.shapes[0].label == "floor");
+    CHECK(hasWarning(loaded, "scene.shapes[0].material: missing"));
+
+    firstShape(scene)["id"] = 7;
+    CHECK(contains(errorOf(scene), "scene.shapes[0].id: expected a string, got number"));
+
+    firstShape(scene) = {{"type", "triangle"}, {"v0", {0, 0, 0}}, {"v1", {1, 0, 0}}};
+    CHECK(errorOf(scene) == "mem.json: scene.shapes[0].v2: missing required key");
+  }
+
+  TEST_CASE("cylinders") {
+    Json scene = minimalScene();
+    firstShape(scene) = {{"type", "cylinder"},
+                         {"center", {0, 0, 3}},
+                         {"axis", {0, 2, 0}},
+                         {"radius", 0.5},
+                         {"height", 0.25}};
+    const rt::Scene loaded = parse(scene);
+    const auto& cylinder = std::get<rt::Cylinder>(loaded.shapes[0].geometry);
+    CHECK(near(cylinder.axis, {0, 1, 0}));
+    CHECK(cylinder.halfHeight == doctest::Approx(0.25));
+    CHECK(loaded.family == rt::SceneFamily::PathOfLight);  // no light uses `intensity`
+
+    firstShape(scene)["axis"] = {0, 0, 0};
+    CHECK(contains(errorOf(scene), "scene.shapes[0].axis: must be a non-zero, finite vector"));
+    firstShape(scene)["axis"] = {0, 1, 0};
+    firstShape(scene)["height"] = 0;
+    CHECK(contains(errorOf(scene), "scene.shapes[0].height: must be positive"));
+  }
+
+  TEST_CASE("inline triangle meshes") {
+    Json scene = minimalScene();
+    Json& mesh = firstShape(scene);
+    mesh = {{"type", "trimesh"},
+            {"vertices", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}},
+            {"faces", {{0, 1, 2, 3}, {0, 2, 3}}}};
+    rt::Scene loaded = parse(scene);
+    const auto& triangles = std::get<rt::TriangleMesh>(loaded.shapes[0].geometry);
+    CHECK(triangles.positions.size() == 4);
+    REQUIRE(triangles.faces.size() == 3);  // the quad face becomes a fan of two
+    CHECK(triangles.faces[0] == glm::uvec3(0, 1, 2));
+    CHECK(triangles.faces[1] == glm::uvec3(0, 2, 3));
+    CHECK(triangles.faces[2] == glm::uvec3(0, 2, 3));
+
+    mesh["faces"][1][2] = 4;
+    CHECK(errorOf(scene) ==
+          "mem.json: scene.shapes[0].faces[1][2]: vertex index 4 is out of range (the mesh has 4 "
+          "vertices)");
+    mesh["faces"][1][2] = -1;
+    CHECK(contains(errorOf(scene), "scene.shapes[0].faces[1][2]: vertex index -1 is out of range"));
+    mesh["faces"][1] = {0, 1};
+    CHECK(contains(errorOf(scene), "scene.shapes[0].faces[1]: a face needs at least 3"));
+    mesh["faces"][1] = {0, 1.5, 2};
+    CHECK(contains(errorOf(scene), "scene.shapes[0].faces[1][1]: expected an integer, got 1.5"));
+    mesh["faces"][1] = {0, 1, 2};
+    mesh["vertices"][3] = {0, 1};
+    CHECK(contains(errorOf(scene), "scene.shapes[0].vertices[3]: expected an array of 3 numbers"));
+    mesh["vertices"] = Json::array();
+    CHECK(contains(errorOf(scene), "scene.shapes[0].vertices: must list at least one vertex"));
+
+    scene = minimalScene();
+    firstShape(scene) = {{"type", "trimesh"}, {"plyPath", "../meshes/apple.ply"}};
+    CHECK(errorOf(scene) == "mem.json: scene.shapes[0].plyPath: PLY meshes are not supported yet");
+
+    scene = minimalScene();
+    firstShape(scene) = {{"type", "trimesh"},
+                         {"vertices", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}},
+                         {"faces", {{0, 1, 2}}},
+                         {"sizeScale", 2}};
+    loaded = parse(scene);
+    CHECK(hasWarning(loaded, "scene.shapes[0].sizeScale: mesh placement 'sizeScale' is only"));
+  }
+
+  TEST_CASE("family A material extras: kr, kt, eta and aliases") {
+    Json scene = minimalScene();
+    firstMaterial(scene)["kr"] = 0.25;
+    firstMaterial(scene)["kt"] = 0.75;
+    firstMaterial(scene)["eta"] = 1.5;
+    rt::Scene loaded = parse(scene);
+    CHECK(loaded.materials[0].reflectivity == doctest::Approx(0.25));
+    CHECK(loaded.materials[0].transmission == doctest::Approx(0.75));
+    CHECK(loaded.materials[0].ior == doctest::Approx(1.5));
+
+    firstMaterial(scene)["ior"] = 1.4;
+    CHECK(contains(errorOf(scene),
+                   "scene.shapes[0].material.ior: conflicts with 'scene.shapes[0].material.eta'"));
+    firstMaterial(scene).erase("ior");
+    firstMaterial(scene)["eta"] = 0;
+    CHECK(contains(errorOf(scene), "material.eta: must be positive"));
+  }
+
+  TEST_CASE("family B material keys") {
+    Json scene = minimalScene();
+    Json& material = firstMaterial(scene);
+    material["specularcolor"] = {0.5, 0.5, 0.5};
+    material["isreflective"] = true;
+    material["reflectivity"] = 0.6;
+    material["isrefractive"] = 1;  // some files write 0/1
+    material["refractiveindex"] = 1.33;
+    rt::Scene loaded = parse(scene);
+    CHECK(near(loaded.materials[0].specularColor, glm::vec3(0.5f)));
+    CHECK(loaded.materials[0].reflectivity == doctest::Approx(0.6));
+    CHECK(loaded.materials[0].transmission == 1.0f);
+    CHECK(loaded.materials[0].ior == doctest::Approx(1.33));
+
+    material["isreflective"] = 0;
+    CHECK(parse(scene).materials[0].reflectivity == 0.0f);
+    material["isreflective"] = "yes";
+    CHECK(contains(errorOf(scene),
+                   "material.isreflective: expected a boolean (true/false), got string"));
+    material["isreflective"] = 2;
+    CHECK(contains(errorOf(scene), "material.isreflective: expected a boolean"));
+
+    material.erase("isreflective");
+    loaded = parse(scene);
+    CHECK(loaded.materials[0].reflectivity == 0.0f);
+    CHECK(hasWarning(loaded, "material.reflectivity: ignored"));
+
+    material["kr"] = 0.5;
+    CHECK(contains(errorOf(scene), "material.kr: conflicts with 'isreflective'/'reflectivity'"));
+    material.erase("kr");
+    material["kt"] = 0.5;
+    CHECK(contains(errorOf(scene), "material.kt: conflicts with 'isrefractive'"));
+  }
+
+  TEST_CASE("textures resolve from the scene folder, then its parent") {
+    const TempDir dir;
+    dir.write("textures/a.png", "png");
+    dir.write("examples/b.png", "png");
+    const fs::path sceneFile = dir.path() / "examples/scene.json";
+
+    Json scene = minimalScene();
+    firstMaterial(scene)["tPath"] = "../textures/a.png";
+    firstMaterial(scene)["tWidth"] = 10;
+    firstMaterial(scene)["tHeight"] = 10;
+    rt::Scene loaded = rt::parseScene(scene.dump(), sceneFile);
+    CHECK(loaded.materials[0].texture == (dir.path() / "textures/a.png").lexically_normal());
+    CHECK(loaded.warnings.empty());
+
+    firstMaterial(scene).erase("tPath");
+    firstMaterial(scene)["texture"] = "examples/b.png";  // only found from the parent folder
+    loaded = rt::parseScene(scene.dump(), sceneFile);
+    CHECK(loaded.materials[0].texture == (dir.path() / "examples/b.png").lexically_normal());
+
+    firstMaterial(scene)["texture"] = "missing.png";
+    try {
+      rt::parseScene(scene.dump(), sceneFile);
+      FAIL("a missing texture must fail");
+    } catch (const rt::Error& error) {
+      CHECK(contains(error.what(), sceneFile.string() +
+                                       ": scene.shapes[0].material.texture: texture file not "
+                                       "found: missing.png"));
+    }
+
+    firstMaterial(scene)["tPath"] = "b.png";
+    CHECK(contains(errorOf(scene), "material.texture: conflicts with"));
+  }
+
+  TEST_CASE("thin lens cameras") {
+    Json scene = minimalScene();
+    Json& camera = scene["camera"];
+    camera["type"] = "thinlens";
+    camera["aperture"] = 0.2;  // a diameter
+    camera["focus_dist"] = 3;
+    rt::Scene loaded = parse(scene);
+    CHECK(loaded.camera.type == rt::CameraType::ThinLens);
+    CHECK(loaded.camera.apertureRadius == doctest::Approx(0.1));
+    CHECK(loaded.camera.focusDistance == doctest::Approx(3));
+
+    camera["lensRadius"] = 0.1;
+    CHECK(contains(errorOf(scene), "camera.lensRadius: conflicts with 'camera.aperture'"));
+    camera.erase("aperture");
+    camera.erase("focus_dist");
+    CHECK(contains(errorOf(scene), "camera.focusdistance: missing: a thin lens with an aperture"));
+    camera["focalDistance"] = 6.5;
+    loaded = parse(scene);
+    CHECK(loaded.camera.apertureRadius == doctest::Approx(0.1));
+    CHECK(loaded.camera.focusDistance == doctest::Approx(6.5));
+
+    camera["focusdistance"] = 2;
+    CHECK(contains(errorOf(scene), "conflicts with 'camera.focusdistance'"));
+  }
+
+  TEST_CASE("thin lens from the seed report's f, d and aperture fraction") {
+    Json scene = minimalScene();
+    Json& camera = scene["camera"];
+    camera["type"] = "thinlens";
+    camera["f"] = 3;
+    camera["d"] = 6;
+    camera["aperture"] = 0.0625;  // f/16
+    const rt::Scene loaded = parse(scene);
+    CHECK(loaded.camera.focusDistance == doctest::Approx(6.0));  // 1/(1/3 - 1/6)
+    CHECK(loaded.camera.apertureRadius == doctest::Approx(0.0625 * 3 / 2));
+
+    camera["d"] = 2;
+    CHECK(contains(errorOf(scene), "camera.d: must be greater than the focal length f = 3"));
+    camera.erase("d");
+    CHECK(contains(errorOf(scene), "camera.d: missing: the focal length 'f' needs"));
+    camera["d"] = 6;
+    camera["focusdistance"] = 4;
+    CHECK(contains(errorOf(scene), "camera.focusdistance: conflicts with 'f' and 'd'"));
+  }
+
+  TEST_CASE("a thin lens without an aperture is a pinhole; lens keys on a pinhole warn") {
+    Json scene = minimalScene();
+    scene["camera"]["type"] = "thinlens";
+    rt::Scene loaded = parse(scene);
+    CHECK(loaded.camera.type == rt::CameraType::Pinhole);
+    CHECK(hasWarning(loaded, "camera.type: thinlens camera without 'aperture'"));
+
+    scene["camera"]["aperture"] = 0;
+    loaded = parse(scene);
+    CHECK(loaded.camera.type == rt::CameraType::Pinhole);
+    CHECK(loaded.warnings.empty());
+
+    scene["camera"]["type"] = "pinhole";
+    loaded = parse(scene);
+    CHECK(hasWarning(loaded, "camera.aperture: thin lens key 'aperture' ignored"));
+
+    scene["camera"]["type"] = "thinlen";
+    CHECK(contains(errorOf(scene), "camera.type: unknown camera type 'thinlen'"));
+  }
+
+  TEST_CASE("sampler and sample count at the top level or in the camera") {
+    Json scene = minimalScene();
+    scene["sampler"] = "random";
+    scene["nsamples"] = 16;
+    rt::Scene loaded = parse(scene);
+    CHECK(loaded.settings.sampler == rt::SamplerKind::Random);
+    CHECK(loaded.settings.samplesPerPixel == 16);
+
+    scene = minimalScene();
+    scene["camera"]["method"] = "jittering";
+    scene["camera"]["spp"] = 4;
+    loaded = parse(scene);
+    CHECK(loaded.settings.sampler == rt::SamplerKind::Jittered);
+    CHECK(loaded.settings.samplesPerPixel == 4);
+    CHECK(loaded.warnings.empty());
+
+    scene["samples"] = 4;  // same value in both places is fine
+    CHECK(parse(scene).settings.samplesPerPixel == 4);
+    scene["samples"] = 8;
+    CHECK(contains(errorOf(scene), "camera.spp: conflicts with 'samples'"));
+    scene.erase("samples");
+    scene["camera"]["spp"] = 0;
+    CHECK(contains(errorOf(scene), "camera.spp: must be between 1 and"));
+    scene["camera"]["spp"] = 4;
+    scene["camera"]["method"] = "stratified";
+    CHECK(contains(errorOf(scene), "camera.method: unknown sampler 'stratified'"));
+
+    scene = minimalScene();
+    scene["scene"]["nsamples"] = 4;
+    loaded = parse(scene);
+    CHECK(loaded.settings.samplesPerPixel == 0);
+    CHECK(hasWarning(loaded, "scene.nsamples: 'nsamples' inside scene is ignored"));
+  }
+
+  TEST_CASE("unknown keys are warnings, renderer settings are silent") {
+    Json scene = minimalScene();
+    scene["pixel_sample_num"] = 30;
+    firstMaterial(scene)["metallic"] = 0.5;
+    scene["bvh"] = true;
+    scene["output"] = "out.ppm";
+    scene["scene"]["BVH"] = false;
+    firstShape(scene)["useBVH"] = true;
+    const rt::Scene loaded = parse(scene);
+    CHECK(loaded.warnings ==
+          std::vector<std::string>{
+              "mem.json: scene.shapes[0].material.metallic: unknown key 'metallic' ignored",
+              "mem.json: pixel_sample_num: unknown key 'pixel_sample_num' ignored"});
+  }
+
+  TEST_CASE("family detection") {
+    Json scene = minimalScene();
+    CHECK(parse(scene).family == rt::SceneFamily::PathOfLight);
+    scene["rendermode"] = "phong";
+    CHECK(parse(scene).family == rt::SceneFamily::Rendering);
+
+    scene = minimalScene();
+    scene["camera"]["exposure"] = 1;
+    CHECK(parse(scene).family == rt::SceneFamily::Rendering);
+
+    scene = minimalScene();
+    Json& light = scene["scene"]["lightsources"][0];
+    light.erase("is");
+    light.erase("id");
+    light["intensity"] = {1, 1, 1};
+    CHECK(parse(scene).family == rt::SceneFamily::PathOfLight);
+    firstMaterial(scene)["specularcolor"] = {1, 1, 1};
+    CHECK(parse(scene).family == rt::SceneFamily::Rendering);
+  }
+
+  TEST_CASE("loadScene reads files and reports unreadable ones") {
+    const TempDir dir;
+    const fs::path file = dir.write("scene.json", minimalScene().dump());
+    const rt::Scene scene = rt::loadScene(file);
+    CHECK(scene.sourcePath == file);
+    CHECK(scene.shapes.size() == 1);
+
+    const fs::path missing = dir.path() / "nope.json";
+    try {
+      rt::loadScene(missing);
+      FAIL("a missing file must fail");
+    } catch (const rt::Error& error) {
+      CHECK(std::string(error.what()) ==
+            missing.string() + ": cannot open: No such file or directory");
+    }
+    try {
+      rt::loadScene(dir.path());
+      FAIL("a folder must fail");
+    } catch (const rt::Error& error) {
+      CHECK(contains(error.what(), ": cannot open: Is a directory"));
+    }
+    const fs::path broken = dir.write("broken.json", "{\"camera\": ");
+    try {
+      rt::loadScene(broken);
+      FAIL("broken JSON must fail");
+    } catch (const rt::Error& error) {
+      CHECK(contains(error.what(), broken.string() + ": byte "));
+    }
+  }
+}

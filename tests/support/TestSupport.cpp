@@ -1,0 +1,70 @@
+#include "support/TestSupport.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <memory>
+
+namespace rt::test {
+
+std::optional<std::filesystem::path> sharedDir() {
+  std::filesystem::path dir = RT_SHARED_DIR;
+  if (std::filesystem::is_directory(dir / "scene-format")) return dir;
+  return std::nullopt;
+}
+
+VulkanContext& gpu() {
+  static std::unique_ptr<VulkanContext> context = [] {
+    ContextOptions options;
+    options.validation = true;
+    return std::make_unique<VulkanContext>(options);
+  }();
+  return *context;
+}
+
+const ShaderCompiler& shaderCompiler() {
+  static ShaderCompiler compiler(RT_SOURCE_SHADER_DIR, RT_TEST_SHADER_CACHE);
+  return compiler;
+}
+
+void checkNoValidationMessages() {
+  static uint32_t seen = 0;
+  uint32_t now = gpu().validationMessageCount();
+  CHECK_MESSAGE(now == seen, "Vulkan validation layer reported ", now - seen, " message(s)");
+  seen = now;
+}
+
+double psnr(const Image8& a, const Image8& b) {
+  REQUIRE(a.width == b.width);
+  REQUIRE(a.height == b.height);
+  double sum = 0;
+  for (size_t i = 0; i < a.rgb.size(); ++i) {
+    double d = double(a.rgb[i]) - double(b.rgb[i]);
+    sum += d * d;
+  }
+  double mse = sum / double(a.rgb.size());
+  return mse == 0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / mse);
+}
+
+Image8 downscale(const Image8& image, uint32_t width, uint32_t height) {
+  Image8 out{width, height, std::vector<uint8_t>(size_t(width) * height * 3)};
+  for (uint32_t y = 0; y < height; ++y) {
+    uint32_t y0 = y * image.height / height;
+    uint32_t y1 = std::max(y0 + 1, (y + 1) * image.height / height);
+    for (uint32_t x = 0; x < width; ++x) {
+      uint32_t x0 = x * image.width / width;
+      uint32_t x1 = std::max(x0 + 1, (x + 1) * image.width / width);
+      for (int c = 0; c < 3; ++c) {
+        double sum = 0;
+        for (uint32_t sy = y0; sy < y1; ++sy) {
+          for (uint32_t sx = x0; sx < x1; ++sx) sum += image.rgb[(size_t(sy) * image.width + sx) * 3 + c];
+        }
+        out.rgb[(size_t(y) * width + x) * 3 + c] =
+            static_cast<uint8_t>(std::lround(sum / double((y1 - y0) * (x1 - x0))));
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace rt::test
