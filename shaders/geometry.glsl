@@ -7,9 +7,9 @@
 vec3 hitPosition(Ray ray, SurfaceHit hit) {
   vec3 p = ray.origin + hit.t * ray.direction;
 #ifdef RT_FEATURE_SPHERES
-  GpuPrimitive prim = primitives[hit.primitiveIndex];
-  if (prim.kind == RT_PRIM_SPHERE) {
-    p = prim.a.xyz + prim.a.w * hit.normal;
+  if (primitives[hit.primitiveIndex].kind == RT_PRIM_SPHERE) {
+    vec4 sphere = primitives[hit.primitiveIndex].a;
+    p = sphere.xyz + sphere.w * hit.normal;
   }
 #endif
   return p;

@@ -116,22 +116,29 @@ bool intersectCylinder(vec3 center, vec3 axis, float radius, float halfHeight, R
 }
 #endif
 
-bool intersectPrimitive(GpuPrimitive prim, Ray ray, float tMin, inout float tMax,
-                        out vec3 normal) {
+// Reads only the fields the primitive's kind needs: on CPU drivers every
+// storage-buffer read is a per-lane gather, so loading whole records costs
+// more than the intersection arithmetic.
+bool intersectPrimitive(uint index, Ray ray, float tMin, inout float tMax, out vec3 normal) {
   normal = vec3(0.0, 0.0, 1.0);
+  uint kind = primitives[index].kind;
 #ifdef RT_FEATURE_SPHERES
-  if (prim.kind == RT_PRIM_SPHERE) {
-    return intersectSphere(prim.a.xyz, prim.a.w, ray, tMin, tMax, normal);
+  if (kind == RT_PRIM_SPHERE) {
+    vec4 sphere = primitives[index].a;
+    return intersectSphere(sphere.xyz, sphere.w, ray, tMin, tMax, normal);
   }
 #endif
 #ifdef RT_FEATURE_TRIANGLES
-  if (prim.kind == RT_PRIM_TRIANGLE) {
-    return intersectTriangle(prim.a.xyz, prim.b.xyz, prim.c.xyz, ray, tMin, tMax, normal);
+  if (kind == RT_PRIM_TRIANGLE) {
+    return intersectTriangle(primitives[index].a.xyz, primitives[index].b.xyz,
+                             primitives[index].c.xyz, ray, tMin, tMax, normal);
   }
 #endif
 #ifdef RT_FEATURE_CYLINDERS
-  if (prim.kind == RT_PRIM_CYLINDER) {
-    return intersectCylinder(prim.a.xyz, prim.b.xyz, prim.a.w, prim.b.w, ray, tMin, tMax, normal);
+  if (kind == RT_PRIM_CYLINDER) {
+    vec4 a = primitives[index].a;
+    vec4 b = primitives[index].b;
+    return intersectCylinder(a.xyz, b.xyz, a.w, b.w, ray, tMin, tMax, normal);
   }
 #endif
   return false;

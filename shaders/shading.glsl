@@ -45,9 +45,17 @@ float lightVisibility(Ray shadowRay, vec3 lightPosition) {
 #endif
 }
 
+// Unit-length colour: the coursework's renderer tints by the diffuse colour's
+// direction, not its magnitude (white (1,1,1) shows as 0.577).
+vec3 courseworkTint(vec3 color) {
+  float length2 = dot(color, color);
+  return length2 > 0.0 ? color * inversesqrt(length2) : vec3(0.0);
+}
+
 // Light reflected towards `toViewer` at p. `normal` is the shading normal
 // turned towards the viewer (surfaces are two-sided).
 vec3 directLighting(vec3 p, vec3 normal, vec3 toViewer, GpuMaterial material) {
+  bool coursework = sceneInfo.shadingModel == RT_SHADING_COURSEWORK;
   vec3 radiance = vec3(0.0);
   for (uint i = 0u; i < sceneInfo.pointLightCount; ++i) {
     GpuPointLight light = pointLights[i];
@@ -61,11 +69,17 @@ vec3 directLighting(vec3 p, vec3 normal, vec3 toViewer, GpuMaterial material) {
     if (visibility <= 0.0) continue;
     vec3 halfway = normalize(l + toViewer);
     float highlight = pow(max(dot(normal, halfway), 0.0), material.specularExponent);
-    vec3 diffuse = material.kd * material.diffuseColor * light.diffuseIntensity * cosine;
-    vec3 specular = material.ks * material.specularColor * light.specularIntensity * highlight;
+    vec3 diffuse = material.kd * light.diffuseIntensity * cosine;
+    vec3 specular = material.ks * light.specularIntensity * highlight;
+    if (!coursework) {
+      diffuse *= material.diffuseColor;
+      specular *= material.specularColor;
+    }
     radiance += visibility * lightAttenuation(distance) * (diffuse + specular);
   }
-  return radiance;
+  // The coursework model clamps the light reaching the eye first, then tints
+  // it (highlights included) by the normalised diffuse colour.
+  return coursework ? courseworkTint(material.diffuseColor) * min(radiance, vec3(1.0)) : radiance;
 }
 
 #endif

@@ -14,6 +14,12 @@ layout(std430, set = 0, binding = RT_BINDING_ACCUMULATION) buffer AccumulationBu
   vec4 accumulation[];  // rgb: sum of sample radiance, a: number of samples
 };
 
+#ifdef RT_COUNT_RAYS
+layout(std430, set = 0, binding = RT_BINDING_RAY_COUNTER) buffer RayCounterBuffer {
+  uint rayCounter[];
+};
+#endif
+
 #include "bindings.glsl"
 #include "rng.glsl"
 #include "intersect.glsl"
@@ -42,4 +48,7 @@ void main() {
     sum += vec4(finiteOrZero(radiance), 1.0);
   }
   accumulation[pixelIndex] = sum;
+#ifdef RT_COUNT_RAYS
+  atomicAdd(rayCounter[0], raysTraced);
+#endif
 }

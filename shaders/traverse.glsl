@@ -33,11 +33,18 @@ float boxEntry(vec3 boundsMin, vec3 boundsMax, Ray ray, vec3 invDir, float tMin,
   return enter <= exit * 1.0000004 ? enter : RT_FAR;
 }
 
+#ifdef RT_COUNT_RAYS
+uint raysTraced = 0u;  // rays this invocation traced, for benchmarks
+#endif
+
 // Walks the BVH; with anyHit it stops at the first intersection found.
 bool traverse(Ray ray, float tMin, inout float tMax, bool anyHit, out SurfaceHit hit) {
   hit.t = -1.0;
   hit.primitiveIndex = 0u;
   hit.normal = vec3(0.0, 0.0, 1.0);
+#ifdef RT_COUNT_RAYS
+  ++raysTraced;
+#endif
   if (sceneInfo.bvhNodeCount == 0u) return false;
   vec3 invDir = safeReciprocal(ray.direction);
   uint stack[RT_BVH_MAX_DEPTH];
@@ -52,7 +59,7 @@ bool traverse(Ray ray, float tMin, inout float tMax, bool anyHit, out SurfaceHit
     if (current.count > 0u) {
       for (uint i = current.firstIndex; i < current.firstIndex + current.count; ++i) {
         vec3 normal;
-        if (intersectPrimitive(primitives[i], ray, tMin, tMax, normal)) {
+        if (intersectPrimitive(i, ray, tMin, tMax, normal)) {
           hit.t = tMax;
           hit.primitiveIndex = i;
           hit.normal = normal;

@@ -1,8 +1,7 @@
 #include "app/Progress.hpp"
 
-#include <unistd.h>
-
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <string>
@@ -17,8 +16,8 @@ void ProgressBar::update(const RenderProgress& p) {
   double fraction = p.samplesDone / p.samplesTotal;
   double rate = p.elapsedSeconds > 0 ? p.samplesDone * double(pixels_) / p.elapsedSeconds : 0;
   double eta = fraction > 0 ? p.elapsedSeconds * (1.0 - fraction) / fraction : 0;
-  std::string stats = fmt::format("{:5.1f}/{} spp  {:7.2f} Msamples/s  ETA {:5.1f} s", p.samplesDone,
-                                  p.samplesTotal, rate * 1e-6, eta);
+  std::string stats = fmt::format("{:5.1f}/{} spp  {:7.2f} Msamples/s  ETA {:5.1f} s",
+                                  p.samplesDone, p.samplesTotal, rate * 1e-6, eta);
   if (interactive_) {
     if (p.elapsedSeconds - lastDraw_ < 0.1 && fraction < 1.0) return;
     lastDraw_ = p.elapsedSeconds;

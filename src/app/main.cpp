@@ -1,8 +1,8 @@
 // raytracer SCENE OUTPUT [options]: the command-line front end. A thin
 // client of the renderer library: parse arguments, load, render, write.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <optional>
 #include <regex>
@@ -30,6 +30,7 @@ struct CommandLine {
   std::string size;
   uint32_t seed = 0;
   std::string sampler;
+  std::string shading;
   std::string device;
   std::string shaderDir;
   std::optional<float> exposure;
@@ -83,6 +84,8 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
   options.sampler = scene.settings.sampler;
   if (cli.sampler == "random") options.sampler = rt::SamplerKind::Random;
   if (cli.sampler == "jittered") options.sampler = rt::SamplerKind::Jittered;
+  if (cli.shading == "standard") options.shading = rt::ShadingModel::Standard;
+  if (cli.shading == "coursework") options.shading = rt::ShadingModel::Coursework;
   return options;
 }
 
@@ -91,11 +94,11 @@ void printSummary(const rt::ImageF& image, const rt::RenderOptions& options,
   double samples = double(image.width) * image.height * options.samplesPerPixel;
   std::fprintf(stderr,
                "rendered %ux%u at %u spp in %.3f s (%.2f Msamples/s) on %s; "
-               "%u primitives, features: %s; shader %.3f s, %u dispatches\n",
+               "%u primitives, features: %s; setup %.3f s, %u dispatches\n",
                image.width, image.height, options.samplesPerPixel, stats.renderSeconds,
                samples / std::max(stats.renderSeconds, 1e-9) * 1e-6,
-               context.description().name.c_str(), stats.primitives, stats.features.summary().c_str(),
-               stats.compileSeconds, stats.dispatches);
+               context.description().name.c_str(), stats.primitives,
+               stats.features.summary().c_str(), stats.setupSeconds, stats.dispatches);
 }
 
 int run(const CommandLine& cli) {
@@ -104,12 +107,13 @@ int run(const CommandLine& cli) {
                                 cli.outputPath));
   }
   rt::Scene scene = rt::loadScene(cli.scenePath);
-  for (const std::string& warning : scene.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  for (const std::string& warning : scene.warnings)
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
   rt::RenderOptions options = renderOptions(cli, scene);
 
   rt::VulkanContext context(contextOptions(cli));
   rt::ShaderCompiler compiler(cli.shaderDir.empty() ? rt::ShaderCompiler::defaultShaderDir()
-                                                     : std::filesystem::path(cli.shaderDir),
+                                                    : std::filesystem::path(cli.shaderDir),
                               rt::ShaderCompiler::defaultCacheDir());
   rt::Renderer renderer(context, compiler);
   uint32_t width = options.width ? options.width : scene.camera.width;
@@ -119,13 +123,16 @@ int run(const CommandLine& cli) {
   rt::ImageF image = renderer.render(
       scene, options, [&](const rt::RenderProgress& p) { progress.update(p); }, &stats);
   progress.finish();
+  for (const std::string& warning : stats.warnings)
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
 
   rt::ToneMapping mapping = rt::toneMappingFor(scene);
   if (cli.exposure) mapping.exposure *= *cli.exposure;
   rt::writeImage(cli.outputPath, image, mapping);
   if (!cli.quiet) printSummary(image, options, stats, context);
   if (context.validationMessageCount() > 0) {
-    throw rt::Error(fmt::format("{} Vulkan validation message(s) reported", context.validationMessageCount()));
+    throw rt::Error(
+        fmt::format("{} Vulkan validation message(s) reported", context.validationMessageCount()));
   }
   return 0;
 }
@@ -144,10 +151,15 @@ int main(int argc, char** argv) {
   app.add_option("--seed", cli.seed, "Random seed (renders are reproducible per seed)");
   app.add_option("--sampler", cli.sampler, "Pixel sampler (default: the scene's, else jittered)")
       ->check(CLI::IsMember({"random", "jittered"}));
+  app.add_option("--shading", cli.shading,
+                 "Shading model (default: coursework for Path-of-Light files, standard otherwise)")
+      ->check(CLI::IsMember({"standard", "coursework"}));
   app.add_flag("--offscreen", cli.offscreen, "Render without a window (the default)");
   app.add_option("--device", cli.device, "'list' to list Vulkan devices, or the number to use");
-  app.add_flag("--validation", cli.validation, "Enable the Vulkan validation layer; any message fails the run");
-  app.add_option("--shader-dir", cli.shaderDir, "Folder with the GLSL shaders (default: built-in path)");
+  app.add_flag("--validation", cli.validation,
+               "Enable the Vulkan validation layer; any message fails the run");
+  app.add_option("--shader-dir", cli.shaderDir,
+                 "Folder with the GLSL shaders (default: built-in path)");
   app.add_option("--exposure", cli.exposure, "Extra exposure factor applied before tone mapping")
       ->check(CLI::PositiveNumber);
   app.add_flag("-q,--quiet", cli.quiet, "No progress bar or summary");
@@ -167,7 +179,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (cli.scenePath.empty() || cli.outputPath.empty()) {
-      std::fprintf(stderr, "error: usage: raytracer SCENE.json OUTPUT.png [options] (see --help)\n");
+      std::fprintf(stderr,
+                   "error: usage: raytracer SCENE.json OUTPUT.png [options] (see --help)\n");
       return 2;
     }
     return run(cli);

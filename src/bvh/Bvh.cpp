@@ -6,7 +6,7 @@
 namespace rt {
 namespace {
 
-constexpr float kTraversalCost = 1.0f;    // relative to one primitive test
+constexpr float kTraversalCost = 1.0f;  // relative to one primitive test
 constexpr uint32_t kMaxBins = 32;
 
 struct BuildTask {
@@ -123,8 +123,9 @@ class Builder {
     for (uint32_t b = 0; b + 1 < bins; ++b) {
       left.grow(binned[b].bounds);
       leftCount += binned[b].count;
-      float cost = kTraversalCost + (left.surfaceArea() * static_cast<float>(leftCount) +
-                                     rightCost[b + 1]) / std::max(parentArea, 1e-30f);
+      float cost =
+          kTraversalCost + (left.surfaceArea() * static_cast<float>(leftCount) + rightCost[b + 1]) /
+                               std::max(parentArea, 1e-30f);
       if (cost < best.cost) {
         best = {axis, lo + extent * static_cast<float>(b + 1) / static_cast<float>(bins), cost};
       }
@@ -141,9 +142,8 @@ class Builder {
     if (split.axis >= 0 && (splitWorthIt || count > options_.maxLeafSize * 4)) {
       auto first = order.begin() + task.begin;
       auto last = order.begin() + task.end;
-      auto middle = std::partition(first, last, [&](uint32_t p) {
-        return boxes_[p].center()[split.axis] < split.position;
-      });
+      auto middle = std::partition(
+          first, last, [&](uint32_t p) { return boxes_[p].center()[split.axis] < split.position; });
       uint32_t index = static_cast<uint32_t>(middle - order.begin());
       if (index != task.begin && index != task.end) return index;
     }

@@ -4,9 +4,8 @@
 // `primitiveOrder`.
 #pragma once
 
-#include <glm/glm.hpp>
-
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <limits>
 #include <vector>
 

@@ -48,8 +48,9 @@ constexpr VkBufferUsageFlags kTransferUsage =
 Buffer::Buffer(VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage)
     : context_(&context), size_(size) {
   if (size == 0) throw Error("internal: zero-sized GPU buffer");
-  RawBuffer raw = allocate(context, size, usage | kTransferUsage, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT,
-                           VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  RawBuffer raw =
+      allocate(context, size, usage | kTransferUsage, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT,
+               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   buffer_ = raw.buffer;
   memory_ = raw.memory;
   VkMemoryPropertyFlags flags = context.memoryTypeFlags(raw.memoryType);
@@ -95,7 +96,8 @@ void Buffer::upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
   }
   std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
   if (!coherent_) {
-    VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, memory_, 0, VK_WHOLE_SIZE};
+    VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, memory_, 0,
+                              VK_WHOLE_SIZE};
     vkCheck(vkFlushMappedMemoryRanges(context_->device(), 1, &range), "vkFlushMappedMemoryRanges");
   }
 }
@@ -107,7 +109,8 @@ void Buffer::download(void* data, VkDeviceSize bytes, VkDeviceSize offset) {
     return;
   }
   if (!coherent_) {
-    VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, memory_, 0, VK_WHOLE_SIZE};
+    VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, memory_, 0,
+                              VK_WHOLE_SIZE};
     vkCheck(vkInvalidateMappedMemoryRanges(context_->device(), 1, &range),
             "vkInvalidateMappedMemoryRanges");
   }
@@ -122,9 +125,10 @@ void Buffer::fillZero() {
 void Buffer::copyThroughStaging(void* hostData, VkDeviceSize bytes, VkDeviceSize offset,
                                 bool toDevice) {
   VkDevice device = context_->device();
-  RawBuffer staging = allocate(*context_, bytes, kTransferUsage,
-                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
-                               VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+  RawBuffer staging =
+      allocate(*context_, bytes, kTransferUsage,
+               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+               VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
   void* mapped = nullptr;
   try {
     vkCheck(vkMapMemory(device, staging.memory, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory");

@@ -18,8 +18,8 @@ ComputeKernel::ComputeKernel(VulkanContext& context, const std::vector<uint32_t>
 
     std::vector<VkDescriptorSetLayoutBinding> bindings;
     for (uint32_t binding : storageBindings) {
-      bindings.push_back({binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-                          VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+      bindings.push_back(
+          {binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
     }
     VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     layoutInfo.bindingCount = static_cast<uint32_t>(bindings.size());
@@ -93,8 +93,8 @@ void ComputeKernel::bind(uint32_t binding, const Buffer& buffer) {
 void ComputeKernel::recordDispatch(VkCommandBuffer commands, const void* pushConstants,
                                    uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) const {
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-  vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_,
-                          0, nullptr);
+  vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0,
+                          nullptr);
   if (pushConstantBytes_ > 0) {
     vkCmdPushConstants(commands, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0,
                        pushConstantBytes_, pushConstants);

@@ -40,8 +40,8 @@ std::string readTextFile(const std::filesystem::path& path) {
 // Inlines `#include "file"` lines (relative to the including file) so that
 // glslang sees one string, the cache key covers every included file, and
 // each line can be mapped back to its file for error messages.
-void expandIncludes(const std::filesystem::path& file, const std::filesystem::path& root,
-                    int depth, ExpandedSource& out) {
+void expandIncludes(const std::filesystem::path& file, const std::filesystem::path& root, int depth,
+                    ExpandedSource& out) {
   if (depth > kMaxIncludeDepth) {
     throw ShaderCompileError(fmt::format("{}: includes nested too deeply (cycle?)", file.string()));
   }
@@ -90,9 +90,10 @@ std::string mapDiagnostics(const std::string& log, const std::vector<LineOrigin>
     std::smatch match;
     if (std::regex_match(line, match, located)) {
       size_t index = std::stoul(match[2].str());
-      std::string where = index >= 1 && index <= origins.size()
-                              ? fmt::format("{}:{}", origins[index - 1].file, origins[index - 1].line)
-                              : "<unknown>";
+      std::string where =
+          index >= 1 && index <= origins.size()
+              ? fmt::format("{}:{}", origins[index - 1].file, origins[index - 1].line)
+              : "<unknown>";
       std::string level = match[1].str() == "ERROR" ? "error" : "warning";
       result += fmt::format("{}: {}: {}\n", where, level, match[3].str());
     } else if (line.find("compilation errors") == std::string::npos && !line.empty() &&
@@ -172,8 +173,9 @@ std::vector<uint32_t> ShaderCompiler::compile(const std::string& entryFile,
 
   std::filesystem::path cacheFile;
   if (options.useCache && !cacheDir_.empty()) {
-    std::string key = fmt::format("{}|{}|{}|{}", glslang::GetGlslVersionString(),
-                                  glslang::GetSpirvGeneratorVersion(), options.optimize, source.text);
+    std::string key =
+        fmt::format("{}|{}|{}|{}", glslang::GetGlslVersionString(),
+                    glslang::GetSpirvGeneratorVersion(), options.optimize, source.text);
     cacheFile = cacheDir_ / fmt::format("{:016x}.spv", fnv1a(key));
     auto cached = readCachedSpirv(cacheFile);
     if (!cached.empty()) return cached;

@@ -23,7 +23,7 @@ class ShaderCompileError : public Error {
 };
 
 struct ShaderCompileOptions {
-  bool optimize = false;        // glslang has no optimizer here; kept for the cache key
+  bool optimize = false;  // glslang has no optimizer here; kept for the cache key
   bool useCache = true;
 };
 

@@ -22,7 +22,8 @@ const char* resultName(VkResult result) {
     case VK_ERROR_DEVICE_LOST: return "VK_ERROR_DEVICE_LOST";
     case VK_ERROR_LAYER_NOT_PRESENT: return "VK_ERROR_LAYER_NOT_PRESENT";
     case VK_ERROR_EXTENSION_NOT_PRESENT: return "VK_ERROR_EXTENSION_NOT_PRESENT";
-    case VK_ERROR_INCOMPATIBLE_DRIVER: return "VK_ERROR_INCOMPATIBLE_DRIVER (no Vulkan driver found)";
+    case VK_ERROR_INCOMPATIBLE_DRIVER:
+      return "VK_ERROR_INCOMPATIBLE_DRIVER (no Vulkan driver found)";
     case VK_TIMEOUT: return "VK_TIMEOUT";
     default: return "VkResult error";
   }
@@ -54,8 +55,9 @@ bool layerAvailable(const char* name) {
   vkEnumerateInstanceLayerProperties(&count, nullptr);
   std::vector<VkLayerProperties> layers(count);
   vkEnumerateInstanceLayerProperties(&count, layers.data());
-  return std::any_of(layers.begin(), layers.end(),
-                     [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+  return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) {
+    return std::strcmp(l.layerName, name) == 0;
+  });
 }
 
 std::vector<VkPhysicalDevice> enumeratePhysicalDevices(VkInstance instance) {
@@ -192,7 +194,8 @@ VKAPI_ATTR VkBool32 VKAPI_CALL VulkanContext::onValidationMessage(
 
 void VulkanContext::pickPhysicalDevice(const ContextOptions& options) {
   auto devices = enumeratePhysicalDevices(instance_);
-  if (devices.empty()) throw Error("Vulkan: no physical device found (is mesa-vulkan-drivers installed?)");
+  if (devices.empty())
+    throw Error("Vulkan: no physical device found (is mesa-vulkan-drivers installed?)");
   std::optional<uint32_t> chosen;
   if (options.deviceIndex) {
     if (*options.deviceIndex >= devices.size()) {

@@ -24,8 +24,8 @@ struct DeviceDescription {
 };
 
 struct ContextOptions {
-  bool validation = false;             // enable VK_LAYER_KHRONOS_validation
-  std::optional<uint32_t> deviceIndex;  // as listed by listDevices(); default: best
+  bool validation = false;                      // enable VK_LAYER_KHRONOS_validation
+  std::optional<uint32_t> deviceIndex;          // as listed by listDevices(); default: best
   std::vector<const char*> instanceExtensions;  // e.g. for a window surface
   std::vector<const char*> deviceExtensions;
 };

@@ -1,9 +1,8 @@
 #include "io/AtomicFile.hpp"
 
 #include <fcntl.h>
-#include <unistd.h>
-
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
@@ -25,7 +24,8 @@ void writeAll(int fd, const void* data, size_t bytes, const std::filesystem::pat
   while (bytes > 0) {
     ssize_t written = ::write(fd, cursor, bytes);
     if (written < 0 && errno == EINTR) continue;
-    if (written <= 0) throw Error(fmt::format("{}: write failed: {}", path.string(), std::strerror(errno)));
+    if (written <= 0)
+      throw Error(fmt::format("{}: write failed: {}", path.string(), std::strerror(errno)));
     cursor += written;
     bytes -= static_cast<size_t>(written);
   }
@@ -51,15 +51,18 @@ void writeAtomically(const std::filesystem::path& target,
 void writeFileAtomically(const std::filesystem::path& target, const void* data, size_t bytes) {
   writeAtomically(target, [&](const std::filesystem::path& tmp) {
     int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) throw Error(fmt::format("{}: cannot write: {}", target.string(), std::strerror(errno)));
+    if (fd < 0)
+      throw Error(fmt::format("{}: cannot write: {}", target.string(), std::strerror(errno)));
     try {
       writeAll(fd, data, bytes, target);
-      if (::fsync(fd) != 0) throw Error(fmt::format("{}: fsync failed: {}", target.string(), std::strerror(errno)));
+      if (::fsync(fd) != 0)
+        throw Error(fmt::format("{}: fsync failed: {}", target.string(), std::strerror(errno)));
     } catch (...) {
       ::close(fd);
       throw;
     }
-    if (::close(fd) != 0) throw Error(fmt::format("{}: close failed: {}", target.string(), std::strerror(errno)));
+    if (::close(fd) != 0)
+      throw Error(fmt::format("{}: close failed: {}", target.string(), std::strerror(errno)));
   });
 }
 

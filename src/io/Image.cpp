@@ -47,7 +47,8 @@ void writePpm(const std::filesystem::path& path, const Image8& image) {
 }
 
 void appendBytes(void* context, void* data, int size) {
-  static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<size_t>(size));
+  static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                             static_cast<size_t>(size));
 }
 
 void writePng(const std::filesystem::path& path, const Image8& image) {
@@ -113,7 +114,8 @@ bool isSupportedImageExtension(const std::filesystem::path& path) {
   return ext == ".ppm" || ext == ".png" || ext == ".exr" || ext == ".hdr";
 }
 
-void writeImage(const std::filesystem::path& path, const ImageF& image, const ToneMapping& mapping) {
+void writeImage(const std::filesystem::path& path, const ImageF& image,
+                const ToneMapping& mapping) {
   std::string ext = lowerExtension(path);
   if (ext == ".ppm") return writePpm(path, toneMap(image, mapping));
   if (ext == ".png") return writePng(path, toneMap(image, mapping));
@@ -128,7 +130,8 @@ Image8 readImage8(const std::filesystem::path& path) {
   int height = 0;
   int channels = 0;
   stbi_uc* data = stbi_load(path.c_str(), &width, &height, &channels, 3);
-  if (!data) throw Error(fmt::format("{}: cannot read image: {}", path.string(), stbi_failure_reason()));
+  if (!data)
+    throw Error(fmt::format("{}: cannot read image: {}", path.string(), stbi_failure_reason()));
   Image8 image{static_cast<uint32_t>(width), static_cast<uint32_t>(height), {}};
   image.rgb.assign(data, data + size_t(width) * height * 3);
   stbi_image_free(data);

@@ -13,7 +13,8 @@ BatchIntersector::BatchIntersector(VulkanContext& context, const ShaderCompiler&
                                    const Scene& scene)
     : context_(context), flat_(flattenScene(scene)) {
   buffers_ = std::make_unique<SceneBuffers>(context, flat_);
-  std::vector<uint32_t> spirv = compiler.compile("intersect_batch.comp", detectFeatures(scene).defines());
+  std::vector<uint32_t> spirv =
+      compiler.compile("intersect_batch.comp", detectFeatures(scene).defines());
   kernel_ = std::make_unique<ComputeKernel>(
       context, spirv,
       std::vector<uint32_t>{RT_BINDING_SCENE_INFO, RT_BINDING_PRIMITIVES, RT_BINDING_BVH_NODES,

@@ -1,9 +1,10 @@
 // The lighting and display conventions of each scene family. Neither
-// coursework wrote them down; they were fitted to the official renders (see
-// README "Conventions" and tests/render/test_reference.cpp).
+// coursework wrote them down; family A's were fitted to the official renders
+// (see README "Conventions" and tests/render/test_reference.cpp).
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 #include "gpu_types.h"
 #include "io/Image.hpp"
@@ -11,12 +12,17 @@
 
 namespace rt {
 
+enum class ShadingModel { Standard, Coursework };
+
 struct LightingConventions {
   uint32_t falloff = RT_FALLOFF_NONE;  // RT_FALLOFF_*
   float lightScale = 1.0f;             // multiplies every light intensity
+  ShadingModel shading = ShadingModel::Standard;
 };
 
-LightingConventions lightingConventionsFor(SceneFamily family);
+// `shading` overrides the family's shading model when given.
+LightingConventions lightingConventionsFor(SceneFamily family,
+                                           std::optional<ShadingModel> shading = std::nullopt);
 
 // Tone mapping for PNG/PPM output, including the camera's exposure.
 ToneMapping toneMappingFor(const Scene& scene);

@@ -4,7 +4,6 @@
 #include <cctype>
 #include <variant>
 
-
 namespace rt {
 namespace {
 
@@ -19,7 +18,7 @@ void addGeometryFeatures(const Shape& shape, ShaderFeatures& features) {
         if constexpr (std::is_same_v<T, Sphere>) features.spheres = true;
         if constexpr (std::is_same_v<T, Cylinder>) features.cylinders = true;
         if constexpr (std::is_same_v<T, Triangle> || std::is_same_v<T, Quad> ||
-                      std::is_same_v<T, TriangleMesh>) {
+                      std::is_same_v<T, MeshInstance>) {
           features.triangles = true;
         }
       },
@@ -57,6 +56,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(reflection, "RT_FEATURE_REFLECTION");
   flag(refraction, "RT_FEATURE_REFRACTION");
   flag(thinLens, "RT_FEATURE_THIN_LENS");
+  flag(countRays, "RT_COUNT_RAYS");
   result.emplace_back("RT_WHITTED_STACK_SIZE", std::to_string(whittedStackSize));
   return result;
 }

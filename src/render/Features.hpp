@@ -18,6 +18,7 @@ struct ShaderFeatures {
   bool reflection = false;
   bool refraction = false;
   bool thinLens = false;
+  bool countRays = false;         // benchmark instrumentation
   uint32_t whittedStackSize = 1;  // pending rays of the ray tree
 
   ShaderDefines defines() const;

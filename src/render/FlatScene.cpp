@@ -22,6 +22,7 @@ gpu::GpuPrimitive makeTriangle(const glm::vec3& v0, const glm::vec3& v1, const g
 }
 
 struct PrimitiveSink {
+  const Scene& scene;
   std::vector<gpu::GpuPrimitive>& out;
   void operator()(const Sphere& s) const {
     gpu::GpuPrimitive prim{};
@@ -41,9 +42,11 @@ struct PrimitiveSink {
     prim.b = glm::vec4(c.axis, c.halfHeight);
     out.push_back(prim);
   }
-  void operator()(const TriangleMesh& mesh) const {
+  void operator()(const MeshInstance& instance) const {
+    const TriangleMesh& mesh = scene.meshes.at(instance.mesh);
     for (const glm::uvec3& face : mesh.faces) {
-      out.push_back(makeTriangle(mesh.positions[face.x], mesh.positions[face.y], mesh.positions[face.z]));
+      out.push_back(
+          makeTriangle(mesh.positions[face.x], mesh.positions[face.y], mesh.positions[face.z]));
     }
   }
 };
@@ -77,7 +80,7 @@ std::vector<gpu::GpuPrimitive> collectPrimitives(const Scene& scene) {
   for (uint32_t shapeIndex = 0; shapeIndex < scene.shapes.size(); ++shapeIndex) {
     const Shape& shape = scene.shapes[shapeIndex];
     size_t first = primitives.size();
-    std::visit(PrimitiveSink{primitives}, shape.geometry);
+    std::visit(PrimitiveSink{scene, primitives}, shape.geometry);
     for (size_t i = first; i < primitives.size(); ++i) {
       primitives[i].materialIndex = shape.material;
       primitives[i].shapeIndex = shapeIndex;
@@ -104,8 +107,8 @@ void addBvh(FlatScene& flat) {
 }
 
 gpu::GpuMaterial toGpu(const Material& m) {
-  return {m.diffuseColor, m.kd, m.specularColor, m.ks, m.specularExponent, m.reflectivity,
-          m.transmission, m.ior};
+  return {m.diffuseColor,     m.kd,           m.specularColor, m.ks,
+          m.specularExponent, m.reflectivity, m.transmission,  m.ior};
 }
 
 void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuSceneInfo& info) {
@@ -125,12 +128,19 @@ void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuS
 
 }  // namespace
 
-FlatScene flattenScene(const Scene& scene, uint32_t width, uint32_t height) {
+FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   FlatScene flat;
-  width = width ? width : scene.camera.width;
-  height = height ? height : scene.camera.height;
+  uint32_t width = options.width ? options.width : scene.camera.width;
+  uint32_t height = options.height ? options.height : scene.camera.height;
   fillCamera(scene.camera, width, height, flat.info);
-  for (const Material& m : scene.materials) flat.materials.push_back(toGpu(m));
+  for (const Material& m : scene.materials) {
+    flat.materials.push_back(toGpu(m));
+    if (!m.texture.empty() && flat.warnings.empty()) {
+      flat.warnings.push_back(
+          scene.sourcePath.string() +
+          ": textures are not rendered yet; the diffuse colour is used instead");
+    }
+  }
   for (const PointLight& light : scene.pointLights) {
     flat.pointLights.push_back(
         {light.position, 0.0f, light.diffuseIntensity, 0.0f, light.specularIntensity, 0.0f});
@@ -138,7 +148,7 @@ FlatScene flattenScene(const Scene& scene, uint32_t width, uint32_t height) {
   flat.primitives = collectPrimitives(scene);
   addBvh(flat);
 
-  LightingConventions conventions = lightingConventionsFor(scene.family);
+  LightingConventions conventions = lightingConventionsFor(scene.family, options.shading);
   gpu::GpuSceneInfo& info = flat.info;
   info.backgroundColor = scene.backgroundColor;
   info.maxBounces = scene.settings.maxBounces;
@@ -149,6 +159,8 @@ FlatScene flattenScene(const Scene& scene, uint32_t width, uint32_t height) {
   info.bvhNodeCount = static_cast<uint32_t>(flat.bvhNodes.size());
   info.lightFalloff = conventions.falloff;
   info.lightScale = conventions.lightScale;
+  info.shadingModel =
+      conventions.shading == ShadingModel::Coursework ? RT_SHADING_COURSEWORK : RT_SHADING_STANDARD;
   return flat;
 }
 

@@ -2,9 +2,12 @@
 // shaders/gpu_types.h), with primitives reordered by the BVH.
 #pragma once
 
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "gpu_types.h"
+#include "render/Conventions.hpp"
 #include "scene/Scene.hpp"
 
 namespace rt {
@@ -16,9 +19,15 @@ struct FlatScene {
   std::vector<gpu::GpuMaterial> materials;
   std::vector<gpu::GpuPointLight> pointLights;
   uint32_t bvhDepth = 0;
+  std::vector<std::string> warnings;  // scene features the GPU scene leaves out
 };
 
-// `width`/`height` override the camera's image size when non-zero.
-FlatScene flattenScene(const Scene& scene, uint32_t width = 0, uint32_t height = 0);
+struct FlattenOptions {
+  uint32_t width = 0;  // override the camera's image size when non-zero
+  uint32_t height = 0;
+  std::optional<ShadingModel> shading;  // override the family's shading model
+};
+
+FlatScene flattenScene(const Scene& scene, const FlattenOptions& options = {});
 
 }  // namespace rt

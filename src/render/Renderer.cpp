@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "gpu/Buffer.hpp"
 #include "gpu/ComputeKernel.hpp"
@@ -77,6 +78,88 @@ uint32_t samplerCode(SamplerKind kind) {
   return kind == SamplerKind::Random ? RT_SAMPLER_RANDOM : RT_SAMPLER_JITTERED;
 }
 
+// The kernel with its buffers for one render: built once, dispatched many times.
+class RenderJob {
+ public:
+  RenderJob(VulkanContext& context, const ShaderCompiler& compiler, const FlatScene& flat,
+            const ShaderFeatures& features)
+      : context_(context),
+        width_(flat.info.width),
+        height_(flat.info.height),
+        sceneBuffers_(context, flat),
+        accumulation_(context, accumulationBytes(context, flat),
+                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
+    accumulation_.fillZero();
+    std::vector<uint32_t> bindings = {RT_BINDING_SCENE_INFO,   RT_BINDING_PRIMITIVES,
+                                      RT_BINDING_BVH_NODES,    RT_BINDING_MATERIALS,
+                                      RT_BINDING_POINT_LIGHTS, RT_BINDING_ACCUMULATION};
+    if (features.countRays) {
+      rayCounter_.emplace(context, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+      rayCounter_->fillZero();
+      bindings.push_back(RT_BINDING_RAY_COUNTER);
+    }
+    kernel_.emplace(context, compiler.compile("trace.comp", features.defines()), bindings,
+                    static_cast<uint32_t>(sizeof(gpu::GpuFrameParams)));
+    sceneBuffers_.bindTo(*kernel_);
+    kernel_->bind(RT_BINDING_ACCUMULATION, accumulation_);
+    if (rayCounter_) kernel_->bind(RT_BINDING_RAY_COUNTER, *rayCounter_);
+  }
+
+  // Adds samples [begin, begin + count) to rows [row, row + rows).
+  void dispatch(uint32_t row, uint32_t rows, uint32_t begin, uint32_t count, uint32_t total,
+                const RenderOptions& options) {
+    gpu::GpuFrameParams frame{};
+    frame.tileOrigin = {0, row};
+    frame.tileSize = {width_, rows};
+    frame.sampleBegin = begin;
+    frame.sampleCount = count;
+    frame.samplesTotal = total;
+    frame.seed = options.seed;
+    frame.samplerKind = samplerCode(options.sampler);
+    context_.submitAndWait([&](VkCommandBuffer commands) {
+      kernel_->recordDispatch(commands, &frame, divideRoundUp(width_, RT_WORKGROUP_SIZE_X),
+                              divideRoundUp(rows, RT_WORKGROUP_SIZE_Y));
+    });
+    if (rayCounter_) collectRayCount();
+  }
+
+  uint64_t raysTraced() const { return raysTraced_; }
+
+  ImageF resolveImage() {
+    std::vector<glm::vec4> sums(size_t(width_) * height_);
+    accumulation_.download(sums.data(), sums.size() * sizeof(glm::vec4));
+    return resolve(sums, width_, height_);
+  }
+
+ private:
+  static VkDeviceSize accumulationBytes(VulkanContext& context, const FlatScene& flat) {
+    VkDeviceSize bytes = VkDeviceSize(flat.info.width) * flat.info.height * sizeof(glm::vec4);
+    if (bytes > context.limits().maxStorageBufferRange) {
+      throw Error(fmt::format("image {}x{} is too large for one accumulation buffer on this device",
+                              flat.info.width, flat.info.height));
+    }
+    return bytes;
+  }
+
+  // The 32-bit counter is read and cleared after every dispatch, so it never
+  // overflows however long the render.
+  void collectRayCount() {
+    uint32_t count = 0;
+    rayCounter_->download(&count, sizeof(count));
+    raysTraced_ += count;
+    rayCounter_->fillZero();
+  }
+
+  VulkanContext& context_;
+  uint32_t width_;
+  uint32_t height_;
+  SceneBuffers sceneBuffers_;
+  Buffer accumulation_;
+  std::optional<Buffer> rayCounter_;
+  std::optional<ComputeKernel> kernel_;
+  uint64_t raysTraced_ = 0;
+};
+
 }  // namespace
 
 Renderer::Renderer(VulkanContext& context, const ShaderCompiler& compiler)
@@ -87,33 +170,18 @@ ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
   RenderStats local;
   RenderStats& s = stats ? *stats : local;
   auto start = Clock::now();
-  FlatScene flat = flattenScene(scene, options.width, options.height);
-  const uint32_t width = flat.info.width;
-  const uint32_t height = flat.info.height;
-  SceneBuffers sceneBuffers(context_, flat);
-  size_t pixels = size_t(width) * height;
-  if (pixels * sizeof(glm::vec4) > context_.limits().maxStorageBufferRange) {
-    throw Error(fmt::format("image {}x{} is too large for one accumulation buffer on this device",
-                            width, height));
-  }
-  Buffer accumulation(context_, pixels * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  accumulation.fillZero();
-  s.uploadSeconds = secondsSince(start);
+  FlatScene flat = flattenScene(scene, {options.width, options.height, options.shading});
   s.primitives = flat.info.primitiveCount;
   s.bvhNodes = flat.info.bvhNodeCount;
   s.bvhDepth = flat.bvhDepth;
+  s.warnings = flat.warnings;
   s.features = detectFeatures(scene);
+  s.features.countRays = options.countRays;
+  RenderJob job(context_, compiler_, flat, s.features);
+  s.setupSeconds = secondsSince(start);
 
-  start = Clock::now();
-  std::vector<uint32_t> spirv = compiler_.compile("trace.comp", s.features.defines());
-  ComputeKernel kernel(context_, spirv,
-                       {RT_BINDING_SCENE_INFO, RT_BINDING_PRIMITIVES, RT_BINDING_BVH_NODES,
-                        RT_BINDING_MATERIALS, RT_BINDING_POINT_LIGHTS, RT_BINDING_ACCUMULATION},
-                       sizeof(gpu::GpuFrameParams));
-  sceneBuffers.bindTo(kernel);
-  kernel.bind(RT_BINDING_ACCUMULATION, accumulation);
-  s.compileSeconds = secondsSince(start);
-
+  const uint32_t width = flat.info.width;
+  const uint32_t height = flat.info.height;
   const uint32_t total = std::max(options.samplesPerPixel, 1u);
   DispatchPlanner planner(width, height, options.secondsPerDispatch);
   auto renderStart = Clock::now();
@@ -121,19 +189,8 @@ ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
     uint32_t samples = planner.samplesPerPass(total - done);
     for (uint32_t row = 0; row < height;) {
       uint32_t rows = std::min(planner.rowsPerDispatch(samples), height - row);
-      gpu::GpuFrameParams frame{};
-      frame.tileOrigin = {0, row};
-      frame.tileSize = {width, rows};
-      frame.sampleBegin = done;
-      frame.sampleCount = samples;
-      frame.samplesTotal = total;
-      frame.seed = options.seed;
-      frame.samplerKind = samplerCode(options.sampler);
       auto dispatchStart = Clock::now();
-      context_.submitAndWait([&](VkCommandBuffer commands) {
-        kernel.recordDispatch(commands, &frame, divideRoundUp(width, RT_WORKGROUP_SIZE_X),
-                              divideRoundUp(rows, RT_WORKGROUP_SIZE_Y));
-      });
+      job.dispatch(row, rows, done, samples, total, options);
       planner.record(rows, samples, secondsSince(dispatchStart));
       ++s.dispatches;
       row += rows;
@@ -144,10 +201,8 @@ ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
     done += samples;
   }
   s.renderSeconds = secondsSince(renderStart);
-
-  std::vector<glm::vec4> sums(pixels);
-  accumulation.download(sums.data(), pixels * sizeof(glm::vec4));
-  return resolve(sums, width, height);
+  s.raysTraced = job.raysTraced();
+  return job.resolveImage();
 }
 
 }  // namespace rt

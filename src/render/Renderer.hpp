@@ -6,8 +6,10 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 #include "io/Image.hpp"
+#include "render/Conventions.hpp"
 #include "render/Features.hpp"
 #include "scene/Scene.hpp"
 
@@ -22,7 +24,9 @@ struct RenderOptions {
   uint32_t samplesPerPixel = 16;
   uint32_t seed = 0;
   SamplerKind sampler = SamplerKind::Jittered;
-  double secondsPerDispatch = 0.1;  // target duration of one dispatch
+  std::optional<ShadingModel> shading;  // default: the scene family's
+  double secondsPerDispatch = 0.1;      // target duration of one dispatch
+  bool countRays = false;               // compile in a ray counter (benchmarks)
 };
 
 struct RenderProgress {
@@ -32,14 +36,15 @@ struct RenderProgress {
 };
 
 struct RenderStats {
-  double compileSeconds = 0;
-  double uploadSeconds = 0;
+  double setupSeconds = 0;   // flatten, BVH build, upload, shader compile
   double renderSeconds = 0;  // dispatches only
   uint32_t dispatches = 0;
+  uint64_t raysTraced = 0;  // only with RenderOptions::countRays
   uint32_t primitives = 0;
   uint32_t bvhNodes = 0;
   uint32_t bvhDepth = 0;
   ShaderFeatures features;
+  std::vector<std::string> warnings;
 };
 
 using ProgressCallback = std::function<void(const RenderProgress&)>;

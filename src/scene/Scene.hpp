@@ -3,10 +3,9 @@
 // about the GPU; src/render flattens it into buffers.
 #pragma once
 
-#include <glm/glm.hpp>
-
 #include <cstdint>
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <string>
 #include <variant>
 #include <vector>
@@ -53,7 +52,13 @@ struct TriangleMesh {
   std::vector<glm::uvec3> faces;  // indices into positions, validated on load
 };
 
-using Geometry = std::variant<Sphere, Triangle, Quad, Cylinder, TriangleMesh>;
+// A shape that places one of Scene::meshes: meshes live apart from shapes so
+// that several shapes can share one mesh (and, on the GPU, its BVH).
+struct MeshInstance {
+  uint32_t mesh = 0;  // index into Scene::meshes
+};
+
+using Geometry = std::variant<Sphere, Triangle, Quad, Cylinder, MeshInstance>;
 
 struct Shape {
   Geometry geometry;
@@ -92,8 +97,8 @@ enum class SceneFamily { PathOfLight, Rendering };
 
 struct RenderSettings {
   RenderMode mode = RenderMode::Phong;
-  uint32_t maxBounces = 4;          // `nbounces`
-  uint32_t samplesPerPixel = 0;     // 0: not given in the file
+  uint32_t maxBounces = 4;       // `nbounces`
+  uint32_t samplesPerPixel = 0;  // 0: not given in the file
   SamplerKind sampler = SamplerKind::Jittered;
 };
 
@@ -106,6 +111,7 @@ struct Scene {
   std::vector<PointLight> pointLights;
   std::vector<Material> materials;
   std::vector<Shape> shapes;
+  std::vector<TriangleMesh> meshes;
   std::vector<std::string> warnings;  // unknown keys and ignored features, one line each
 };
 

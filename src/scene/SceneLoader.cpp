@@ -570,13 +570,16 @@ TriangleMesh readTrimesh(JsonObject& shape) {
   return mesh;
 }
 
-Geometry readGeometry(const JsonNode& typeNode, JsonObject& shape) {
+Geometry readGeometry(const JsonNode& typeNode, JsonObject& shape, Scene& scene) {
   const std::string type = typeNode.string();
   if (type == "sphere") return readSphere(shape);
   if (type == "plane") return readQuad(shape);
   if (type == "triangle") return readTriangle(shape);
   if (type == "cylinder") return readCylinder(shape);
-  if (type == "trimesh") return readTrimesh(shape);
+  if (type == "trimesh") {
+    scene.meshes.push_back(readTrimesh(shape));
+    return MeshInstance{static_cast<uint32_t>(scene.meshes.size() - 1)};
+  }
   if (type == "ply") typeNode.fail("PLY meshes are not supported yet");
   typeNode.fail("unknown shape type '" + type +
                 "' (expected sphere, plane, triangle, cylinder or trimesh)");
@@ -585,7 +588,7 @@ Geometry readGeometry(const JsonNode& typeNode, JsonObject& shape) {
 void readShape(const JsonNode& node, const ShapeContext& context, Scene& scene) {
   JsonObject object = node.object();
   Shape shape;
-  shape.geometry = readGeometry(object.required("type"), object);
+  shape.geometry = readGeometry(object.required("type"), object, scene);
   if (const std::optional<JsonNode> id = object.optional("id")) shape.label = id->string();
   shape.material = addShapeMaterial(object, context, scene);
   ignoreRendererKeys(object);

@@ -3,7 +3,6 @@
 #include <doctest/doctest.h>
 
 #include <glm/gtc/constants.hpp>
-
 #include <optional>
 #include <random>
 
@@ -84,7 +83,8 @@ std::optional<RefHit> refCylinder(const Cylinder& cyl, dvec3 o, dvec3 d) {
 
 std::optional<RefHit> reference(const Shape& shape, dvec3 o, dvec3 d) {
   if (auto* s = std::get_if<Sphere>(&shape.geometry)) return refSphere(*s, o, d);
-  if (auto* t = std::get_if<Triangle>(&shape.geometry)) return refTriangle(t->v0, t->v1, t->v2, o, d);
+  if (auto* t = std::get_if<Triangle>(&shape.geometry))
+    return refTriangle(t->v0, t->v1, t->v2, o, d);
   if (auto* q = std::get_if<Quad>(&shape.geometry)) return refQuad(*q, o, d);
   if (auto* c = std::get_if<Cylinder>(&shape.geometry)) return refCylinder(*c, o, d);
   return std::nullopt;
@@ -146,7 +146,8 @@ Agreement compare(const Scene& scene, const std::vector<gpu::GpuRay>& rays) {
     if (!ref) continue;
     ++result.hits;
     bool sameShape = gpuHit.shapeIndex == refShape;
-    result.distanceErrors += std::abs(gpuHit.t - ref->t) > 1e-4 * std::max(1.0, ref->t) || !sameShape;
+    result.distanceErrors +=
+        std::abs(gpuHit.t - ref->t) > 1e-4 * std::max(1.0, ref->t) || !sameShape;
     result.normalErrors += sameShape && glm::dot(dvec3(gpuHit.normal), ref->normal) < 0.9999;
   }
   return result;

@@ -29,7 +29,8 @@ int lineOf(const std::filesystem::path& file, const std::string& needle) {
   return -1;
 }
 
-void replaceInFile(const std::filesystem::path& file, const std::string& from, const std::string& to) {
+void replaceInFile(const std::filesystem::path& file, const std::string& from,
+                   const std::string& to) {
   std::ifstream in(file);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   size_t at = text.find(from);
@@ -55,17 +56,16 @@ TEST_SUITE("shader-compiler") {
       std::vector<uint32_t> bindings;
       uint32_t pushBytes;
     };
-    std::vector<uint32_t> scene = {RT_BINDING_SCENE_INFO, RT_BINDING_PRIMITIVES, RT_BINDING_BVH_NODES,
-                                   RT_BINDING_MATERIALS, RT_BINDING_POINT_LIGHTS};
-    auto with = [&](uint32_t a, uint32_t b = ~0u) {
-      auto list = scene;
-      list.push_back(a);
-      if (b != ~0u) list.push_back(b);
-      return list;
-    };
-    for (const Entry& entry : {Entry{"trace.comp", with(RT_BINDING_ACCUMULATION), sizeof(gpu::GpuFrameParams)},
-                               Entry{"intersect_batch.comp", with(RT_BINDING_RAYS, RT_BINDING_HITS),
-                                     sizeof(gpu::GpuBatchParams)}}) {
+    const std::vector<Entry> entries = {
+        {"trace.comp",
+         {RT_BINDING_SCENE_INFO, RT_BINDING_PRIMITIVES, RT_BINDING_BVH_NODES, RT_BINDING_MATERIALS,
+          RT_BINDING_POINT_LIGHTS, RT_BINDING_ACCUMULATION},
+         sizeof(gpu::GpuFrameParams)},
+        {"intersect_batch.comp",
+         {RT_BINDING_SCENE_INFO, RT_BINDING_PRIMITIVES, RT_BINDING_BVH_NODES, RT_BINDING_MATERIALS,
+          RT_BINDING_POINT_LIGHTS, RT_BINDING_RAYS, RT_BINDING_HITS},
+         sizeof(gpu::GpuBatchParams)}};
+    for (const Entry& entry : entries) {
       CAPTURE(entry.file);
       std::vector<uint32_t> spirv = test::shaderCompiler().compile(entry.file, allFeatures());
       REQUIRE(spirv.size() > 5);

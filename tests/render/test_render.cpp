@@ -36,7 +36,10 @@ Scene baseScene(uint32_t width, uint32_t height) {
 
 void addSphere(Scene& scene, Material material, glm::vec3 center = {0, 0, 0}, float radius = 1) {
   scene.materials.push_back(material);
-  scene.shapes.push_back({Sphere{center, radius}, uint32_t(scene.materials.size() - 1), ""});
+  Shape shape;
+  shape.geometry = Sphere{center, radius};
+  shape.material = uint32_t(scene.materials.size() - 1);
+  scene.shapes.push_back(std::move(shape));
 }
 
 glm::vec3 pixel(const ImageF& image, uint32_t x, uint32_t y) {
@@ -93,7 +96,8 @@ TEST_SUITE("render") {
     RenderOptions options;
     options.samplesPerPixel = 4;
     ImageF image = renderScene(scene, options);
-    CHECK(glm::all(glm::lessThan(glm::abs(pixel(image, 16, 16) - scene.backgroundColor), glm::vec3(1e-6f))));
+    CHECK(glm::all(
+        glm::lessThan(glm::abs(pixel(image, 16, 16) - scene.backgroundColor), glm::vec3(1e-6f))));
   }
 
   TEST_CASE("glass with the index of the surrounding air is invisible") {
@@ -154,7 +158,8 @@ TEST_SUITE("render") {
     options.sampler = SamplerKind::Jittered;
     ImageF jittered = renderScene(scene, options);
     double sum = 0;
-    for (size_t i = 0; i < random.rgba.size(); ++i) sum += std::abs(random.rgba[i] - jittered.rgba[i]);
+    for (size_t i = 0; i < random.rgba.size(); ++i)
+      sum += std::abs(random.rgba[i] - jittered.rgba[i]);
     CHECK(sum / double(random.rgba.size()) < 0.01);
   }
 

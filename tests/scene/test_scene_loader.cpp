@@ -662,7 +662,9 @@ TEST_SUITE("scene loader: in-memory scenes") {
             {"vertices", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}},
             {"faces", {{0, 1, 2, 3}, {0, 2, 3}}}};
     rt::Scene loaded = parse(scene);
-    const auto& triangles = std::get<rt::TriangleMesh>(loaded.shapes[0].geometry);
+    const auto& instance = std::get<rt::MeshInstance>(loaded.shapes[0].geometry);
+    REQUIRE(instance.mesh < loaded.meshes.size());
+    const rt::TriangleMesh& triangles = loaded.meshes[instance.mesh];
     CHECK(triangles.positions.size() == 4);
     REQUIRE(triangles.faces.size() == 3);  // the quad face becomes a fan of two
     CHECK(triangles.faces[0] == glm::uvec3(0, 1, 2));

@@ -46,6 +46,16 @@ double psnr(const Image8& a, const Image8& b) {
   return mse == 0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / mse);
 }
 
+void savePng(const Image8& image, const std::string& name) {
+  ImageF exact{image.width, image.height, {}};
+  for (size_t i = 0; i < image.rgb.size(); i += 3) {
+    for (int c = 0; c < 3; ++c) exact.rgba.push_back(image.rgb[i + c] / 255.0f);
+    exact.rgba.push_back(1.0f);
+  }
+  std::filesystem::create_directories(RT_TEST_OUTPUT_DIR);
+  writeImage(std::filesystem::path(RT_TEST_OUTPUT_DIR) / name, exact, {});
+}
+
 Image8 downscale(const Image8& image, uint32_t width, uint32_t height) {
   Image8 out{width, height, std::vector<uint8_t>(size_t(width) * height * 3)};
   for (uint32_t y = 0; y < height; ++y) {
@@ -57,7 +67,8 @@ Image8 downscale(const Image8& image, uint32_t width, uint32_t height) {
       for (int c = 0; c < 3; ++c) {
         double sum = 0;
         for (uint32_t sy = y0; sy < y1; ++sy) {
-          for (uint32_t sx = x0; sx < x1; ++sx) sum += image.rgb[(size_t(sy) * image.width + sx) * 3 + c];
+          for (uint32_t sx = x0; sx < x1; ++sx)
+            sum += image.rgb[(size_t(sy) * image.width + sx) * 3 + c];
         }
         out.rgb[(size_t(y) * width + x) * 3 + c] =
             static_cast<uint8_t>(std::lround(sum / double((y1 - y0) * (x1 - x0))));

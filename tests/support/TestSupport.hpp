@@ -26,6 +26,9 @@ void checkNoValidationMessages();
 // Peak signal-to-noise ratio of two same-sized 8-bit images, in dB.
 double psnr(const Image8& a, const Image8& b);
 
+// Writes an 8-bit image into the test output folder, for looking at.
+void savePng(const Image8& image, const std::string& name);
+
 // Box-filter downscale to the given size (for comparing with small figures).
 Image8 downscale(const Image8& image, uint32_t width, uint32_t height);
 

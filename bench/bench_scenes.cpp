@@ -1,0 +1,84 @@
+// rt-bench: renders scene files and prints a table of throughput. Not a
+// test: it asserts nothing and is run on demand (bench/run-official.sh).
+//   rt-bench [--size WxH] [--spp N] SCENE.json...
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "gpu/ShaderCompiler.hpp"
+#include "gpu/VulkanContext.hpp"
+#include "render/Renderer.hpp"
+#include "scene/SceneLoader.hpp"
+
+namespace {
+
+struct Row {
+  std::string scene;
+  rt::RenderStats stats;
+  double samples = 0;
+};
+
+void printTable(const std::vector<Row>& rows, const std::string& device, uint32_t width,
+                uint32_t height, uint32_t spp) {
+  std::printf("device: %s; %ux%u, %u spp, jittered sampler\n\n", device.c_str(), width, height,
+              spp);
+  std::printf("| %-42s | %-38s | %6s | %8s | %10s | %10s | %8s |\n", "scene", "features", "prims",
+              "time s", "Msamples/s", "Mrays/s", "rays/spl");
+  std::printf("|%s|%s|%s|%s|%s|%s|%s|\n", std::string(44, '-').c_str(),
+              std::string(40, '-').c_str(), std::string(8, '-').c_str(),
+              std::string(10, '-').c_str(), std::string(12, '-').c_str(),
+              std::string(12, '-').c_str(), std::string(10, '-').c_str());
+  for (const Row& row : rows) {
+    double seconds = row.stats.renderSeconds;
+    double rays = double(row.stats.raysTraced);
+    std::printf("| %-42s | %-38s | %6u | %8.3f | %10.2f | %10.2f | %8.2f |\n", row.scene.c_str(),
+                row.stats.features.summary().c_str(), row.stats.primitives, seconds,
+                row.samples / seconds * 1e-6, rays / seconds * 1e-6, rays / row.samples);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> scenes;
+  uint32_t width = 800;
+  uint32_t height = 800;
+  uint32_t spp = 16;
+  CLI::App app{"Throughput of the renderer on scene files (prints a table)", "rt-bench"};
+  app.add_option("scenes", scenes, "Scene files")->required();
+  app.add_option("--width", width, "Image width")->check(CLI::Range(1u, 16384u));
+  app.add_option("--height", height, "Image height")->check(CLI::Range(1u, 16384u));
+  app.add_option("--spp", spp, "Samples per pixel")->check(CLI::Range(1u, 1u << 20));
+  CLI11_PARSE(app, argc, argv);
+  try {
+    rt::VulkanContext context;
+    rt::ShaderCompiler compiler(rt::ShaderCompiler::defaultShaderDir(),
+                                rt::ShaderCompiler::defaultCacheDir());
+    rt::Renderer renderer(context, compiler);
+    std::vector<Row> rows;
+    for (const std::string& path : scenes) {
+      rt::Scene scene = rt::loadScene(path);
+      rt::RenderOptions options;
+      options.width = width;
+      options.height = height;
+      options.samplesPerPixel = spp;
+      options.countRays = true;
+      Row row{std::filesystem::path(path).parent_path().filename().string() + "/" +
+                  std::filesystem::path(path).filename().string(),
+              {},
+              double(width) * height * spp};
+      renderer.render(scene, options, {}, &row.stats);
+      std::fprintf(stderr, "%s: %.2f s\n", row.scene.c_str(), row.stats.renderSeconds);
+      rows.push_back(row);
+    }
+    printTable(rows, context.description().name, width, height, spp);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

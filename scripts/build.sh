@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Installs what is missing, configures and builds into build/. Extra
+# arguments go to CMake (e.g. -DRT_WARNINGS_AS_ERRORS=ON).
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+bash "$root/scripts/setup.sh"
+cmake -S "$root" -B "$root/build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@" >/dev/null
+cmake --build "$root/build" --parallel
