@@ -69,13 +69,20 @@ std::vector<VkPhysicalDevice> enumeratePhysicalDevices(VkInstance instance) {
   return devices;
 }
 
-std::optional<uint32_t> computeQueueFamily(VkPhysicalDevice device) {
+// A queue family that computes and, with a surface, also draws and presents.
+std::optional<uint32_t> usableQueueFamily(VkPhysicalDevice device, VkSurfaceKHR surface) {
   uint32_t count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
   std::vector<VkQueueFamilyProperties> families(count);
   vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
   for (uint32_t i = 0; i < count; ++i) {
-    if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) return i;
+    if (!(families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) continue;
+    if (surface) {
+      VkBool32 presents = VK_FALSE;
+      vkGetPhysicalDeviceSurfaceSupportKHR(device, i, surface, &presents);
+      if (!presents || !(families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT)) continue;
+    }
+    return i;
   }
   return std::nullopt;
 }
@@ -123,6 +130,7 @@ std::vector<DeviceDescription> VulkanContext::listDevices() {
 VulkanContext::VulkanContext(const ContextOptions& options) {
   try {
     createInstance(options);
+    if (options.createSurface) surface_ = options.createSurface(instance_);
     pickPhysicalDevice(options);
     createDevice(options);
   } catch (...) {
@@ -140,6 +148,10 @@ void VulkanContext::destroy() {
     if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
     vkDestroyDevice(device_, nullptr);
     device_ = VK_NULL_HANDLE;
+  }
+  if (surface_) {
+    vkDestroySurfaceKHR(instance_, surface_, nullptr);
+    surface_ = VK_NULL_HANDLE;
   }
   if (messenger_) {
     auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
@@ -202,8 +214,8 @@ void VulkanContext::pickPhysicalDevice(const ContextOptions& options) {
       throw Error(fmt::format("--device {}: only {} Vulkan device(s) present (see --device list)",
                               *options.deviceIndex, devices.size()));
     }
-    if (!computeQueueFamily(devices[*options.deviceIndex])) {
-      throw Error(fmt::format("--device {}: device has no compute queue", *options.deviceIndex));
+    if (!usableQueueFamily(devices[*options.deviceIndex], surface_)) {
+      throw Error(fmt::format("--device {}: device has no suitable queue", *options.deviceIndex));
     }
     chosen = options.deviceIndex;
   } else {
@@ -212,18 +224,18 @@ void VulkanContext::pickPhysicalDevice(const ContextOptions& options) {
       VkPhysicalDeviceProperties props;
       vkGetPhysicalDeviceProperties(devices[i], &props);
       int rank = deviceTypeRank(props.deviceType);
-      if (computeQueueFamily(devices[i]) && rank < bestRank) {
+      if (usableQueueFamily(devices[i], surface_) && rank < bestRank) {
         bestRank = rank;
         chosen = i;
       }
     }
-    if (!chosen) throw Error("Vulkan: no device with a compute queue");
+    if (!chosen) throw Error("Vulkan: no device with a suitable queue");
   }
   physicalDevice_ = devices[*chosen];
   description_ = describe(physicalDevice_, *chosen);
   vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
   vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
-  queueFamily_ = *computeQueueFamily(physicalDevice_);
+  queueFamily_ = *usableQueueFamily(physicalDevice_, surface_);
 }
 
 void VulkanContext::createDevice(const ContextOptions& options) {

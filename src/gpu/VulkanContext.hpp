@@ -28,6 +28,10 @@ struct ContextOptions {
   std::optional<uint32_t> deviceIndex;          // as listed by listDevices(); default: best
   std::vector<const char*> instanceExtensions;  // e.g. for a window surface
   std::vector<const char*> deviceExtensions;
+  // For a window: creates the surface once the instance exists. The context
+  // then picks a queue family that can compute, draw and present to it, and
+  // destroys the surface with itself.
+  std::function<VkSurfaceKHR(VkInstance)> createSurface;
 };
 
 class VulkanContext {
@@ -47,6 +51,7 @@ class VulkanContext {
   const DeviceDescription& description() const { return description_; }
   const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
   bool validationEnabled() const { return messenger_ != VK_NULL_HANDLE; }
+  VkSurfaceKHR surface() const { return surface_; }
 
   // Validation warnings and errors reported so far (0 when validation is off).
   uint32_t validationMessageCount() const { return validationMessages_; }
@@ -71,6 +76,7 @@ class VulkanContext {
 
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkSurfaceKHR surface_ = VK_NULL_HANDLE;
   VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties_{};
   VkPhysicalDeviceMemoryProperties memoryProperties_{};

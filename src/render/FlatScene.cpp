@@ -44,9 +44,13 @@ struct PrimitiveSink {
   }
   void operator()(const MeshInstance& instance) const {
     const TriangleMesh& mesh = scene.meshes.at(instance.mesh);
+    std::vector<glm::vec3> world;
+    world.reserve(mesh.positions.size());
+    for (const glm::vec3& p : mesh.positions) {
+      world.push_back(glm::vec3(instance.objectToWorld * glm::vec4(p, 1.0f)));
+    }
     for (const glm::uvec3& face : mesh.faces) {
-      out.push_back(
-          makeTriangle(mesh.positions[face.x], mesh.positions[face.y], mesh.positions[face.z]));
+      out.push_back(makeTriangle(world[face.x], world[face.y], world[face.z]));
     }
   }
 };
@@ -111,6 +115,8 @@ gpu::GpuMaterial toGpu(const Material& m) {
           m.specularExponent, m.reflectivity, m.transmission,  m.ior};
 }
 
+}  // namespace
+
 void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuSceneInfo& info) {
   glm::vec3 forward = glm::normalize(camera.forward);
   glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
@@ -126,7 +132,6 @@ void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuS
   info.height = height;
 }
 
-}  // namespace
 
 FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   FlatScene flat;

@@ -30,4 +30,7 @@ struct FlattenOptions {
 
 FlatScene flattenScene(const Scene& scene, const FlattenOptions& options = {});
 
+// Writes the camera fields of `info` (basis, field of view, lens, image size).
+void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuSceneInfo& info);
+
 }  // namespace rt

@@ -40,6 +40,8 @@ void SceneBuffers::bindTo(ComputeKernel& kernel) const {
   kernel.bind(RT_BINDING_POINT_LIGHTS, pointLights_);
 }
 
+void SceneBuffers::updateInfo(const gpu::GpuSceneInfo& info) { info_.upload(&info, sizeof(info)); }
+
 size_t SceneBuffers::bytes() const {
   return info_.size() + primitives_.size() + bvhNodes_.size() + materials_.size() +
          pointLights_.size();

@@ -14,6 +14,8 @@ class SceneBuffers {
  public:
   SceneBuffers(VulkanContext& context, const FlatScene& scene);
   void bindTo(ComputeKernel& kernel) const;
+  // Replaces the per-scene constants (camera moves); no dispatch may be in flight.
+  void updateInfo(const gpu::GpuSceneInfo& info);
   size_t bytes() const;
 
  private:

@@ -47,15 +47,20 @@ struct Cylinder {
   float halfHeight = 1.0f;
 };
 
+// An indexed triangle mesh in its own (object) space. `normals` and `uvs` are
+// per vertex and either empty or as long as `positions`.
 struct TriangleMesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::uvec3> faces;  // indices into positions, validated on load
+  std::vector<glm::vec3> normals;  // smooth shading normals (unit), optional
+  std::vector<glm::vec2> uvs;      // texture coordinates, optional
 };
 
 // A shape that places one of Scene::meshes: meshes live apart from shapes so
 // that several shapes can share one mesh (and, on the GPU, its BVH).
 struct MeshInstance {
-  uint32_t mesh = 0;  // index into Scene::meshes
+  uint32_t mesh = 0;                  // index into Scene::meshes
+  glm::mat4 objectToWorld{1.0f};      // placement (affine)
 };
 
 using Geometry = std::variant<Sphere, Triangle, Quad, Cylinder, MeshInstance>;

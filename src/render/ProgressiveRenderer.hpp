@@ -1,0 +1,93 @@
+// Progressive accumulation of one scene: the render kernel, the scene
+// buffers and a float32 accumulation buffer, advanced a few samples at a time.
+// The offline Renderer drives it in a loop; the interactive viewer records
+// its dispatches into frame command buffers, moves the camera and reloads
+// shaders between frames.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "gpu/Buffer.hpp"
+#include "gpu/ComputeKernel.hpp"
+#include "gpu_types.h"
+#include "io/Image.hpp"
+#include "render/Features.hpp"
+#include "render/FlatScene.hpp"
+#include "render/SceneBuffers.hpp"
+#include "scene/Scene.hpp"
+
+namespace rt {
+
+class ShaderCompiler;
+class VulkanContext;
+
+struct ProgressiveOptions {
+  uint32_t width = 0;  // 0: the scene camera's size
+  uint32_t height = 0;
+  uint32_t samplesTotal = 0;  // samples the render aims for: strata of the jittered sampler
+  uint32_t seed = 0;
+  SamplerKind sampler = SamplerKind::Jittered;
+  std::optional<ShadingModel> shading;
+  bool countRays = false;
+};
+
+class ProgressiveRenderer {
+ public:
+  ProgressiveRenderer(VulkanContext& context, const ShaderCompiler& compiler, const Scene& scene,
+                      const ProgressiveOptions& options);
+
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+  uint32_t samplesDone() const { return samplesDone_; }
+  const FlatScene& flatScene() const { return flat_; }
+  const ShaderFeatures& features() const { return features_; }
+
+  // Records a dispatch adding `count` samples per pixel to rows [row, row + rows),
+  // starting at sample index samplesDone(). Call finishPass(count) once every
+  // row got them.
+  void recordSamples(VkCommandBuffer commands, uint32_t row, uint32_t rows, uint32_t count) const;
+  void finishPass(uint32_t count) { samplesDone_ += count; }
+  // recordSamples over the whole image, submitted and waited for.
+  void addSamples(uint32_t count);
+
+  // Back to zero samples (e.g. after a camera move).
+  void recordReset(VkCommandBuffer commands);
+  void reset();
+
+  // New camera: uploads the scene constants and resets. No dispatch may be in flight.
+  void setCamera(const Camera& camera);
+
+  // Recompiles the kernel from the shader files. On a compile or pipeline
+  // error it throws and the current kernel stays; on success the old kernel
+  // is kept until releaseRetiredKernels(), to be called once no frame uses it.
+  void reloadShaders();
+  void releaseRetiredKernels() { retired_.clear(); }
+
+  const Buffer& accumulation() const { return accumulation_; }
+  ImageF resolve();
+  // Rays traced so far (only with ProgressiveOptions::countRays).
+  uint64_t raysTraced();
+
+ private:
+  std::unique_ptr<ComputeKernel> buildKernel() const;
+
+  VulkanContext& context_;
+  const ShaderCompiler& compiler_;
+  ProgressiveOptions options_;
+  FlatScene flat_;
+  ShaderFeatures features_;
+  uint32_t width_;
+  uint32_t height_;
+  SceneBuffers sceneBuffers_;
+  Buffer accumulation_;
+  std::optional<Buffer> rayCounter_;
+  std::unique_ptr<ComputeKernel> kernel_;
+  std::vector<std::unique_ptr<ComputeKernel>> retired_;
+  uint32_t samplesDone_ = 0;
+  uint64_t raysTraced_ = 0;
+};
+
+}  // namespace rt
