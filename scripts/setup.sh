@@ -9,7 +9,7 @@ PACKAGES=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-dev glslang-tools spirv-tools
   libglfw3-dev libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
-  libcli11-dev doctest-dev libtinyexr-dev libfmt-dev
+  libcli11-dev doctest-dev libtinyexr-dev libfmt-dev libimgui-dev
   xvfb xauth
 )
 

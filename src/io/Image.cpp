@@ -138,6 +138,53 @@ Image8 readImage8(const std::filesystem::path& path) {
   return image;
 }
 
+namespace {
+
+constexpr uint64_t kMaxTexturePixels = uint64_t(1) << 26;  // 8k x 8k
+
+ImageRgba8 takeDecoded(stbi_uc* data, int width, int height, const std::string& name) {
+  if (!data) throw Error(fmt::format("{}: cannot read image: {}", name, stbi_failure_reason()));
+  ImageRgba8 image{static_cast<uint32_t>(width), static_cast<uint32_t>(height), {}};
+  image.rgba.assign(data, data + size_t(width) * height * 4);
+  stbi_image_free(data);
+  return image;
+}
+
+void checkSize(int width, int height, const std::string& name) {
+  if (width <= 0 || height <= 0 || uint64_t(width) * uint64_t(height) > kMaxTexturePixels) {
+    throw Error(fmt::format("{}: image of {}x{} pixels is empty or larger than {} pixels", name,
+                            width, height, kMaxTexturePixels));
+  }
+}
+
+}  // namespace
+
+ImageRgba8 readImageRgba8(const std::filesystem::path& path) {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  // Check the header first so that a hostile size never allocates.
+  if (!stbi_info(path.c_str(), &width, &height, &channels)) {
+    throw Error(fmt::format("{}: cannot read image: {}", path.string(), stbi_failure_reason()));
+  }
+  checkSize(width, height, path.string());
+  return takeDecoded(stbi_load(path.c_str(), &width, &height, &channels, 4), width, height,
+                     path.string());
+}
+
+ImageRgba8 decodeImageRgba8(const uint8_t* bytes, size_t size, const std::string& name) {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  int length = static_cast<int>(std::min<size_t>(size, INT32_MAX));
+  if (!stbi_info_from_memory(bytes, length, &width, &height, &channels)) {
+    throw Error(fmt::format("{}: cannot read image: {}", name, stbi_failure_reason()));
+  }
+  checkSize(width, height, name);
+  return takeDecoded(stbi_load_from_memory(bytes, length, &width, &height, &channels, 4), width,
+                     height, name);
+}
+
 ImageF readExr(const std::filesystem::path& path) {
   float* rgba = nullptr;
   int width = 0;

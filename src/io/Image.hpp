@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace rt {
@@ -20,6 +21,13 @@ struct Image8 {
   uint32_t width = 0;
   uint32_t height = 0;
   std::vector<uint8_t> rgb;  // row-major, top row first
+};
+
+// 8-bit RGBA as decoded from a texture file (sRGB-encoded values).
+struct ImageRgba8 {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<uint8_t> rgba;  // row-major, top row first
 };
 
 // How linear radiance becomes display values (see README "Conventions").
@@ -43,6 +51,11 @@ bool isSupportedImageExtension(const std::filesystem::path& path);
 
 // Reads PNG/JPEG/PPM/... (8-bit RGB) through stb_image; throws rt::Error.
 Image8 readImage8(const std::filesystem::path& path);
+// Reads a PNG/JPEG/BMP/TGA/PPM/... file as RGBA; throws rt::Error naming the
+// file and stb_image's reason. Images above 2^26 pixels are rejected.
+ImageRgba8 readImageRgba8(const std::filesystem::path& path);
+// Same from bytes in memory (embedded glTF images); `name` is for messages.
+ImageRgba8 decodeImageRgba8(const uint8_t* bytes, size_t size, const std::string& name);
 // Reads an OpenEXR file written by writeImage.
 ImageF readExr(const std::filesystem::path& path);
 

@@ -140,7 +140,7 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   fillCamera(scene.camera, width, height, flat.info);
   for (const Material& m : scene.materials) {
     flat.materials.push_back(toGpu(m));
-    if (!m.texture.empty() && flat.warnings.empty()) {
+    if (m.diffuseTexture >= 0 && flat.warnings.empty()) {
       flat.warnings.push_back(
           scene.sourcePath.string() +
           ": textures are not rendered yet; the diffuse colour is used instead");

@@ -10,6 +10,8 @@
 #include <variant>
 #include <vector>
 
+#include "io/Image.hpp"
+
 namespace rt {
 
 // Blinn-Phong material with Whitted-style mirror and refraction weights.
@@ -22,7 +24,14 @@ struct Material {
   float reflectivity = 0.0f;  // mirror weight (family A `kr`, B `reflectivity` when `isreflective`)
   float transmission = 0.0f;  // refraction weight (family A `kt`, B 1.0 when `isrefractive`)
   float ior = 1.0f;           // index of refraction inside the surface (`eta`, `refractiveindex`)
-  std::filesystem::path texture;  // resolved path of the diffuse texture, empty when none
+  std::filesystem::path texture;  // where the diffuse texture came from (messages, UI)
+  int32_t diffuseTexture = -1;    // index into Scene::textures, -1 when none
+};
+
+// A decoded texture image; colours are sRGB-encoded as in the file.
+struct Texture {
+  std::string source;  // file path or glTF image name
+  ImageRgba8 image;
 };
 
 struct Sphere {
@@ -117,6 +126,7 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Shape> shapes;
   std::vector<TriangleMesh> meshes;
+  std::vector<Texture> textures;
   std::vector<std::string> warnings;  // unknown keys and ignored features, one line each
 };
 

@@ -470,7 +470,20 @@ void readRefraction(JsonObject& material, Material& out) {
   }
 }
 
-Material readMaterial(JsonObject& material, const fs::path& sceneDir) {
+// Decodes the texture once per file, however many materials use it.
+int32_t addTexture(const JsonNode& node, const fs::path& file, Scene& scene) {
+  for (size_t i = 0; i < scene.textures.size(); ++i) {
+    if (scene.textures[i].source == file.string()) return static_cast<int32_t>(i);
+  }
+  try {
+    scene.textures.push_back({file.string(), readImageRgba8(file)});
+  } catch (const Error& error) {
+    node.fail(std::string("cannot use texture: ") + error.what());
+  }
+  return static_cast<int32_t>(scene.textures.size() - 1);
+}
+
+Material readMaterial(JsonObject& material, const fs::path& sceneDir, Scene& scene) {
   Material out;
   out.ks = material.required("ks").nonNegativeFloat();
   out.kd = material.required("kd").nonNegativeFloat();
@@ -484,6 +497,7 @@ Material readMaterial(JsonObject& material, const fs::path& sceneDir) {
   if (const std::optional<JsonNode> texture =
           material.optionalOneOf({"tPath", "texture", "texture_file", "texturepath"})) {
     out.texture = resolveTexture(*texture, sceneDir);
+    out.diffuseTexture = addTexture(*texture, out.texture, scene);
   }
   // The coursework's texture sizes do not match the real images; the image file decides.
   material.ignore({"tWidth", "tHeight"});
@@ -496,7 +510,7 @@ uint32_t addShapeMaterial(JsonObject& shape, const ShapeContext& context, Scene&
   Material material;
   if (const std::optional<JsonNode> node = shape.optional("material")) {
     JsonObject object = node->object();
-    material = readMaterial(object, context.sceneDir);
+    material = readMaterial(object, context.sceneDir, scene);
   } else if (context.mode != RenderMode::Binary) {
     shape.diagnostics().warn(shape.childPath("material"), "missing; the default material is used");
   }

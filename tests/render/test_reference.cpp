@@ -18,7 +18,7 @@ Scene stepSixScene(const std::filesystem::path& shared) {
       loadScene(shared / "scene-format/official/cg-path-of-light-2021-2023/examples/example.json");
   for (Material& material : scene.materials) {
     material.reflectivity = 0.0f;
-    material.texture.clear();
+    material.diffuseTexture = -1;
   }
   return scene;
 }

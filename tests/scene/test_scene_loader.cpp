@@ -212,6 +212,9 @@ TEST_SUITE("scene loader: official files") {
     const rt::Material& sphereMaterial = scene.materials[scene.shapes[0].material];
     CHECK(sphereMaterial.texture.filename() == "sky-map.jpg");
     CHECK(fs::is_regular_file(sphereMaterial.texture));
+    REQUIRE(sphereMaterial.diffuseTexture >= 0);
+    // The file decides: 852 pixels wide, although tWidth says 850.
+    CHECK(scene.textures[sphereMaterial.diffuseTexture].image.width == 852);
 
     CHECK(scene.shapes[2].label == "floor");
     const auto& floor = std::get<rt::Quad>(scene.shapes[2].geometry);
@@ -754,8 +757,12 @@ TEST_SUITE("scene loader: in-memory scenes") {
 
   TEST_CASE("textures resolve from the scene folder, then its parent") {
     const TempDir dir;
-    dir.write("textures/a.png", "png");
-    dir.write("examples/b.png", "png");
+    const rt::ImageF pixel{1, 1, {0.5f, 0.25f, 1.0f, 1.0f}};
+    fs::create_directories(dir.path() / "textures");
+    fs::create_directories(dir.path() / "examples");
+    rt::writeImage(dir.path() / "textures/a.png", pixel, {});
+    rt::writeImage(dir.path() / "examples/b.png", pixel, {});
+    dir.write("textures/corrupt.png", "not a png");
     const fs::path sceneFile = dir.path() / "examples/scene.json";
 
     Json scene = minimalScene();
@@ -764,6 +771,10 @@ TEST_SUITE("scene loader: in-memory scenes") {
     firstMaterial(scene)["tHeight"] = 10;
     rt::Scene loaded = rt::parseScene(scene.dump(), sceneFile);
     CHECK(loaded.materials[0].texture == (dir.path() / "textures/a.png").lexically_normal());
+    REQUIRE(loaded.materials[0].diffuseTexture == 0);
+    REQUIRE(loaded.textures.size() == 1);
+    CHECK(loaded.textures[0].image.width == 1);
+    CHECK(loaded.textures[0].image.rgba == std::vector<uint8_t>{128, 64, 255, 255});
     CHECK(loaded.warnings.empty());
 
     firstMaterial(scene).erase("tPath");
@@ -779,6 +790,15 @@ TEST_SUITE("scene loader: in-memory scenes") {
       CHECK(contains(error.what(), sceneFile.string() +
                                        ": scene.shapes[0].material.texture: texture file not "
                                        "found: missing.png"));
+    }
+
+    firstMaterial(scene)["texture"] = "../textures/corrupt.png";
+    try {
+      rt::parseScene(scene.dump(), sceneFile);
+      FAIL("a corrupt texture must fail");
+    } catch (const rt::Error& error) {
+      CHECK(contains(error.what(), "scene.shapes[0].material.texture: cannot use texture: "));
+      CHECK(contains(error.what(), "corrupt.png: cannot read image"));
     }
 
     firstMaterial(scene)["tPath"] = "b.png";

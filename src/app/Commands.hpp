@@ -1,0 +1,8 @@
+// The subcommands of `raytracer`; main() picks one by its first argument.
+#pragma once
+
+// raytracer SCENE OUTPUT [options]
+int runRenderCommand(int argc, char** argv);
+
+// raytracer view SCENE [options] (argv[0] is "view")
+int runViewCommand(int argc, char** argv);

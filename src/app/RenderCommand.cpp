@@ -1,0 +1,192 @@
+// raytracer SCENE OUTPUT [options]: the offline render command. A thin
+// client of the renderer library: parse arguments, load, render, write.
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <optional>
+#include <regex>
+#include <string>
+
+#include "app/Commands.hpp"
+#include "app/Progress.hpp"
+#include "gpu/ShaderCompiler.hpp"
+#include "gpu/VulkanContext.hpp"
+#include "io/Image.hpp"
+#include "render/Conventions.hpp"
+#include "render/Renderer.hpp"
+#include "scene/SceneLoader.hpp"
+#include "util/Error.hpp"
+
+namespace {
+
+constexpr uint32_t kDefaultSamples = 16;
+constexpr uint32_t kMaxImageSide = 16384;
+constexpr uint32_t kMaxSamples = 1u << 20;
+
+struct CommandLine {
+  std::string scenePath;
+  std::string outputPath;
+  std::optional<uint32_t> samples;
+  std::string size;
+  uint32_t seed = 0;
+  std::string sampler;
+  std::string shading;
+  std::string device;
+  std::string shaderDir;
+  std::optional<float> exposure;
+  bool offscreen = true;
+  bool validation = false;
+  bool quiet = false;
+};
+
+void parseSize(const std::string& text, rt::RenderOptions& options) {
+  static const std::regex pattern(R"((\d{1,9})x(\d{1,9}))");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern)) {
+    throw rt::Error(fmt::format("--size {}: expected WIDTHxHEIGHT, e.g. 800x600", text));
+  }
+  uint32_t width = static_cast<uint32_t>(std::stoul(match[1].str()));
+  uint32_t height = static_cast<uint32_t>(std::stoul(match[2].str()));
+  if (width == 0 || height == 0 || width > kMaxImageSide || height > kMaxImageSide) {
+    throw rt::Error(fmt::format("--size {}: each side must be 1..{}", text, kMaxImageSide));
+  }
+  options.width = width;
+  options.height = height;
+}
+
+void listDevices() {
+  auto devices = rt::VulkanContext::listDevices();
+  for (const auto& d : devices) {
+    std::printf("%u: %s (%s, Vulkan %u.%u)\n", d.index, d.name.c_str(), d.typeName.c_str(),
+                VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion));
+  }
+  if (devices.empty()) std::printf("no Vulkan devices\n");
+}
+
+rt::ContextOptions contextOptions(const CommandLine& cli) {
+  rt::ContextOptions options;
+  options.validation = cli.validation;
+  if (!cli.device.empty()) {
+    if (cli.device.find_first_not_of("0123456789") != std::string::npos || cli.device.size() > 6) {
+      throw rt::Error(fmt::format("--device {}: expected 'list' or a device number", cli.device));
+    }
+    options.deviceIndex = static_cast<uint32_t>(std::stoul(cli.device));
+  }
+  return options;
+}
+
+rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) {
+  rt::RenderOptions options;
+  if (!cli.size.empty()) parseSize(cli.size, options);
+  uint32_t fromScene = scene.settings.samplesPerPixel;
+  options.samplesPerPixel = cli.samples ? *cli.samples : (fromScene ? fromScene : kDefaultSamples);
+  options.seed = cli.seed;
+  options.sampler = scene.settings.sampler;
+  if (cli.sampler == "random") options.sampler = rt::SamplerKind::Random;
+  if (cli.sampler == "jittered") options.sampler = rt::SamplerKind::Jittered;
+  if (cli.shading == "standard") options.shading = rt::ShadingModel::Standard;
+  if (cli.shading == "coursework") options.shading = rt::ShadingModel::Coursework;
+  return options;
+}
+
+void printSummary(const rt::ImageF& image, const rt::RenderOptions& options,
+                  const rt::RenderStats& stats, const rt::VulkanContext& context) {
+  double samples = double(image.width) * image.height * options.samplesPerPixel;
+  std::fprintf(stderr,
+               "rendered %ux%u at %u spp in %.3f s (%.2f Msamples/s) on %s; "
+               "%u primitives, features: %s; setup %.3f s, %u dispatches\n",
+               image.width, image.height, options.samplesPerPixel, stats.renderSeconds,
+               samples / std::max(stats.renderSeconds, 1e-9) * 1e-6,
+               context.description().name.c_str(), stats.primitives,
+               stats.features.summary().c_str(), stats.setupSeconds, stats.dispatches);
+}
+
+int run(const CommandLine& cli) {
+  if (!rt::isSupportedImageExtension(cli.outputPath)) {
+    throw rt::Error(fmt::format("{}: unsupported output format (use .png, .ppm, .exr or .hdr)",
+                                cli.outputPath));
+  }
+  rt::Scene scene = rt::loadScene(cli.scenePath);
+  for (const std::string& warning : scene.warnings)
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  rt::RenderOptions options = renderOptions(cli, scene);
+
+  rt::VulkanContext context(contextOptions(cli));
+  rt::ShaderCompiler compiler(cli.shaderDir.empty() ? rt::ShaderCompiler::defaultShaderDir()
+                                                    : std::filesystem::path(cli.shaderDir),
+                              rt::ShaderCompiler::defaultCacheDir());
+  rt::Renderer renderer(context, compiler);
+  uint32_t width = options.width ? options.width : scene.camera.width;
+  uint32_t height = options.height ? options.height : scene.camera.height;
+  rt::ProgressBar progress(uint64_t(width) * height, !cli.quiet);
+  rt::RenderStats stats;
+  rt::ImageF image = renderer.render(
+      scene, options, [&](const rt::RenderProgress& p) { progress.update(p); }, &stats);
+  progress.finish();
+  for (const std::string& warning : stats.warnings)
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
+
+  rt::ToneMapping mapping = rt::toneMappingFor(scene);
+  if (cli.exposure) mapping.exposure *= *cli.exposure;
+  rt::writeImage(cli.outputPath, image, mapping);
+  if (!cli.quiet) printSummary(image, options, stats, context);
+  if (context.validationMessageCount() > 0) {
+    throw rt::Error(
+        fmt::format("{} Vulkan validation message(s) reported", context.validationMessageCount()));
+  }
+  return 0;
+}
+
+}  // namespace
+
+int runRenderCommand(int argc, char** argv) {
+  CommandLine cli;
+  CLI::App app{"GPU compute ray tracer (Vulkan). Renders a JSON scene to an image.", "raytracer"};
+  app.set_version_flag("--version", std::string("raytracer ") + RT_VERSION);
+  app.add_option("scene", cli.scenePath, "Scene file (.json)");
+  app.add_option("output", cli.outputPath, "Output image: .png, .ppm, .exr or .hdr");
+  app.add_option("--spp", cli.samples, "Samples per pixel (default: the scene's, else 16)")
+      ->check(CLI::Range(1u, kMaxSamples));
+  app.add_option("--size", cli.size, "Image size WIDTHxHEIGHT (overrides the scene)");
+  app.add_option("--seed", cli.seed, "Random seed (renders are reproducible per seed)");
+  app.add_option("--sampler", cli.sampler, "Pixel sampler (default: the scene's, else jittered)")
+      ->check(CLI::IsMember({"random", "jittered"}));
+  app.add_option("--shading", cli.shading,
+                 "Shading model (default: coursework for Path-of-Light files, standard otherwise)")
+      ->check(CLI::IsMember({"standard", "coursework"}));
+  app.add_flag("--offscreen", cli.offscreen, "Render without a window (the default)");
+  app.add_option("--device", cli.device, "'list' to list Vulkan devices, or the number to use");
+  app.add_flag("--validation", cli.validation,
+               "Enable the Vulkan validation layer; any message fails the run");
+  app.add_option("--shader-dir", cli.shaderDir,
+                 "Folder with the GLSL shaders (default: built-in path)");
+  app.add_option("--exposure", cli.exposure, "Extra exposure factor applied before tone mapping")
+      ->check(CLI::PositiveNumber);
+  app.add_flag("-q,--quiet", cli.quiet, "No progress bar or summary");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "error: %s (see --help)\n", e.what());
+    return 2;
+  }
+  try {
+    if (cli.device == "list") {
+      listDevices();
+      return 0;
+    }
+    if (cli.scenePath.empty() || cli.outputPath.empty()) {
+      std::fprintf(stderr,
+                   "error: usage: raytracer SCENE.json OUTPUT.png [options] (see --help)\n");
+      return 2;
+    }
+    return run(cli);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+}
