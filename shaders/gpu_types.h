@@ -35,6 +35,9 @@ using uint = uint32_t;
 #define RT_BINDING_RAYS 6
 #define RT_BINDING_HITS 7
 #define RT_BINDING_RAY_COUNTER 8  // only when compiled with RT_COUNT_RAYS
+#define RT_BINDING_VERTICES 9
+#define RT_BINDING_TEXTURE_INFO 10
+#define RT_BINDING_TEXELS 11
 
 #define RT_WORKGROUP_SIZE_X 8
 #define RT_WORKGROUP_SIZE_Y 8
@@ -47,6 +50,10 @@ using uint = uint32_t;
 #define RT_PRIM_SPHERE 0u
 #define RT_PRIM_TRIANGLE 1u
 #define RT_PRIM_CYLINDER 2u
+
+// GpuPrimitive::flags
+#define RT_PRIM_HAS_VERTICES 1u  // triangle: a.w, b.w, c.w hold GpuVertex indices (bits)
+#define RT_PRIM_SMOOTH 2u        // triangle: interpolate the vertices' normals
 
 // GpuSceneInfo::renderMode
 #define RT_MODE_BINARY 0u
@@ -67,7 +74,8 @@ using uint = uint32_t;
 // One surface primitive (64 bytes). Quads are split into two triangles on the
 // host; mesh triangles use the same record.
 //   sphere:   a = (center, radius)
-//   triangle: a = (v0, -), b = (v1 - v0, -), c = (v2 - v0, -)
+//   triangle: a = (v0, i0), b = (v1 - v0, i1), c = (v2 - v0, i2) where the
+//             i are GpuVertex indices (as float bits) if RT_PRIM_HAS_VERTICES
 //   cylinder: a = (center, radius), b = (unit axis, half height)
 struct GpuPrimitive {
   vec4 a;
@@ -100,8 +108,33 @@ struct GpuMaterial {
   float reflectivity;
   float transmission;
   float ior;
+  int diffuseTexture;  // index into the texture table, -1: none
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
-RT_ASSERT_STD430_SIZE(GpuMaterial, 48);
+RT_ASSERT_STD430_SIZE(GpuMaterial, 64);
+
+// Per-vertex shading data of triangles (meshes, and quads/triangles for UVs).
+struct GpuVertex {
+  vec3 normal;  // unit, object normal transformed to world space
+  float u;
+  float v;
+  float pad0;
+  float pad1;
+  float pad2;
+};
+RT_ASSERT_STD430_SIZE(GpuVertex, 32);
+
+// Where one texture's texels start in the texel buffer (RGBA8, sRGB, one uint
+// per texel, rows top to bottom).
+struct GpuTextureInfo {
+  uint firstTexel;
+  uint width;
+  uint height;
+  uint pad0;
+};
+RT_ASSERT_STD430_SIZE(GpuTextureInfo, 16);
 
 struct GpuPointLight {
   vec3 position;
@@ -135,8 +168,12 @@ struct GpuSceneInfo {
   uint lightFalloff;
   float lightScale;  // multiplies every light intensity
   uint shadingModel;
+  uint sphereUvPole;  // 0, 1, 2: world axis through the poles of sphere UVs
+  uint textureCount;
+  uint pad0;
+  uint pad1;
 };
-RT_ASSERT_STD430_SIZE(GpuSceneInfo, 128);
+RT_ASSERT_STD430_SIZE(GpuSceneInfo, 144);
 
 // Push constants of one dispatch of the render kernel.
 struct GpuFrameParams {

@@ -40,7 +40,7 @@ bool intersectSphere(vec3 center, float radius, Ray ray, float tMin, inout float
 #ifdef RT_FEATURE_TRIANGLES
 // Moller-Trumbore; two-sided. The normal follows the winding (v0, v1, v2).
 bool intersectTriangle(vec3 v0, vec3 edge1, vec3 edge2, Ray ray, float tMin, inout float tMax,
-                       out vec3 normal) {
+                       out vec3 normal, out vec2 barycentric) {
   vec3 p = cross(ray.direction, edge2);
   float det = dot(edge1, p);
   if (det == 0.0) return false;
@@ -55,6 +55,7 @@ bool intersectTriangle(vec3 v0, vec3 edge1, vec3 edge2, Ray ray, float tMin, ino
   if (!(t > tMin && t < tMax)) return false;
   tMax = t;
   normal = normalize(cross(edge1, edge2));
+  barycentric = vec2(u, v);
   return true;
 }
 #endif
@@ -119,8 +120,11 @@ bool intersectCylinder(vec3 center, vec3 axis, float radius, float halfHeight, R
 // Reads only the fields the primitive's kind needs: on CPU drivers every
 // storage-buffer read is a per-lane gather, so loading whole records costs
 // more than the intersection arithmetic.
-bool intersectPrimitive(uint index, Ray ray, float tMin, inout float tMax, out vec3 normal) {
+// `barycentric` is (u, v) of v1 and v2 on triangles, (0, 0) on other kinds.
+bool intersectPrimitive(uint index, Ray ray, float tMin, inout float tMax, out vec3 normal,
+                        out vec2 barycentric) {
   normal = vec3(0.0, 0.0, 1.0);
+  barycentric = vec2(0.0);
   uint kind = primitives[index].kind;
 #ifdef RT_FEATURE_SPHERES
   if (kind == RT_PRIM_SPHERE) {
@@ -131,7 +135,7 @@ bool intersectPrimitive(uint index, Ray ray, float tMin, inout float tMax, out v
 #ifdef RT_FEATURE_TRIANGLES
   if (kind == RT_PRIM_TRIANGLE) {
     return intersectTriangle(primitives[index].a.xyz, primitives[index].b.xyz,
-                             primitives[index].c.xyz, ray, tMin, tMax, normal);
+                             primitives[index].c.xyz, ray, tMin, tMax, normal, barycentric);
   }
 #endif
 #ifdef RT_FEATURE_CYLINDERS

@@ -52,10 +52,20 @@ vec3 courseworkTint(vec3 color) {
   return length2 > 0.0 ? color * inversesqrt(length2) : vec3(0.0);
 }
 
-// Light reflected towards `toViewer` at p. `normal` is the shading normal
-// turned towards the viewer (surfaces are two-sided).
-vec3 directLighting(vec3 p, vec3 normal, vec3 toViewer, GpuMaterial material) {
+// The surface's normals turned towards the viewer (surfaces are two-sided).
+void faceViewer(inout SurfacePoint surface, vec3 toViewer) {
+  if (dot(toViewer, surface.geometricNormal) < 0.0) {
+    surface.geometricNormal = -surface.geometricNormal;
+    surface.shadingNormal = -surface.shadingNormal;
+  }
+}
+
+// Light reflected towards `toViewer` from a surface already facing the viewer.
+vec3 directLighting(SurfacePoint surface, vec3 toViewer, GpuMaterial material) {
   bool coursework = sceneInfo.shadingModel == RT_SHADING_COURSEWORK;
+  vec3 p = surface.position;
+  vec3 normal = surface.shadingNormal;
+  vec3 color = diffuseColorAt(material, surface.uv);
   vec3 radiance = vec3(0.0);
   for (uint i = 0u; i < sceneInfo.pointLightCount; ++i) {
     GpuPointLight light = pointLights[i];
@@ -64,22 +74,25 @@ vec3 directLighting(vec3 p, vec3 normal, vec3 toViewer, GpuMaterial material) {
     if (!(distance > 0.0)) continue;
     vec3 l = toLight / distance;
     float cosine = dot(normal, l);
-    if (cosine <= 0.0) continue;  // light behind the surface as seen from the viewer
-    float visibility = lightVisibility(spawnRay(p, normal, l), light.position);
+    // Light behind the surface as seen from the viewer (by either normal).
+    if (cosine <= 0.0 || dot(surface.geometricNormal, l) <= 0.0) continue;
+    float visibility = lightVisibility(spawnRay(p, surface.geometricNormal, l), light.position);
     if (visibility <= 0.0) continue;
     vec3 halfway = normalize(l + toViewer);
     float highlight = pow(max(dot(normal, halfway), 0.0), material.specularExponent);
     vec3 diffuse = material.kd * light.diffuseIntensity * cosine;
     vec3 specular = material.ks * light.specularIntensity * highlight;
     if (!coursework) {
-      diffuse *= material.diffuseColor;
+      diffuse *= color;
       specular *= material.specularColor;
     }
     radiance += visibility * lightAttenuation(distance) * (diffuse + specular);
   }
   // The coursework model clamps the light reaching the eye first, then tints
-  // it (highlights included) by the normalised diffuse colour.
-  return coursework ? courseworkTint(material.diffuseColor) * min(radiance, vec3(1.0)) : radiance;
+  // it (highlights included) by the normalised diffuse colour, or by the
+  // texture colour as it is.
+  if (!coursework) return radiance;
+  return (isTextured(material) ? color : courseworkTint(color)) * min(radiance, vec3(1.0));
 }
 
 #endif

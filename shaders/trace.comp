@@ -25,6 +25,8 @@ layout(std430, set = 0, binding = RT_BINDING_RAY_COUNTER) buffer RayCounterBuffe
 #include "intersect.glsl"
 #include "traverse.glsl"
 #include "geometry.glsl"
+#include "surface.glsl"
+#include "textures.glsl"
 #include "camera.glsl"
 #include "optics.glsl"
 #include "shading.glsl"

@@ -9,7 +9,8 @@ const float RT_FAR = 3.0e38;
 struct SurfaceHit {
   float t;
   uint primitiveIndex;
-  vec3 normal;  // outward geometric normal
+  vec3 normal;       // outward geometric normal
+  vec2 barycentric;  // triangles: weights of v1 and v2
 };
 
 // Reciprocal direction with zero components replaced by a tiny signed value,
@@ -42,6 +43,7 @@ bool traverse(Ray ray, float tMin, inout float tMax, bool anyHit, out SurfaceHit
   hit.t = -1.0;
   hit.primitiveIndex = 0u;
   hit.normal = vec3(0.0, 0.0, 1.0);
+  hit.barycentric = vec2(0.0);
 #ifdef RT_COUNT_RAYS
   ++raysTraced;
 #endif
@@ -59,10 +61,12 @@ bool traverse(Ray ray, float tMin, inout float tMax, bool anyHit, out SurfaceHit
     if (current.count > 0u) {
       for (uint i = current.firstIndex; i < current.firstIndex + current.count; ++i) {
         vec3 normal;
-        if (intersectPrimitive(i, ray, tMin, tMax, normal)) {
+        vec2 barycentric;
+        if (intersectPrimitive(i, ray, tMin, tMax, normal, barycentric)) {
           hit.t = tMax;
           hit.primitiveIndex = i;
           hit.normal = normal;
+          hit.barycentric = barycentric;
           if (anyHit) return true;
         }
       }

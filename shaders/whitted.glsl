@@ -45,11 +45,14 @@ PendingRay childRay(vec3 p, vec3 outwardNormal, vec3 direction, vec3 weight, uin
 }
 
 // Adds the mirror and refraction children of a hit to the stack.
-void spawnSecondaryRays(inout RayStack stack, PendingRay parent, SurfaceHit hit, vec3 p,
-                        GpuMaterial material, float choice) {
+// `surface` faces the incoming ray; `entering` says whether that side is the
+// outside (winding normal) of the surface.
+void spawnSecondaryRays(inout RayStack stack, PendingRay parent, SurfacePoint surface,
+                        bool entering, GpuMaterial material, float choice) {
   vec3 d = parent.ray.direction;
-  bool entering = dot(d, hit.normal) < 0.0;
-  vec3 facing = entering ? hit.normal : -hit.normal;
+  vec3 facing = surface.shadingNormal;
+  vec3 p = surface.position;
+  vec3 outward = surface.geometricNormal;
   uint depth = parent.depth + 1u;
 #ifdef RT_FEATURE_REFLECTION
   vec3 mirrorWeight = parent.weight * material.reflectivity;
@@ -67,21 +70,15 @@ void spawnSecondaryRays(inout RayStack stack, PendingRay parent, SurfaceHit hit,
     if (reflectance < 1.0) {
       vec3 refractDir = normalize(eta * d + (eta * cosIncident - cosTransmitted) * facing);
       vec3 refractWeight = parent.weight * material.transmission * (1.0 - reflectance);
-      pushChildren(stack, childRay(p, hit.normal, mirrorDir, mirrorWeight, depth),
-                   childRay(p, hit.normal, refractDir, refractWeight, depth), choice);
+      pushChildren(stack, childRay(p, outward, mirrorDir, mirrorWeight, depth),
+                   childRay(p, outward, refractDir, refractWeight, depth), choice);
       return;
     }
   }
 #endif
-  pushIfVisible(stack, childRay(p, hit.normal, mirrorDir, mirrorWeight, depth));
+  pushIfVisible(stack, childRay(p, outward, mirrorDir, mirrorWeight, depth));
 }
 
-vec3 shadeHit(PendingRay job, SurfaceHit hit, vec3 p, GpuMaterial material) {
-  if (sceneInfo.renderMode == RT_MODE_BINARY) return sceneInfo.binaryHitColor;
-  vec3 toViewer = -job.ray.direction;
-  vec3 facing = dot(toViewer, hit.normal) >= 0.0 ? hit.normal : -hit.normal;
-  return directLighting(p, facing, toViewer, material);
-}
 
 // Radiance arriving along `primary`; `branchKey` seeds the stochastic choice
 // made only when the ray tree outgrows the stack.
@@ -97,14 +94,20 @@ vec3 traceRadiance(Ray primary, uvec3 branchKey) {
       radiance += job.weight * sceneInfo.backgroundColor;
       continue;
     }
+    if (sceneInfo.renderMode == RT_MODE_BINARY) {
+      radiance += job.weight * sceneInfo.binaryHitColor;
+      continue;
+    }
     GpuMaterial material = materials[primitives[hit.primitiveIndex].materialIndex];
-    vec3 p = hitPosition(job.ray, hit);
-    radiance += job.weight * shadeHit(job, hit, p, material);
+    SurfacePoint surface = surfaceAt(job.ray, hit);
+    bool entering = dot(job.ray.direction, surface.geometricNormal) < 0.0;
+    faceViewer(surface, -job.ray.direction);
+    radiance += job.weight * directLighting(surface, -job.ray.direction, material);
 #if defined(RT_FEATURE_REFLECTION) || defined(RT_FEATURE_REFRACTION)
-    if (job.depth >= sceneInfo.maxBounces || sceneInfo.renderMode == RT_MODE_BINARY) continue;
+    if (job.depth >= sceneInfo.maxBounces) continue;
     float choice =
         randomPair(branchKey.x, branchKey.y, RT_DIM_BRANCH + 2u * job.depth, branchKey.z).x;
-    spawnSecondaryRays(stack, job, hit, p, material, choice);
+    spawnSecondaryRays(stack, job, surface, entering, material, choice);
 #endif
   }
   return radiance;

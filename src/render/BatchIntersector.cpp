@@ -14,13 +14,12 @@ BatchIntersector::BatchIntersector(VulkanContext& context, const ShaderCompiler&
     : context_(context), flat_(flattenScene(scene)) {
   buffers_ = std::make_unique<SceneBuffers>(context, flat_);
   std::vector<uint32_t> spirv =
-      compiler.compile("intersect_batch.comp", detectFeatures(scene).defines());
-  kernel_ = std::make_unique<ComputeKernel>(
-      context, spirv,
-      std::vector<uint32_t>{RT_BINDING_SCENE_INFO, RT_BINDING_PRIMITIVES, RT_BINDING_BVH_NODES,
-                            RT_BINDING_MATERIALS, RT_BINDING_POINT_LIGHTS, RT_BINDING_RAYS,
-                            RT_BINDING_HITS},
-      sizeof(gpu::GpuBatchParams));
+      compiler.compile("intersect_batch.comp", detectFeatures(scene, flat_).defines());
+  std::vector<uint32_t> bindings = SceneBuffers::bindings();
+  bindings.push_back(RT_BINDING_RAYS);
+  bindings.push_back(RT_BINDING_HITS);
+  kernel_ = std::make_unique<ComputeKernel>(context, spirv, bindings,
+                                            static_cast<uint32_t>(sizeof(gpu::GpuBatchParams)));
   buffers_->bindTo(*kernel_);
 }
 

@@ -27,7 +27,7 @@ void addGeometryFeatures(const Shape& shape, ShaderFeatures& features) {
 
 }  // namespace
 
-ShaderFeatures detectFeatures(const Scene& scene) {
+ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat) {
   ShaderFeatures features;
   for (const Shape& shape : scene.shapes) addGeometryFeatures(shape, features);
   bool shaded = scene.settings.mode != RenderMode::Binary && scene.settings.maxBounces > 0;
@@ -35,6 +35,10 @@ ShaderFeatures detectFeatures(const Scene& scene) {
     const Material& material = scene.materials.at(shape.material);
     features.reflection |= shaded && material.reflectivity > 0.0f;
     features.refraction |= shaded && material.transmission > 0.0f;
+  }
+  features.vertices = !flat.vertices.empty();
+  for (const gpu::GpuMaterial& material : flat.materials) {
+    features.textures |= shaded && material.diffuseTexture >= 0;
   }
   features.thinLens =
       scene.camera.type == CameraType::ThinLens && scene.camera.apertureRadius > 0.0f;
@@ -56,6 +60,8 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(reflection, "RT_FEATURE_REFLECTION");
   flag(refraction, "RT_FEATURE_REFRACTION");
   flag(thinLens, "RT_FEATURE_THIN_LENS");
+  flag(vertices, "RT_FEATURE_VERTICES");
+  flag(textures, "RT_FEATURE_TEXTURES");
   flag(countRays, "RT_COUNT_RAYS");
   result.emplace_back("RT_WHITTED_STACK_SIZE", std::to_string(whittedStackSize));
   return result;

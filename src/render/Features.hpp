@@ -7,6 +7,7 @@
 #include <string>
 
 #include "gpu/ShaderCompiler.hpp"
+#include "render/FlatScene.hpp"
 #include "scene/Scene.hpp"
 
 namespace rt {
@@ -18,6 +19,8 @@ struct ShaderFeatures {
   bool reflection = false;
   bool refraction = false;
   bool thinLens = false;
+  bool vertices = false;  // per-vertex normals / UVs on triangles
+  bool textures = false;
   bool countRays = false;         // benchmark instrumentation
   uint32_t whittedStackSize = 1;  // pending rays of the ray tree
 
@@ -25,6 +28,8 @@ struct ShaderFeatures {
   std::string summary() const;  // e.g. "spheres triangles reflection"
 };
 
-ShaderFeatures detectFeatures(const Scene& scene);
+// `flat` is the scene flattened for the GPU (it knows which triangles carry
+// vertex data and which textures are drawn).
+ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat);
 
 }  // namespace rt

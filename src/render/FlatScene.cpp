@@ -1,6 +1,9 @@
 #include "render/FlatScene.hpp"
 
 #include <cmath>
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/packing.hpp>
+#include <initializer_list>
 #include <variant>
 
 #include "bvh/Bvh.hpp"
@@ -21,26 +24,62 @@ gpu::GpuPrimitive makeTriangle(const glm::vec3& v0, const glm::vec3& v1, const g
   return prim;
 }
 
+// Points a triangle at three GpuVertex records (indices stored as float bits).
+void attachVertices(gpu::GpuPrimitive& prim, glm::uvec3 indices, bool smooth) {
+  prim.a.w = glm::uintBitsToFloat(indices.x);
+  prim.b.w = glm::uintBitsToFloat(indices.y);
+  prim.c.w = glm::uintBitsToFloat(indices.z);
+  prim.flags |= RT_PRIM_HAS_VERTICES | (smooth ? RT_PRIM_SMOOTH : 0u);
+}
+
+// UVs of a mesh without its own: spherical projection around the centre of
+// its bounds, with the pole along the sphere-UV axis (like spheres).
+glm::vec2 projectedUv(const glm::vec3& p, const glm::vec3& center, uint32_t pole) {
+  glm::vec3 d = p - center;
+  float length = glm::length(d);
+  if (!(length > 0.0f)) return glm::vec2(0.0f);
+  d /= length;
+  float u = 0.5f + std::atan2(d[(pole + 2) % 3], d[(pole + 1) % 3]) / (2.0f * glm::pi<float>());
+  float v = std::acos(glm::clamp(d[pole], -1.0f, 1.0f)) / glm::pi<float>();
+  return {u, v};
+}
+
+// Turns shapes into GPU primitives, and adds vertex records where a
+// triangle needs more than its corners: smooth normals or texture coordinates.
 struct PrimitiveSink {
   const Scene& scene;
-  std::vector<gpu::GpuPrimitive>& out;
+  const Material& material;
+  uint32_t uvPole;
+  FlatScene& flat;
+
   void operator()(const Sphere& s) const {
     gpu::GpuPrimitive prim{};
     prim.kind = RT_PRIM_SPHERE;
     prim.a = glm::vec4(s.center, s.radius);
-    out.push_back(prim);
+    flat.primitives.push_back(prim);
   }
-  void operator()(const Triangle& t) const { out.push_back(makeTriangle(t.v0, t.v1, t.v2)); }
+  // A lone triangle's UVs are its barycentric coordinates: (0,0), (1,0), (0,1).
+  void operator()(const Triangle& t) const {
+    flat.primitives.push_back(makeTriangle(t.v0, t.v1, t.v2));
+  }
+  // Quads map the unit square onto v0 v1 v2 v3 (v0 at uv (0,0), v1 at (1,0)).
   void operator()(const Quad& q) const {
-    out.push_back(makeTriangle(q.v0, q.v1, q.v2));
-    out.push_back(makeTriangle(q.v0, q.v2, q.v3));
+    gpu::GpuPrimitive first = makeTriangle(q.v0, q.v1, q.v2);
+    gpu::GpuPrimitive second = makeTriangle(q.v0, q.v2, q.v3);
+    if (material.diffuseTexture >= 0) {
+      uint32_t base = addVertices({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+      attachVertices(first, {base, base + 1, base + 2}, false);
+      attachVertices(second, {base, base + 2, base + 3}, false);
+    }
+    flat.primitives.push_back(first);
+    flat.primitives.push_back(second);
   }
   void operator()(const Cylinder& c) const {
     gpu::GpuPrimitive prim{};
     prim.kind = RT_PRIM_CYLINDER;
     prim.a = glm::vec4(c.center, c.radius);
     prim.b = glm::vec4(c.axis, c.halfHeight);
-    out.push_back(prim);
+    flat.primitives.push_back(prim);
   }
   void operator()(const MeshInstance& instance) const {
     const TriangleMesh& mesh = scene.meshes.at(instance.mesh);
@@ -49,9 +88,39 @@ struct PrimitiveSink {
     for (const glm::vec3& p : mesh.positions) {
       world.push_back(glm::vec3(instance.objectToWorld * glm::vec4(p, 1.0f)));
     }
+    bool smooth = !mesh.normals.empty();
+    bool needsVertices = smooth || !mesh.uvs.empty() || material.diffuseTexture >= 0;
+    uint32_t base = needsVertices ? addMeshVertices(mesh, instance, world) : 0;
     for (const glm::uvec3& face : mesh.faces) {
-      out.push_back(makeTriangle(world[face.x], world[face.y], world[face.z]));
+      gpu::GpuPrimitive prim = makeTriangle(world[face.x], world[face.y], world[face.z]);
+      if (needsVertices) attachVertices(prim, glm::uvec3(base) + face, smooth);
+      flat.primitives.push_back(prim);
     }
+  }
+
+ private:
+  uint32_t addVertices(std::initializer_list<glm::vec2> uvs) const {
+    uint32_t base = static_cast<uint32_t>(flat.vertices.size());
+    for (const glm::vec2& uv : uvs) flat.vertices.push_back({glm::vec3(0.0f), uv.x, uv.y});
+    return base;
+  }
+
+  uint32_t addMeshVertices(const TriangleMesh& mesh, const MeshInstance& instance,
+                           const std::vector<glm::vec3>& world) const {
+    uint32_t base = static_cast<uint32_t>(flat.vertices.size());
+    // Normals transform with the inverse transpose (non-uniform scale, mirroring).
+    glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(instance.objectToWorld)));
+    Aabb bounds;
+    for (const glm::vec3& p : world) bounds.grow(p);
+    for (size_t i = 0; i < world.size(); ++i) {
+      gpu::GpuVertex vertex{};
+      if (!mesh.normals.empty()) vertex.normal = glm::normalize(normalMatrix * mesh.normals[i]);
+      glm::vec2 uv = mesh.uvs.empty() ? projectedUv(world[i], bounds.center(), uvPole) : mesh.uvs[i];
+      vertex.u = uv.x;
+      vertex.v = uv.y;
+      flat.vertices.push_back(vertex);
+    }
+    return base;
   }
 };
 
@@ -79,18 +148,17 @@ Aabb primitiveBounds(const gpu::GpuPrimitive& prim) {
   return box;
 }
 
-std::vector<gpu::GpuPrimitive> collectPrimitives(const Scene& scene) {
-  std::vector<gpu::GpuPrimitive> primitives;
+void collectPrimitives(const Scene& scene, FlatScene& flat) {
   for (uint32_t shapeIndex = 0; shapeIndex < scene.shapes.size(); ++shapeIndex) {
     const Shape& shape = scene.shapes[shapeIndex];
-    size_t first = primitives.size();
-    std::visit(PrimitiveSink{scene, primitives}, shape.geometry);
-    for (size_t i = first; i < primitives.size(); ++i) {
-      primitives[i].materialIndex = shape.material;
-      primitives[i].shapeIndex = shapeIndex;
+    size_t first = flat.primitives.size();
+    PrimitiveSink sink{scene, scene.materials.at(shape.material), flat.info.sphereUvPole, flat};
+    std::visit(sink, shape.geometry);
+    for (size_t i = first; i < flat.primitives.size(); ++i) {
+      flat.primitives[i].materialIndex = shape.material;
+      flat.primitives[i].shapeIndex = shapeIndex;
     }
   }
-  return primitives;
 }
 
 void addBvh(FlatScene& flat) {
@@ -111,8 +179,37 @@ void addBvh(FlatScene& flat) {
 }
 
 gpu::GpuMaterial toGpu(const Material& m) {
-  return {m.diffuseColor,     m.kd,           m.specularColor, m.ks,
-          m.specularExponent, m.reflectivity, m.transmission,  m.ior};
+  gpu::GpuMaterial out{};
+  bool replacedByTexture = m.diffuseTexture >= 0 && !m.textureTintedByColor;
+  out.diffuseColor = replacedByTexture ? glm::vec3(1.0f) : m.diffuseColor;
+  out.kd = m.kd;
+  out.specularColor = m.specularColor;
+  out.ks = m.ks;
+  out.specularExponent = m.specularExponent;
+  out.reflectivity = m.reflectivity;
+  out.transmission = m.transmission;
+  out.ior = m.ior;
+  out.diffuseTexture = m.diffuseTexture;
+  return out;
+}
+
+void addTextures(const Scene& scene, FlatScene& flat) {
+  for (const Texture& texture : scene.textures) {
+    const ImageRgba8& image = texture.image;
+    flat.textureInfos.push_back(
+        {static_cast<uint32_t>(flat.texels.size()), image.width, image.height, 0});
+    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4) {
+      flat.texels.push_back(uint32_t(image.rgba[i]) | uint32_t(image.rgba[i + 1]) << 8 |
+                            uint32_t(image.rgba[i + 2]) << 16 | uint32_t(image.rgba[i + 3]) << 24);
+    }
+  }
+}
+
+// The world axis closest to the camera's up vector: sphere textures stand
+// upright in the image (z for the Path-of-Light files, y for the others).
+uint32_t dominantAxis(const glm::vec3& v) {
+  glm::vec3 a = glm::abs(v);
+  return a.x >= a.y && a.x >= a.z ? 0u : (a.y >= a.z ? 1u : 2u);
 }
 
 }  // namespace
@@ -138,19 +235,14 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   uint32_t width = options.width ? options.width : scene.camera.width;
   uint32_t height = options.height ? options.height : scene.camera.height;
   fillCamera(scene.camera, width, height, flat.info);
-  for (const Material& m : scene.materials) {
-    flat.materials.push_back(toGpu(m));
-    if (m.diffuseTexture >= 0 && flat.warnings.empty()) {
-      flat.warnings.push_back(
-          scene.sourcePath.string() +
-          ": textures are not rendered yet; the diffuse colour is used instead");
-    }
-  }
+  for (const Material& m : scene.materials) flat.materials.push_back(toGpu(m));
+  addTextures(scene, flat);
   for (const PointLight& light : scene.pointLights) {
     flat.pointLights.push_back(
         {light.position, 0.0f, light.diffuseIntensity, 0.0f, light.specularIntensity, 0.0f});
   }
-  flat.primitives = collectPrimitives(scene);
+  flat.info.sphereUvPole = dominantAxis(scene.camera.up);
+  collectPrimitives(scene, flat);
   addBvh(flat);
 
   LightingConventions conventions = lightingConventionsFor(scene.family, options.shading);
@@ -164,6 +256,7 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   info.bvhNodeCount = static_cast<uint32_t>(flat.bvhNodes.size());
   info.lightFalloff = conventions.falloff;
   info.lightScale = conventions.lightScale;
+  info.textureCount = static_cast<uint32_t>(flat.textureInfos.size());
   info.shadingModel =
       conventions.shading == ShadingModel::Coursework ? RT_SHADING_COURSEWORK : RT_SHADING_STANDARD;
   return flat;

@@ -22,8 +22,9 @@ VkDeviceSize accumulationBytes(VulkanContext& context, const FlatScene& flat) {
   return bytes;
 }
 
-ShaderFeatures featuresFor(const Scene& scene, const ProgressiveOptions& options) {
-  ShaderFeatures features = detectFeatures(scene);
+ShaderFeatures featuresFor(const Scene& scene, const FlatScene& flat,
+                           const ProgressiveOptions& options) {
+  ShaderFeatures features = detectFeatures(scene, flat);
   features.countRays = options.countRays;
   return features;
 }
@@ -36,7 +37,7 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
       compiler_(compiler),
       options_(options),
       flat_(flattenScene(scene, {options.width, options.height, options.shading})),
-      features_(featuresFor(scene, options)),
+      features_(featuresFor(scene, flat_, options)),
       width_(flat_.info.width),
       height_(flat_.info.height),
       sceneBuffers_(context, flat_),
@@ -50,9 +51,8 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
 }
 
 std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
-  std::vector<uint32_t> bindings = {RT_BINDING_SCENE_INFO,   RT_BINDING_PRIMITIVES,
-                                    RT_BINDING_BVH_NODES,    RT_BINDING_MATERIALS,
-                                    RT_BINDING_POINT_LIGHTS, RT_BINDING_ACCUMULATION};
+  std::vector<uint32_t> bindings = SceneBuffers::bindings();
+  bindings.push_back(RT_BINDING_ACCUMULATION);
   if (rayCounter_) bindings.push_back(RT_BINDING_RAY_COUNTER);
   auto kernel = std::make_unique<ComputeKernel>(
       context_, compiler_.compile("trace.comp", features_.defines()), bindings,

@@ -30,7 +30,10 @@ SceneBuffers::SceneBuffers(VulkanContext& context, const FlatScene& scene)
       primitives_(makeStorage(context, scene.primitives, "primitives")),
       bvhNodes_(makeStorage(context, scene.bvhNodes, "BVH nodes")),
       materials_(makeStorage(context, scene.materials, "materials")),
-      pointLights_(makeStorage(context, scene.pointLights, "point lights")) {}
+      pointLights_(makeStorage(context, scene.pointLights, "point lights")),
+      vertices_(makeStorage(context, scene.vertices, "vertices")),
+      textureInfos_(makeStorage(context, scene.textureInfos, "texture table")),
+      texels_(makeStorage(context, scene.texels, "texture texels")) {}
 
 void SceneBuffers::bindTo(ComputeKernel& kernel) const {
   kernel.bind(RT_BINDING_SCENE_INFO, info_);
@@ -38,13 +41,22 @@ void SceneBuffers::bindTo(ComputeKernel& kernel) const {
   kernel.bind(RT_BINDING_BVH_NODES, bvhNodes_);
   kernel.bind(RT_BINDING_MATERIALS, materials_);
   kernel.bind(RT_BINDING_POINT_LIGHTS, pointLights_);
+  kernel.bind(RT_BINDING_VERTICES, vertices_);
+  kernel.bind(RT_BINDING_TEXTURE_INFO, textureInfos_);
+  kernel.bind(RT_BINDING_TEXELS, texels_);
+}
+
+std::vector<uint32_t> SceneBuffers::bindings() {
+  return {RT_BINDING_SCENE_INFO,   RT_BINDING_PRIMITIVES, RT_BINDING_BVH_NODES,
+          RT_BINDING_MATERIALS,    RT_BINDING_POINT_LIGHTS, RT_BINDING_VERTICES,
+          RT_BINDING_TEXTURE_INFO, RT_BINDING_TEXELS};
 }
 
 void SceneBuffers::updateInfo(const gpu::GpuSceneInfo& info) { info_.upload(&info, sizeof(info)); }
 
 size_t SceneBuffers::bytes() const {
   return info_.size() + primitives_.size() + bvhNodes_.size() + materials_.size() +
-         pointLights_.size();
+         pointLights_.size() + vertices_.size() + textureInfos_.size() + texels_.size();
 }
 
 }  // namespace rt

@@ -2,6 +2,8 @@
 // includes shaders/bindings.glsl.
 #pragma once
 
+#include <vector>
+
 #include "gpu/Buffer.hpp"
 #include "render/FlatScene.hpp"
 
@@ -14,6 +16,8 @@ class SceneBuffers {
  public:
   SceneBuffers(VulkanContext& context, const FlatScene& scene);
   void bindTo(ComputeKernel& kernel) const;
+  // The binding numbers bindTo() fills (set 0), for kernel layouts.
+  static std::vector<uint32_t> bindings();
   // Replaces the per-scene constants (camera moves); no dispatch may be in flight.
   void updateInfo(const gpu::GpuSceneInfo& info);
   size_t bytes() const;
@@ -24,6 +28,9 @@ class SceneBuffers {
   Buffer bvhNodes_;
   Buffer materials_;
   Buffer pointLights_;
+  Buffer vertices_;
+  Buffer textureInfos_;
+  Buffer texels_;
 };
 
 }  // namespace rt

@@ -26,6 +26,9 @@ struct Material {
   float ior = 1.0f;           // index of refraction inside the surface (`eta`, `refractiveindex`)
   std::filesystem::path texture;  // where the diffuse texture came from (messages, UI)
   int32_t diffuseTexture = -1;    // index into Scene::textures, -1 when none
+  // false: the texture replaces diffuseColor (coursework files);
+  // true: texture * diffuseColor (glTF base colour factor).
+  bool textureTintedByColor = false;
 };
 
 // A decoded texture image; colours are sRGB-encoded as in the file.

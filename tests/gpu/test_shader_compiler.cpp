@@ -6,6 +6,7 @@
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu_types.h"
 #include "render/Features.hpp"
+#include "render/SceneBuffers.hpp"
 #include "support/TestSupport.hpp"
 
 using namespace rt;
@@ -43,6 +44,7 @@ ShaderDefines allFeatures() {
   ShaderFeatures features;
   features.spheres = features.triangles = features.cylinders = true;
   features.reflection = features.refraction = features.thinLens = true;
+  features.vertices = features.textures = true;
   features.whittedStackSize = 8;
   return features.defines();
 }
@@ -56,15 +58,14 @@ TEST_SUITE("shader-compiler") {
       std::vector<uint32_t> bindings;
       uint32_t pushBytes;
     };
+    std::vector<uint32_t> render = SceneBuffers::bindings();
+    render.push_back(RT_BINDING_ACCUMULATION);
+    std::vector<uint32_t> batch = SceneBuffers::bindings();
+    batch.push_back(RT_BINDING_RAYS);
+    batch.push_back(RT_BINDING_HITS);
     const std::vector<Entry> entries = {
-        {"trace.comp",
-         {RT_BINDING_SCENE_INFO, RT_BINDING_PRIMITIVES, RT_BINDING_BVH_NODES, RT_BINDING_MATERIALS,
-          RT_BINDING_POINT_LIGHTS, RT_BINDING_ACCUMULATION},
-         sizeof(gpu::GpuFrameParams)},
-        {"intersect_batch.comp",
-         {RT_BINDING_SCENE_INFO, RT_BINDING_PRIMITIVES, RT_BINDING_BVH_NODES, RT_BINDING_MATERIALS,
-          RT_BINDING_POINT_LIGHTS, RT_BINDING_RAYS, RT_BINDING_HITS},
-         sizeof(gpu::GpuBatchParams)}};
+        {"trace.comp", render, sizeof(gpu::GpuFrameParams)},
+        {"intersect_batch.comp", batch, sizeof(gpu::GpuBatchParams)}};
     for (const Entry& entry : entries) {
       CAPTURE(entry.file);
       std::vector<uint32_t> spirv = test::shaderCompiler().compile(entry.file, allFeatures());

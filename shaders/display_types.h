@@ -1,0 +1,30 @@
+// Structures the viewer's display pass shares with shaders/display.comp.
+// Same rules as gpu_types.h: std430, sizes checked at compile time.
+#ifndef RT_DISPLAY_TYPES_H
+#define RT_DISPLAY_TYPES_H
+
+#include "gpu_types.h"
+
+#ifdef __cplusplus
+namespace rt::gpu {
+#endif
+
+// Descriptor set 0 of the display kernel.
+#define RT_DISPLAY_BINDING_ACCUMULATION 0  // vec4 per pixel: rgb sum, a = sample count
+#define RT_DISPLAY_BINDING_IMAGE 1         // rgba8 storage image shown in the window
+
+#define RT_DISPLAY_WORKGROUP_SIZE 8
+
+// Push constants of one display dispatch.
+struct GpuDisplayParams {
+  uvec2 size;      // accumulation (and display image) size in pixels
+  float exposure;  // linear scale before the clamp, as rt::toneMappingFor
+  uint pad0;
+};
+RT_ASSERT_STD430_SIZE(GpuDisplayParams, 16);
+
+#ifdef __cplusplus
+}  // namespace rt::gpu
+#endif
+
+#endif  // RT_DISPLAY_TYPES_H

@@ -1,0 +1,63 @@
+// Diffuse colour of a material at a surface point: its texture, bilinearly
+// filtered with repeat wrapping and decoded from sRGB, or its plain colour.
+#ifndef RT_TEXTURES_GLSL
+#define RT_TEXTURES_GLSL
+
+#ifdef RT_FEATURE_TEXTURES
+layout(std430, set = 0, binding = RT_BINDING_TEXTURE_INFO) readonly buffer TextureInfoBuffer {
+  GpuTextureInfo textureInfos[];
+};
+layout(std430, set = 0, binding = RT_BINDING_TEXELS) readonly buffer TexelBuffer {
+  uint texels[];  // RGBA8, sRGB-encoded
+};
+
+vec3 srgbToLinear(vec3 c) {
+  return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
+}
+
+vec3 fetchTexel(GpuTextureInfo info, int x, int y) {
+  // Repeat wrapping; the double modulo keeps negative coordinates in range.
+  int w = int(info.width);
+  int h = int(info.height);
+  uint tx = uint(((x % w) + w) % w);
+  uint ty = uint(((y % h) + h) % h);
+  return srgbToLinear(unpackUnorm4x8(texels[info.firstTexel + ty * info.width + tx]).rgb);
+}
+
+vec3 sampleTexture(int index, vec2 uv) {
+  GpuTextureInfo info = textureInfos[index];
+  // Keep coordinates small before scaling so float precision holds far from 0.
+  vec2 wrapped = uv - floor(uv);
+  vec2 pixel = wrapped * vec2(info.width, info.height) - 0.5;
+  vec2 base = floor(pixel);
+  vec2 f = pixel - base;
+  int x = int(base.x);
+  int y = int(base.y);
+  vec3 top = mix(fetchTexel(info, x, y), fetchTexel(info, x + 1, y), f.x);
+  vec3 bottom = mix(fetchTexel(info, x, y + 1), fetchTexel(info, x + 1, y + 1), f.x);
+  return mix(top, bottom, f.y);
+}
+#endif
+
+// Whether the material draws a texture at all (the coursework shading model
+// normalises plain colours but not texture colours).
+bool isTextured(GpuMaterial material) {
+#ifdef RT_FEATURE_TEXTURES
+  return material.diffuseTexture >= 0;
+#else
+  return false;
+#endif
+}
+
+// A texture's colour times the material's tint (the host sets the tint to
+// white where the texture replaces the colour, as in the coursework files).
+vec3 diffuseColorAt(GpuMaterial material, vec2 uv) {
+#ifdef RT_FEATURE_TEXTURES
+  if (material.diffuseTexture >= 0) {
+    return material.diffuseColor * sampleTexture(material.diffuseTexture, uv);
+  }
+#endif
+  return material.diffuseColor;
+}
+
+#endif

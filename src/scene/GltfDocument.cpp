@@ -1,0 +1,349 @@
+// The one translation unit that compiles tinygltf's implementation.
+#define TINYGLTF_IMPLEMENTATION
+#include "scene/GltfDocument.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <string_view>
+
+#include "util/Error.hpp"
+
+namespace rt::gltf {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Any file the loader reads (the model, its buffers, its images) is at most
+// this big: far above real assets, and below the 2^31 that tinygltf's int
+// sizes can describe.
+constexpr uint64_t kMaxFileBytes = uint64_t(1) << 30;
+// JSON deeper than this is rejected before parsing: tinygltf converts
+// `extras` recursively, so depth would otherwise become stack depth.
+constexpr int kMaxJsonDepth = 100;
+// Rough memory cost of the parsed document, estimated from the JSON text;
+// a few megabytes of "[{},{},...]" would otherwise expand to gigabytes of
+// tinygltf structures.
+constexpr uint64_t kMaxParsedBytes = uint64_t(2) << 30;
+
+constexpr std::array kSupportedExtensions = {
+    "KHR_materials_transmission", "KHR_materials_ior",
+    "KHR_lights_punctual",        "KHR_texture_transform",
+    "KHR_materials_emissive_strength", "KHR_mesh_quantization",
+};
+
+uint32_t readU32(const unsigned char* bytes) {
+  return uint32_t(bytes[0]) | uint32_t(bytes[1]) << 8 | uint32_t(bytes[2]) << 16 |
+         uint32_t(bytes[3]) << 24;
+}
+
+void appendU32(std::vector<unsigned char>& out, uint32_t value) {
+  for (int shift = 0; shift < 32; shift += 8) out.push_back(uint8_t(value >> shift));
+}
+
+// Reads a regular file (a URI naming /dev/zero or a FIFO must not hang us)
+// of at most kMaxFileBytes. Returns an empty string or what went wrong.
+std::string readRegularFile(const fs::path& path, std::vector<unsigned char>& out) {
+  std::error_code error;
+  fs::file_status status = fs::status(path, error);
+  if (error) return "cannot open: " + error.message();
+  if (!fs::is_regular_file(status)) return "cannot open: not a regular file";
+  uint64_t size = fs::file_size(path, error);
+  if (error) return "cannot open: " + error.message();
+  if (size > kMaxFileBytes) {
+    return "file is " + std::to_string(size >> 20) + " MiB, more than the 1024 MiB allowed";
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::string("cannot open: ") + std::strerror(errno);
+  out.resize(size_t(size));
+  in.read(reinterpret_cast<char*>(out.data()), std::streamsize(size));
+  if (uint64_t(in.gcount()) != size) return "cannot read the whole file";
+  return {};
+}
+
+// tinygltf file system callbacks: no "~" expansion, no fallback to the
+// working directory (relative candidates are refused), regular files only.
+bool fileExists(const std::string& path, void*) {
+  std::error_code error;
+  return fs::path(path).is_absolute() && fs::is_regular_file(path, error);
+}
+
+std::string expandPath(const std::string& path, void*) { return path; }
+
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                   void*) {
+  std::string problem = readRegularFile(path, *out);
+  if (problem.empty()) return true;
+  if (err) *err += problem;
+  return false;
+}
+
+bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "writing is not supported";
+  return false;
+}
+
+// Image callback: keeps the encoded bytes for later (only images a material
+// uses are decoded). tinygltf does not check that an image's buffer view lies
+// inside its buffer, so that is checked here before any byte is read; the
+// model being filled is the user pointer.
+bool keepEncodedImage(tinygltf::Image* image, const int index, std::string* err, std::string*,
+                      int, int, const unsigned char* bytes, int size, void* user) {
+  const auto* model = static_cast<const tinygltf::Model*>(user);
+  image->as_is = true;
+  if (image->bufferView < 0) {
+    image->image.assign(bytes, bytes + std::max(size, 0));
+    return true;
+  }
+  const tinygltf::BufferView& view = model->bufferViews[size_t(image->bufferView)];
+  const std::vector<unsigned char>& data = model->buffers[size_t(view.buffer)].data;
+  if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) {
+    if (err) {
+      *err += "images[" + std::to_string(index) + "]: buffer view " +
+              std::to_string(image->bufferView) + " lies outside buffer " +
+              std::to_string(view.buffer);
+    }
+    return false;
+  }
+  auto begin = data.begin() + std::ptrdiff_t(view.byteOffset);
+  image->image.assign(begin, begin + std::ptrdiff_t(view.byteLength));
+  return true;
+}
+
+// tinygltf's messages end lines with '\n'; ours are one line.
+std::string oneLine(const std::string& text) {
+  std::string out;
+  bool pendingBreak = false;
+  for (char c : text) {
+    if (c == '\n' || c == '\r') {
+      pendingBreak = !out.empty();
+      continue;
+    }
+    if (pendingBreak) out += "; ";
+    pendingBreak = false;
+    out += c;
+  }
+  return out;
+}
+
+void appendLines(const std::string& fileName, const std::string& text,
+                 std::vector<std::string>& lines) {
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(start, end - start);
+    if (!line.empty()) lines.push_back(fileName + ": " + line);
+    start = end + 1;
+  }
+}
+
+// Walks the JSON text once, outside strings, to bound nesting depth and the
+// memory the parsed document will take. Returns what is wrong, or "".
+std::string checkJsonShape(std::string_view json) {
+  int depth = 0;
+  bool inString = false, escaped = false;
+  uint64_t estimate = 0;
+  std::string_view lastTopKey;
+  size_t stringStart = 0;
+  for (size_t i = 0; i < json.size(); ++i) {
+    char c = json[i];
+    if (inString) {
+      if (escaped) {
+        escaped = false;
+      } else if (c == '\\') {
+        escaped = true;
+      } else if (c == '"') {
+        inString = false;
+        if (depth == 1) lastTopKey = json.substr(stringStart, i - stringStart);
+      }
+      continue;
+    }
+    switch (c) {
+      case '"': inString = true, stringStart = i + 1; break;
+      case '{':
+      case '[':
+        if (++depth > kMaxJsonDepth) {
+          return "JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels";
+        }
+        // Elements of top-level arrays become tinygltf structs (materials are
+        // the largest, about 2 KiB each); other containers are small.
+        if (c == '[') {
+          estimate += 128;
+        } else {
+          estimate += depth == 3 && lastTopKey == "materials" ? 2600 : 512;
+        }
+        break;
+      case '}':
+      case ']': --depth; break;
+      case ',':
+      case ':': estimate += 160; break;
+      default: break;
+    }
+  }
+  if (estimate > kMaxParsedBytes) {
+    return "the JSON would take about " + std::to_string(estimate >> 20) +
+           " MiB to parse, more than the " + std::to_string(kMaxParsedBytes >> 20) +
+           " MiB allowed";
+  }
+  return {};
+}
+
+struct GlbChunks {
+  std::string_view json;
+  const unsigned char* bin = nullptr;
+  size_t binSize = 0;
+};
+
+// Splits a GLB into its JSON and BIN chunks with exact bounds checks
+// (tinygltf's own check lets the BIN chunk end 8 bytes past the data).
+GlbChunks splitGlb(const std::vector<unsigned char>& bytes, const std::string& fileName,
+                   std::vector<std::string>& warnings) {
+  auto fail = [&](const std::string& what) { throw Error(fileName + ": GLB: " + what); };
+  if (bytes.size() < 12) fail("header is truncated (" + std::to_string(bytes.size()) + " bytes)");
+  uint32_t version = readU32(&bytes[4]);
+  if (version != 2) fail("version " + std::to_string(version) + " is not supported (only 2)");
+  uint64_t length = readU32(&bytes[8]);
+  if (length > bytes.size()) {
+    fail("truncated: the header says " + std::to_string(length) + " bytes, the file has " +
+         std::to_string(bytes.size()));
+  }
+  if (length < bytes.size()) {
+    warnings.push_back(fileName + ": GLB: " + std::to_string(bytes.size() - length) +
+                       " bytes after the declared length are ignored");
+  }
+  GlbChunks chunks;
+  bool haveJson = false;
+  uint64_t offset = 12;
+  for (int index = 0; offset < length; ++index) {
+    std::string where = "chunk " + std::to_string(index) + " at byte " + std::to_string(offset);
+    if (length - offset < 8) fail(where + ": header is truncated");
+    uint64_t size = readU32(&bytes[offset]);
+    uint32_t type = readU32(&bytes[offset + 4]);
+    if (size > length - offset - 8) {
+      fail(where + ": its " + std::to_string(size) + " bytes run past the end of the file");
+    }
+    const unsigned char* data = bytes.data() + offset + 8;
+    if (index == 0) {
+      if (type != 0x4E4F534Au) fail("the first chunk is not JSON");
+      chunks.json = std::string_view(reinterpret_cast<const char*>(data), size_t(size));
+      haveJson = true;
+    } else if (type == 0x4E4F534Au) {
+      fail(where + ": a second JSON chunk");
+    } else if (type == 0x004E4942u) {
+      if (index != 1) fail(where + ": the BIN chunk must be the second chunk");
+      chunks.bin = data;
+      chunks.binSize = size_t(size);
+    }  // chunks of other types are to be ignored (glTF 2.0, 4.4.3.1)
+    offset += 8 + size;
+  }
+  if (!haveJson) fail("no JSON chunk");
+  return chunks;
+}
+
+// Rebuilds a GLB with exact, padded chunk lengths, which tinygltf reads safely.
+std::vector<unsigned char> canonicalGlb(const GlbChunks& chunks) {
+  auto padded = [](size_t size) { return (size + 3) & ~size_t(3); };
+  size_t jsonSize = padded(chunks.json.size());
+  size_t binSize = padded(chunks.binSize);
+  size_t total = 12 + 8 + jsonSize + (binSize ? 8 + binSize : 0);
+  std::vector<unsigned char> out;
+  out.reserve(total);
+  out.insert(out.end(), {'g', 'l', 'T', 'F'});
+  appendU32(out, 2);
+  appendU32(out, uint32_t(total));
+  appendU32(out, uint32_t(jsonSize));
+  appendU32(out, 0x4E4F534Au);
+  out.insert(out.end(), chunks.json.begin(), chunks.json.end());
+  out.resize(out.size() + jsonSize - chunks.json.size(), ' ');
+  if (binSize) {
+    appendU32(out, uint32_t(binSize));
+    appendU32(out, 0x004E4942u);
+    out.insert(out.end(), chunks.bin, chunks.bin + chunks.binSize);
+    out.resize(total, 0);
+  }
+  return out;
+}
+
+void checkVersionAndExtensions(const tinygltf::Model& model, const std::string& fileName,
+                               std::vector<std::string>& warnings) {
+  const std::string& version = model.asset.version;
+  if (version.rfind("2.", 0) != 0) {
+    throw Error(fileName + ": asset.version: glTF " + version +
+                " is not supported (only glTF 2.x)");
+  }
+  const std::string& minVersion = model.asset.minVersion;
+  if (!minVersion.empty() && minVersion != "2.0") {
+    throw Error(fileName + ": asset.minVersion: the file needs glTF " + minVersion +
+                ", this loader reads glTF 2.0");
+  }
+  for (const std::string& name : model.extensionsRequired) {
+    if (!isSupportedExtension(name)) {
+      throw Error(fileName + ": glTF requires extension " + name + ", which is not supported");
+    }
+  }
+  for (const std::string& name : model.extensionsUsed) {
+    if (!isSupportedExtension(name)) {
+      warnings.push_back(fileName + ": uses extension " + name + ", which is ignored");
+    }
+  }
+}
+
+tinygltf::TinyGLTF makeParser(tinygltf::Model& model) {
+  tinygltf::TinyGLTF parser;
+  parser.SetFsCallbacks({&fileExists, &expandPath, &readWholeFile, &refuseWrite, nullptr});
+  parser.SetImageLoader(&keepEncodedImage, &model);
+  return parser;
+}
+
+}  // namespace
+
+bool isSupportedExtension(const std::string& name) {
+  return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), name) !=
+         kSupportedExtensions.end();
+}
+
+tinygltf::Model readModel(const fs::path& file, std::vector<std::string>& warnings) {
+  const std::string fileName = file.string();
+  std::vector<unsigned char> bytes;
+  if (std::string problem = readRegularFile(file, bytes); !problem.empty()) {
+    throw Error(fileName + ": " + problem);
+  }
+  const bool isGlb = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  GlbChunks chunks;
+  if (isGlb) {
+    chunks = splitGlb(bytes, fileName, warnings);
+  } else {
+    chunks.json = std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  }
+  if (std::string problem = checkJsonShape(chunks.json); !problem.empty()) {
+    throw Error(fileName + ": " + problem);
+  }
+
+  tinygltf::Model model;
+  tinygltf::TinyGLTF parser = makeParser(model);
+  std::string baseDir = fs::absolute(file).parent_path().string();
+  std::string err, warn;
+  bool ok = false;
+  if (isGlb) {
+    std::vector<unsigned char> glb = canonicalGlb(chunks);
+    std::vector<unsigned char>().swap(bytes);  // chunks pointed into it; not used again
+    ok = parser.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), unsigned(glb.size()),
+                                     baseDir);
+  } else {
+    ok = parser.LoadASCIIFromString(&model, &err, &warn, chunks.json.data(),
+                                    unsigned(chunks.json.size()), baseDir);
+  }
+  if (!ok) {
+    std::string what = oneLine(err.empty() ? warn : err);
+    throw Error(fileName + ": " + (what.empty() ? "not a valid glTF file" : what));
+  }
+  appendLines(fileName, warn, warnings);
+  appendLines(fileName, err, warnings);  // tinygltf reports some problems it tolerates as errors
+  checkVersionAndExtensions(model, fileName, warnings);
+  return model;
+}
+
+}  // namespace rt::gltf

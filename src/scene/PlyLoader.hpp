@@ -1,0 +1,32 @@
+// Reads Stanford PLY triangle meshes (ASCII, binary little and big endian).
+//
+// What is read: the `vertex` element's x, y, z (any scalar type), optional
+// normals nx, ny, nz and texture coordinates (u, v), (s, t), (texture_u,
+// texture_v) or (texture_s, texture_t); the `face` element's `vertex_indices`
+// (or `vertex_index`) lists, fanned into triangles; a `tristrips` element
+// (-1 restarts a strip). Other properties and elements are skipped; elements
+// may come in any order.
+//
+// What is rejected, with an rt::Error whose one line reads
+// "<file>: byte <offset>: <what is wrong>": anything that is not a mesh
+// (point clouds, range scans, empty files), truncated or trailing data, counts
+// the file cannot hold, list lengths below 3 or beyond the file, vertex indices
+// out of range, non-finite coordinates, normals or UVs. Declared counts are
+// checked against the file size before anything is allocated, so a hostile
+// header costs no memory; memory stays proportional to the file size.
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+
+#include "scene/Scene.hpp"
+
+namespace rt {
+
+// Loads a PLY file. Unreadable files fail with "<file>: cannot open: <reason>".
+TriangleMesh loadPly(const std::filesystem::path& file);
+
+// Same from bytes in memory; `name` only starts the error messages.
+TriangleMesh parsePly(std::string_view bytes, std::string_view name);
+
+}  // namespace rt
