@@ -4,5 +4,8 @@
 // raytracer SCENE OUTPUT [options]
 int runRenderCommand(int argc, char** argv);
 
+// raytracer merge PART.exr... OUTPUT (argv[0] is "merge")
+int runMergeCommand(int argc, char** argv);
+
 // raytracer view SCENE [options] (argv[0] is "view")
 int runViewCommand(int argc, char** argv);

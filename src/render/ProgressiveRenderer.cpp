@@ -43,6 +43,7 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
       sceneBuffers_(context, flat_),
       accumulation_(context, accumulationBytes(context, flat_), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
   accumulation_.fillZero();
+  samplesDone_ = options.firstSample;
   if (options.countRays) {
     rayCounter_.emplace(context, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     rayCounter_->fillZero();
@@ -92,7 +93,7 @@ void ProgressiveRenderer::recordReset(VkCommandBuffer commands) {
   vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT,
                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0, nullptr, 0,
                        nullptr);
-  samplesDone_ = 0;
+  samplesDone_ = options_.firstSample;
 }
 
 void ProgressiveRenderer::reset() {
@@ -121,7 +122,7 @@ ImageF ProgressiveRenderer::resolve() {
     image.rgba[i * 4 + 0] = sums[i].x / count;
     image.rgba[i * 4 + 1] = sums[i].y / count;
     image.rgba[i * 4 + 2] = sums[i].z / count;
-    image.rgba[i * 4 + 3] = 1.0f;
+    image.rgba[i * 4 + 3] = sums[i].w;  // samples behind the mean, for merging
   }
   return image;
 }

@@ -32,6 +32,7 @@ struct ProgressiveOptions {
   SamplerKind sampler = SamplerKind::Jittered;
   std::optional<ShadingModel> shading;
   bool countRays = false;
+  uint32_t firstSample = 0;  // index of the first sample added (split renders)
 };
 
 class ProgressiveRenderer {
@@ -67,6 +68,7 @@ class ProgressiveRenderer {
   void releaseRetiredKernels() { retired_.clear(); }
 
   const Buffer& accumulation() const { return accumulation_; }
+  // Mean radiance per pixel; alpha = the pixel's sample count.
   ImageF resolve();
   // Rays traced so far (only with ProgressiveOptions::countRays).
   uint64_t raysTraced();

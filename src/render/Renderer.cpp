@@ -62,14 +62,49 @@ class DispatchPlanner {
 Renderer::Renderer(VulkanContext& context, const ShaderCompiler& compiler)
     : context_(context), compiler_(compiler) {}
 
+namespace {
+
+// Adds one pass of `samples` over every row, in dispatches the planner sizes.
+// Returns false if stopped part way.
+bool renderPass(VulkanContext& context, ProgressiveRenderer& job, DispatchPlanner& planner,
+                uint32_t samples, const RenderOptions& options, const ProgressCallback& onProgress,
+                Clock::time_point start, RenderStats& stats) {
+  const uint32_t height = job.height();
+  const uint32_t end = options.endSample ? options.endSample : options.samplesPerPixel;
+  for (uint32_t row = 0; row < height;) {
+    if (options.shouldStop && options.shouldStop()) return false;
+    uint32_t rows = std::min(planner.rowsPerDispatch(samples), height - row);
+    auto dispatchStart = Clock::now();
+    context.submitAndWait(
+        [&](VkCommandBuffer commands) { job.recordSamples(commands, row, rows, samples); });
+    planner.record(rows, samples, secondsSince(dispatchStart));
+    ++stats.dispatches;
+    row += rows;
+    if (options.countRays) stats.raysTraced = job.raysTraced();
+    if (onProgress) {
+      double done = job.samplesDone() - options.firstSample + samples * double(row) / height;
+      onProgress({done, end - options.firstSample, secondsSince(start)});
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
                         const ProgressCallback& onProgress, RenderStats* stats) {
   RenderStats local;
   RenderStats& s = stats ? *stats : local;
   auto start = Clock::now();
   const uint32_t total = std::max(options.samplesPerPixel, 1u);
-  ProgressiveOptions progressive{options.width, options.height, total,           options.seed,
-                                 options.sampler, options.shading, options.countRays};
+  const uint32_t end = options.endSample ? std::min(options.endSample, total) : total;
+  if (options.firstSample >= end) {
+    throw Error(fmt::format("empty sample range {}:{} (of {} samples)", options.firstSample, end,
+                            total));
+  }
+  ProgressiveOptions progressive{options.width,   options.height,  total,
+                                 options.seed,    options.sampler, options.shading,
+                                 options.countRays, options.firstSample};
   ProgressiveRenderer job(context_, compiler_, scene, progressive);
   s.primitives = job.flatScene().info.primitiveCount;
   s.bvhNodes = job.flatScene().info.bvhNodeCount;
@@ -78,27 +113,17 @@ ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
   s.features = job.features();
   s.setupSeconds = secondsSince(start);
 
-  const uint32_t height = job.height();
-  DispatchPlanner planner(job.width(), height, options.secondsPerDispatch);
+  DispatchPlanner planner(job.width(), job.height(), options.secondsPerDispatch);
   auto renderStart = Clock::now();
-  while (job.samplesDone() < total) {
-    uint32_t samples = planner.samplesPerPass(total - job.samplesDone());
-    for (uint32_t row = 0; row < height;) {
-      uint32_t rows = std::min(planner.rowsPerDispatch(samples), height - row);
-      auto dispatchStart = Clock::now();
-      context_.submitAndWait(
-          [&](VkCommandBuffer commands) { job.recordSamples(commands, row, rows, samples); });
-      planner.record(rows, samples, secondsSince(dispatchStart));
-      ++s.dispatches;
-      row += rows;
-      if (options.countRays) s.raysTraced = job.raysTraced();
-      if (onProgress) {
-        onProgress({job.samplesDone() + samples * double(row) / height, total,
-                    secondsSince(renderStart)});
-      }
+  while (job.samplesDone() < end) {
+    uint32_t samples = planner.samplesPerPass(end - job.samplesDone());
+    if (!renderPass(context_, job, planner, samples, options, onProgress, renderStart, s)) {
+      s.stoppedEarly = true;
+      break;
     }
     job.finishPass(samples);
   }
+  s.samplesDone = job.samplesDone() - options.firstSample;
   s.renderSeconds = secondsSince(renderStart);
   return job.resolve();
 }

@@ -58,6 +58,23 @@ head -c 8 "$SCRATCH/good.png" | grep -q PNG && pass || fail "PNG magic"
 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/sized.ppm" --size 20x10 -q && head -c 11 "$SCRATCH/sized.ppm" | grep -q "20 10" && pass || fail "--size"
 ls "$SCRATCH" | grep -q '\.tmp-' && fail "temporary files left behind" || pass
 
+# --- split renders, budgets, interruption -----------------------------------
+"$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/a.exr" --spp 6 --samples 0:2 -q &&
+  "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/b.exr" --spp 6 --samples 2:6 -q &&
+  "$RAYTRACER" merge "$SCRATCH/a.exr" "$SCRATCH/b.exr" "$SCRATCH/merged.exr" 2>"$SCRATCH/stderr" &&
+  grep -q "6 samples per pixel" "$SCRATCH/stderr" && pass || fail "--samples and merge"
+expect_error "bad --samples" '--samples 5:3' "$SCRATCH/good.json" "$SCRATCH/out.png" --spp 6 --samples 5:3
+expect_error "merge of a missing file" 'nope\.exr' merge "$SCRATCH/nope.exr" "$SCRATCH/a.exr" "$SCRATCH/out.png"
+"$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/timed.png" --spp 1000000 --time 1 -q 2>"$SCRATCH/stderr" &&
+  grep -q "time budget reached" "$SCRATCH/stderr" && [[ -s "$SCRATCH/timed.png" ]] && pass || fail "--time"
+timeout -s INT --preserve-status 2 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/interrupted.exr" --spp 1000000 -q 2>"$SCRATCH/stderr"
+status=$?
+if [[ $status -eq 0 ]] && grep -q "interrupted after" "$SCRATCH/stderr" && [[ -s "$SCRATCH/interrupted.exr" ]]; then
+  pass
+else
+  fail "SIGINT: status $status, $(cat "$SCRATCH/stderr")"
+fi
+
 # --- bad input -----------------------------------------------------------
 expect_error "missing scene" 'nope\.json.*cannot open' "$SCRATCH/nope.json" "$SCRATCH/out.png"
 write broken.json '{"camera": {"width": 10,}'

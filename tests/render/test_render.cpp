@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstring>
 
+#include "render/Merge.hpp"
 #include "render/Renderer.hpp"
+#include "util/Error.hpp"
 #include "scene/SceneLoader.hpp"
 #include "support/TestSupport.hpp"
 
@@ -146,6 +148,45 @@ TEST_SUITE("render") {
     CHECK(bitwiseEqual(whole, split));
     options.seed = 43;
     CHECK_FALSE(bitwiseEqual(whole, renderScene(scene, options)));
+  }
+
+  TEST_CASE("renders of split sample ranges merge into the whole render") {
+    Scene scene = baseScene(40, 30);
+    addSphere(scene, diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
+    RenderOptions options;
+    options.samplesPerPixel = 7;
+    ImageF whole = renderScene(scene, options);
+    options.firstSample = 0;
+    options.endSample = 3;
+    ImageF first = renderScene(scene, options);
+    options.firstSample = 3;
+    options.endSample = 7;
+    ImageF second = renderScene(scene, options);
+    CHECK(first.rgba[3] == 3.0f);  // alpha carries the sample count
+    ImageF merged = mergeRenders({first, second});
+    double worst = 0;
+    for (size_t i = 0; i < whole.rgba.size(); ++i) {
+      double scale = std::max(1e-3, double(std::abs(whole.rgba[i])));
+      worst = std::max(worst, std::abs(double(merged.rgba[i]) - whole.rgba[i]) / scale);
+    }
+    CHECK(worst < 1e-5);  // float rounding of the per-range sums only
+    CHECK_THROWS_AS(mergeRenders({first, ImageF{1, 1, {0, 0, 0, 1}}}), Error);
+  }
+
+  TEST_CASE("a render can be stopped between dispatches and keeps its samples") {
+    Scene scene = baseScene(40, 30);
+    addSphere(scene, diffuse({0.9f, 0.5f, 0.2f}));
+    RenderOptions options;
+    options.samplesPerPixel = 50;
+    options.secondsPerDispatch = 1e-9;  // many small dispatches
+    int polls = 0;
+    options.shouldStop = [&] { return ++polls > 40; };
+    RenderStats stats;
+    ImageF image = Renderer(test::gpu(), test::shaderCompiler()).render(scene, options, {}, &stats);
+    CHECK(stats.stoppedEarly);
+    CHECK(stats.samplesDone < 50);
+    CHECK(image.rgba[3] >= 1.0f);
+    CHECK(allFinite(image));
   }
 
   TEST_CASE("both samplers converge to the same image") {
