@@ -410,7 +410,7 @@ std::vector<ElementPlan> planElements(const Header& header, const Failure& fail)
     } else if (element.name == "tristrips") {
       plans.push_back(planIndexLists(element, Role::Strips, fail));
     } else {
-      plans.push_back({&element, Role::Skip, std::vector<int>(element.properties.size(), -1)});
+      plans.push_back({&element, Role::Skip, std::vector<int>(element.properties.size(), kUnused)});
     }
   }
   if (!hasFaces(plans)) {
@@ -466,8 +466,6 @@ class Cursor {
   Cursor(std::string_view bytes, size_t start, const Failure& fail)
       : bytes_(bytes), pos_(start), fail_(fail) {}
 
-  const Failure& fail() const { return fail_; }
-  size_t valueOffset() const { return valueStart_; }
   std::string where() const { return element_->name + " " + std::to_string(record_); }
   [[noreturn]] void failValue(const std::string& what) const {
     fail_.at(valueStart_, where() + ": " + what);

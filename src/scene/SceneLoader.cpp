@@ -8,10 +8,13 @@
 #include <cstdio>
 #include <cstring>
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
 #include <memory>
 #include <system_error>
 
 #include "scene/JsonReader.hpp"
+#include "scene/PlyLoader.hpp"
 #include "util/Error.hpp"
 
 namespace rt {
@@ -37,8 +40,9 @@ constexpr glm::vec3 kDefaultUp{0.0f, 1.0f, 0.0f};
 
 // What shape reading needs besides the JSON itself.
 struct ShapeContext {
-  fs::path sceneDir;  // absolute folder of the scene file, for texture paths
+  fs::path sceneDir;  // absolute folder of the scene file, for texture and mesh paths
   RenderMode mode;
+  std::map<fs::path, uint32_t> plyMeshes;  // Scene::meshes index of each PLY file read
 };
 
 // ---------------------------------------------------------------- JSON text
@@ -428,8 +432,9 @@ void readLight(const JsonNode& node, Scene& scene) {
 
 // Texture paths in family A are relative to a build folder beside examples/,
 // so "../textures/x.jpg" works from the scene's own folder; the README also
-// allows the folder above it.
-fs::path resolveTexture(const JsonNode& node, const fs::path& sceneDir) {
+// allows the folder above it. Students' mesh paths follow the same habit
+// ("examples/monkey.ply" from examples/). `kind` names the file in messages.
+fs::path resolveRelative(const JsonNode& node, const fs::path& sceneDir, std::string_view kind) {
   const fs::path written = node.nonEmptyString();
   const fs::path parentDir = sceneDir.parent_path();
   for (const fs::path& base : {sceneDir, parentDir}) {
@@ -437,9 +442,13 @@ fs::path resolveTexture(const JsonNode& node, const fs::path& sceneDir) {
     std::error_code ignored;
     if (fs::is_regular_file(candidate, ignored)) return candidate;
   }
-  if (written.is_absolute()) node.fail("texture file not found: " + written.string());
-  node.fail("texture file not found: " + written.string() + " (looked in " + sceneDir.string() +
-            " and " + parentDir.string() + ")");
+  const std::string notFound = std::string(kind) + " file not found: " + written.string();
+  if (written.is_absolute()) node.fail(notFound);
+  node.fail(notFound + " (looked in " + sceneDir.string() + " and " + parentDir.string() + ")");
+}
+
+fs::path resolveTexture(const JsonNode& node, const fs::path& sceneDir) {
+  return resolveRelative(node, sceneDir, "texture");
 }
 
 // Family A: `kr`. Family B: `reflectivity`, which counts only when `isreflective` is true.
@@ -564,11 +573,7 @@ void appendFace(const JsonNode& face, TriangleMesh& mesh) {
   }
 }
 
-TriangleMesh readTrimesh(JsonObject& shape) {
-  if (const std::optional<JsonNode> file =
-          shape.optionalOneOf({"mPath", "plyPath", "file", "path"})) {
-    file->fail("PLY meshes are not supported yet");
-  }
+TriangleMesh readInlineMesh(JsonObject& shape) {
   for (const char* key : {"center", "pos", "scale", "sizeScale"}) {
     shape.ignoreWithWarning(key,
                             std::string("mesh placement '") + key +
@@ -584,25 +589,76 @@ TriangleMesh readTrimesh(JsonObject& shape) {
   return mesh;
 }
 
-Geometry readGeometry(const JsonNode& typeNode, JsonObject& shape, Scene& scene) {
+// Students' placement of a PLY mesh: `center`/`pos` moves the model's own
+// origin there, `scale`/`sizeScale` scales it uniformly about that origin.
+glm::mat4 readPlacement(JsonObject& shape) {
+  glm::vec3 translation(0.0f);
+  float scale = 1.0f;
+  if (const std::optional<JsonNode> node = shape.optionalOneOf({"center", "pos"})) {
+    translation = node->vec3();
+  }
+  if (const std::optional<JsonNode> node = shape.optionalOneOf({"scale", "sizeScale"})) {
+    scale = node->positiveFloat();
+  }
+  return glm::scale(glm::translate(glm::mat4(1.0f), translation), glm::vec3(scale));
+}
+
+// Reads each PLY file once, however many shapes place it. PLY errors keep
+// their "<file>: byte <offset>: ..." and gain the JSON path in front.
+uint32_t addPlyMesh(const JsonNode& fileNode, ShapeContext& context, Scene& scene) {
+  const fs::path file = resolveRelative(fileNode, context.sceneDir, "mesh");
+  if (const auto found = context.plyMeshes.find(file); found != context.plyMeshes.end()) {
+    return found->second;
+  }
+  try {
+    scene.meshes.push_back(loadPly(file));
+  } catch (const Error& error) {
+    fileNode.fail(error.what());
+  }
+  const auto index = static_cast<uint32_t>(scene.meshes.size() - 1);
+  context.plyMeshes.emplace(file, index);
+  return index;
+}
+
+// A `trimesh` lists its vertices and faces inline or names a PLY file; a
+// `ply` shape (TsFreddie's files) always names one.
+MeshInstance readMesh(const JsonNode& typeNode, JsonObject& shape, ShapeContext& context,
+                      Scene& scene) {
+  const std::optional<JsonNode> file = shape.optionalOneOf({"mPath", "plyPath", "file", "path"});
+  if (!file && typeNode.string() == "ply") {
+    shape.diagnostics().fail(shape.childPath("file"),
+                             "missing: a ply shape needs its file (file, path, mPath or plyPath)");
+  }
+  if (!file) {
+    scene.meshes.push_back(readInlineMesh(shape));
+    return {static_cast<uint32_t>(scene.meshes.size() - 1), glm::mat4(1.0f)};
+  }
+  for (const char* key : {"vertices", "faces"}) {
+    if (shape.has(key)) {
+      shape.diagnostics().fail(shape.childPath(key), "conflicts with '" + file->path() +
+                                                         "': give inline vertices or a PLY file");
+    }
+  }
+  const uint32_t mesh = addPlyMesh(*file, context, scene);
+  return {mesh, readPlacement(shape)};
+}
+
+Geometry readGeometry(const JsonNode& typeNode, JsonObject& shape, ShapeContext& context,
+                      Scene& scene) {
   const std::string type = typeNode.string();
   if (type == "sphere") return readSphere(shape);
   if (type == "plane") return readQuad(shape);
   if (type == "triangle") return readTriangle(shape);
   if (type == "cylinder") return readCylinder(shape);
-  if (type == "trimesh") {
-    scene.meshes.push_back(readTrimesh(shape));
-    return MeshInstance{static_cast<uint32_t>(scene.meshes.size() - 1)};
-  }
-  if (type == "ply") typeNode.fail("PLY meshes are not supported yet");
+  if (type == "trimesh" || type == "ply") return readMesh(typeNode, shape, context, scene);
   typeNode.fail("unknown shape type '" + type +
-                "' (expected sphere, plane, triangle, cylinder or trimesh)");
+                "' (expected sphere, plane, triangle, cylinder, trimesh or ply)");
 }
 
-void readShape(const JsonNode& node, const ShapeContext& context, Scene& scene) {
+void readShape(const JsonNode& node, ShapeContext& context, Scene& scene) {
   JsonObject object = node.object();
   Shape shape;
-  shape.geometry = readGeometry(object.required("type"), object, scene);
+  shape.geometry = readGeometry(object.required("type"), object, context, scene);
   if (const std::optional<JsonNode> id = object.optional("id")) shape.label = id->string();
   shape.material = addShapeMaterial(object, context, scene);
   ignoreRendererKeys(object);
@@ -612,7 +668,7 @@ void readShape(const JsonNode& node, const ShapeContext& context, Scene& scene) 
 
 // -------------------------------------------------------------------- scene
 
-void readSceneObject(JsonObject& object, const ShapeContext& context, Scene& scene) {
+void readSceneObject(JsonObject& object, ShapeContext& context, Scene& scene) {
   if (const std::optional<JsonNode> background = object.optional("backgroundcolor")) {
     scene.backgroundColor = background->nonNegativeVec3();
   }
@@ -653,7 +709,8 @@ Scene parseScene(std::string_view jsonText, const fs::path& file) {
   readSampling(top, camera, scene.settings);
   camera.reportUnknownKeys();
   JsonObject sceneObject = top.required("scene").object();
-  readSceneObject(sceneObject, {absoluteFolderOf(file), scene.settings.mode}, scene);
+  ShapeContext context{absoluteFolderOf(file), scene.settings.mode, {}};
+  readSceneObject(sceneObject, context, scene);
   ignoreRendererKeys(top);
   top.reportUnknownKeys();
   scene.warnings = diagnostics.takeWarnings();

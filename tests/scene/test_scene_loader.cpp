@@ -365,10 +365,10 @@ TEST_SUITE("scene loader: student files") {
     CHECK(errorOfFile("chxag__CGR-Raytracing-CW2/Code/Jsons/complex_one.json").empty());
     expectRejected("julie-o__CG-cw/demo.json",
                    "scene.lightsources[0].type: area lights are not supported yet");
+    // The author did not publish the bear model.
     expectRejected("PeihengLu__CG_CW2/examples/example_trimesh.json",
-                   "scene.shapes[5].mPath: PLY meshes are not supported yet");
-    expectRejected("TsFreddie__RayTracer/examples/monkey_bvh_test.json",
-                   "scene.shapes[0].type: PLY meshes are not supported yet");
+                   "scene.shapes[5].mPath: mesh file not found: ../ply_models/bear.ply (looked in");
+    CHECK(errorOfFile("TsFreddie__RayTracer/examples/monkey_bvh_test.json").empty());
     expectRejected("TsFreddie__RayTracer/examples/dof_test.json",
                    "camera.type: unknown camera type 'thinlen'");
     expectRejected("nizqleo__RayTracer/examples/triangle.json", "unknown shape type 'Traingle'");
@@ -617,7 +617,9 @@ TEST_SUITE("scene loader: in-memory scenes") {
     firstShape(scene)["type"] = "PlanerQuad";
     CHECK(contains(errorOf(scene), "scene.shapes[0].type: unknown shape type 'PlanerQuad'"));
     firstShape(scene)["type"] = "ply";
-    CHECK(errorOf(scene) == "mem.json: scene.shapes[0].type: PLY meshes are not supported yet");
+    CHECK(errorOf(scene) ==
+          "mem.json: scene.shapes[0].file: missing: a ply shape needs its file (file, path, mPath "
+          "or plyPath)");
 
     scene = minimalScene();
     firstShape(scene) = {{"type", "plane"}, {"v2", {1, 1, 0}}, {"v0", {0, 0, 0}},
@@ -692,7 +694,8 @@ TEST_SUITE("scene loader: in-memory scenes") {
 
     scene = minimalScene();
     firstShape(scene) = {{"type", "trimesh"}, {"plyPath", "../meshes/apple.ply"}};
-    CHECK(errorOf(scene) == "mem.json: scene.shapes[0].plyPath: PLY meshes are not supported yet");
+    CHECK(contains(errorOf(scene),
+                   "mem.json: scene.shapes[0].plyPath: mesh file not found: ../meshes/apple.ply"));
 
     scene = minimalScene();
     firstShape(scene) = {{"type", "trimesh"},
@@ -967,5 +970,167 @@ TEST_SUITE("scene loader: in-memory scenes") {
     } catch (const rt::Error& error) {
       CHECK(contains(error.what(), broken.string() + ": byte "));
     }
+  }
+}
+
+namespace {
+
+// One right triangle with smooth normals, in ASCII PLY.
+const std::string kTrianglePly =
+    "ply\nformat ascii 1.0\nelement vertex 3\n"
+    "property float x\nproperty float y\nproperty float z\n"
+    "property float nx\nproperty float ny\nproperty float nz\n"
+    "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n";
+
+Json plyShape(const std::string& type, const std::string& key, const std::string& file) {
+  return {{"type", type},
+          {key, file},
+          {"material",
+           {{"ks", 0.1}, {"kd", 0.9}, {"specularexponent", 10}, {"diffusecolor", {1, 1, 1}}}}};
+}
+
+const rt::MeshInstance& instanceOf(const rt::Scene& scene, size_t shape) {
+  return std::get<rt::MeshInstance>(scene.shapes.at(shape).geometry);
+}
+
+glm::vec3 placed(const rt::MeshInstance& instance, glm::vec3 point) {
+  return glm::vec3(instance.objectToWorld * glm::vec4(point, 1.0f));
+}
+
+// A student scene with its (unpublished) textures dropped, read as if from its own folder.
+rt::Scene loadWithoutTextures(const fs::path& file) {
+  Json document = Json::parse(std::ifstream(file));
+  for (Json& shape : document["scene"]["shapes"]) {
+    if (!shape.contains("material")) continue;
+    for (const char* key : {"tPath", "tWidth", "tHeight"}) shape["material"].erase(key);
+  }
+  return rt::parseScene(document.dump(), file);
+}
+
+}  // namespace
+
+TEST_SUITE("scene loader: PLY meshes") {
+  TEST_CASE("a trimesh names its PLY file under any alias; placement is translate * scale") {
+    const TempDir dir;
+    dir.write("meshes/tri.ply", kTrianglePly);
+    const fs::path sceneFile = dir.path() / "examples/scene.json";
+    for (const char* key : {"mPath", "plyPath", "file", "path"}) {
+      CAPTURE(key);
+      Json scene = minimalScene();
+      firstShape(scene) = plyShape("trimesh", key, "../meshes/tri.ply");
+      firstShape(scene)["center"] = {1, 2, 3};
+      firstShape(scene)["scale"] = 2;
+      const rt::Scene loaded = rt::parseScene(scene.dump(), sceneFile);
+      const rt::MeshInstance& instance = instanceOf(loaded, 0);
+      REQUIRE(loaded.meshes.size() == 1);
+      const rt::TriangleMesh& mesh = loaded.meshes[instance.mesh];
+      CHECK(mesh.positions.size() == 3);
+      CHECK(mesh.faces.size() == 1);
+      CHECK(mesh.normals == std::vector<glm::vec3>(3, glm::vec3(0, 0, 1)));  // smooth shading
+      CHECK(near(placed(instance, {0, 0, 0}), {1, 2, 3}));
+      CHECK(near(placed(instance, {1, 0, 0}), {3, 2, 3}));
+      CHECK(loaded.warnings.empty());
+    }
+    Json scene = minimalScene();
+    firstShape(scene) = plyShape("trimesh", "mPath", "../meshes/tri.ply");
+    CHECK(near(placed(instanceOf(rt::parseScene(scene.dump(), sceneFile), 0), {1, 1, 1}),
+               {1, 1, 1}));  // no placement: the file's own coordinates
+    firstShape(scene)["pos"] = {0, -1, 0};
+    firstShape(scene)["sizeScale"] = 0.5;
+    CHECK(near(placed(instanceOf(rt::parseScene(scene.dump(), sceneFile), 0), {0, 1, 0}),
+               {0, -0.5f, 0}));
+    firstShape(scene)["scale"] = 2;
+    CHECK(contains(errorOf(scene), "scene.shapes[0]"));
+    firstShape(scene).erase("scale");
+    firstShape(scene)["sizeScale"] = 0;
+    try {
+      rt::parseScene(scene.dump(), sceneFile);
+      FAIL("a zero scale must fail");
+    } catch (const rt::Error& error) {
+      CHECK(contains(error.what(), "scene.shapes[0].sizeScale: must be positive"));
+    }
+  }
+
+  TEST_CASE("type ply; paths from the scene folder or its parent; shapes share one mesh") {
+    const TempDir dir;
+    dir.write("examples/meshes/tri.ply", kTrianglePly);
+    const fs::path sceneFile = dir.path() / "examples/scene.json";
+    Json scene = minimalScene();
+    scene["scene"]["shapes"] = {plyShape("ply", "file", "examples/meshes/tri.ply"),
+                                plyShape("trimesh", "mPath", "meshes/tri.ply"),
+                                plyShape("trimesh", "plyPath", "../examples/meshes/tri.ply")};
+    scene["scene"]["shapes"][2]["center"] = {0, 0, 5};
+    const rt::Scene loaded = rt::parseScene(scene.dump(), sceneFile);
+    CHECK(loaded.meshes.size() == 1);
+    REQUIRE(loaded.shapes.size() == 3);
+    for (size_t i = 0; i < 3; ++i) CHECK(instanceOf(loaded, i).mesh == 0);
+    CHECK(near(placed(instanceOf(loaded, 2), {0, 0, 0}), {0, 0, 5}));
+    CHECK(loaded.warnings.empty());
+  }
+
+  TEST_CASE("PLY errors keep their byte offset and gain the JSON path") {
+    const TempDir dir;
+    std::string bad = kTrianglePly;
+    bad.replace(bad.find("3 0 1 2"), 7, "3 0 1 7");
+    const fs::path badFile = dir.write("meshes/bad.ply", bad);
+    const fs::path sceneFile = dir.path() / "examples/scene.json";
+    Json scene = minimalScene();
+    scene["scene"]["shapes"][1] = plyShape("trimesh", "mPath", "../meshes/bad.ply");
+    const auto errorIn = [&](const Json& document) -> std::string {
+      try {
+        rt::parseScene(document.dump(), sceneFile);
+      } catch (const rt::Error& error) {
+        return error.what();
+      }
+      return "";
+    };
+    CHECK(errorIn(scene) == sceneFile.string() +
+                                ": scene.shapes[1].mPath: " + badFile.lexically_normal().string() +
+                                ": byte " + std::to_string(bad.find("7\n")) +
+                                ": face 0: vertex index 7 is out of range (the file has 3 "
+                                "vertices)");
+    scene["scene"]["shapes"][1]["mPath"] = "../meshes/none.ply";
+    CHECK(contains(errorIn(scene),
+                   "scene.shapes[1].mPath: mesh file not found: ../meshes/none.ply (looked in"));
+    scene["scene"]["shapes"][1]["mPath"] = "";
+    CHECK(contains(errorIn(scene), "scene.shapes[1].mPath: must not be an empty string"));
+    scene["scene"]["shapes"][1]["mPath"] = "../meshes/bad.ply";
+    scene["scene"]["shapes"][1]["vertices"] = {{0, 0, 0}};
+    CHECK(contains(errorIn(scene),
+                   "scene.shapes[1].vertices: conflicts with 'scene.shapes[1].mPath': give inline "
+                   "vertices or a PLY file"));
+    scene["scene"]["shapes"][1] = plyShape("trimesh", "mPath", "../meshes/bad.ply");
+    scene["scene"]["shapes"][1]["file"] = "../meshes/bad.ply";
+    CHECK(contains(errorIn(scene), "scene.shapes[1].file: conflicts with"));
+  }
+
+  TEST_CASE("student scenes with PLY meshes") {
+    if (!sharedScenesAvailable()) return;
+    const fs::path student = sceneFormatDir() / "student";
+    const fs::path monkeyScene = student / "TsFreddie__RayTracer/examples/monkey_bvh_test.json";
+    if (fs::exists(monkeyScene)) {
+      const rt::Scene monkey = rt::loadScene(monkeyScene);
+      REQUIRE(monkey.meshes.size() == 1);
+      CHECK(monkey.meshes[0].positions.size() == 2874);
+      CHECK(monkey.meshes[0].faces.size() == 968);
+      CHECK(monkey.meshes[0].normals.size() == 2874);
+      CHECK(monkey.meshes[0].uvs.size() == 2874);
+      CHECK(instanceOf(monkey, 0).objectToWorld == glm::mat4(1.0f));
+    }
+    // PFNK's scenes also use textures that were never published.
+    const fs::path pfnk = student / "PFNK__RayTracer/examples/exampleMesh.json";
+    if (fs::exists(pfnk)) {
+      const rt::Scene octahedron = loadWithoutTextures(pfnk);
+      REQUIRE(octahedron.meshes.size() == 1);
+      CHECK(octahedron.meshes[0].positions.size() == 6);
+      CHECK(octahedron.meshes[0].faces.size() == 8);
+      const rt::MeshInstance& instance = instanceOf(octahedron, octahedron.shapes.size() - 1);
+      CHECK(near(placed(instance, {0, 0, 0}), {0.0f, 2.7f, 1.15f}));
+      CHECK(near(placed(instance, {1, 0, 0}), {0.2f, 2.7f, 1.15f}));
+    }
+    const fs::path beethoven = student / "PFNK__RayTracer/examples/example.json";
+    if (fs::exists(beethoven))
+      CHECK(loadWithoutTextures(beethoven).meshes.at(0).faces.size() == 5030);
   }
 }
