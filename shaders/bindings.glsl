@@ -5,12 +5,31 @@
 layout(std430, set = 0, binding = RT_BINDING_SCENE_INFO) readonly buffer SceneInfoBuffer {
   GpuSceneInfo sceneInfo;
 };
-layout(std430, set = 0, binding = RT_BINDING_PRIMITIVES) readonly buffer PrimitiveBuffer {
-  GpuPrimitive primitives[];
-};
-layout(std430, set = 0, binding = RT_BINDING_BVH_NODES) readonly buffer BvhNodeBuffer {
-  GpuBvhNode bvhNodes[];
-};
+// Primitives and BVH nodes are read through texel buffers (RGBA32F, records
+// of whole texels): CPU drivers such as lavapipe gather texels with vector
+// loads but read storage buffers at divergent indices one lane at a time,
+// which made traversal several times slower.
+layout(set = 0, binding = RT_BINDING_PRIMITIVES) uniform samplerBuffer primitiveTexels;
+layout(set = 0, binding = RT_BINDING_BVH_NODES) uniform samplerBuffer bvhNodeTexels;
+
+// Texel `row` (0..3) of primitive `index`: a, b, c, then kind/material/shape/flags.
+vec4 primitiveRow(uint index, uint row) {
+  return texelFetch(primitiveTexels, int(index * RT_TEXELS_PER_PRIMITIVE + row));
+}
+
+uvec4 primitiveInfo(uint index) { return floatBitsToUint(primitiveRow(index, 3u)); }
+
+GpuPrimitive loadPrimitive(uint index) {
+  uvec4 info = primitiveInfo(index);
+  return GpuPrimitive(primitiveRow(index, 0u), primitiveRow(index, 1u), primitiveRow(index, 2u),
+                      info.x, info.y, info.z, info.w);
+}
+
+GpuBvhNode loadNode(uint index) {
+  vec4 low = texelFetch(bvhNodeTexels, int(index * RT_TEXELS_PER_BVH_NODE));
+  vec4 high = texelFetch(bvhNodeTexels, int(index * RT_TEXELS_PER_BVH_NODE + 1u));
+  return GpuBvhNode(low.xyz, floatBitsToUint(low.w), high.xyz, floatBitsToUint(high.w));
+}
 layout(std430, set = 0, binding = RT_BINDING_MATERIALS) readonly buffer MaterialBuffer {
   GpuMaterial materials[];
 };

@@ -1,8 +1,11 @@
 #version 460
 // Viewer display pass: turns the renderer's float32 accumulation buffer into
-// the 8-bit image shown in the window, with the same tone mapping as the PNG
+// the 8-bit pixels shown in the window, with the same tone mapping as the PNG
 // writer (exposure, clamp to [0, 1], no gamma, round to the nearest 1/255), so
 // a screenshot of the window equals the offline render.
+// The pixels go to a buffer in RGBA8 memory order, which the host copies into
+// an RGBA8 image: on lavapipe, imageStore to an rgba8 image costs about three
+// times as much as this whole pass.
 #extension GL_GOOGLE_include_directive : require
 
 #include "display_types.h"
@@ -14,23 +17,26 @@ layout(push_constant) uniform DisplayParamsBlock { GpuDisplayParams params; };
 layout(std430, set = 0, binding = RT_DISPLAY_BINDING_ACCUMULATION) readonly buffer Accumulation {
   vec4 accumulation[];
 };
-layout(set = 0, binding = RT_DISPLAY_BINDING_IMAGE, rgba8) uniform writeonly image2D displayImage;
+layout(std430, set = 0, binding = RT_DISPLAY_BINDING_PIXELS) writeonly buffer Pixels {
+  uint pixels[];
+};
 
 // rt::toneMap's quantize(applyCurve(v * exposure)): NaN and negatives go to 0.
-float toneMapChannel(float value) {
+uint toneMapChannel(float value) {
   float exposed = value * params.exposure;
   float unit = exposed > 0.0 ? min(exposed, 1.0) : 0.0;
-  return floor(unit * 255.0 + 0.5) / 255.0;
+  return uint(floor(unit * 255.0 + 0.5));
 }
 
 void main() {
-  uvec2 pixel = gl_GlobalInvocationID.xy;
+  uvec2 pixel = gl_GlobalInvocationID.xy + uvec2(0, params.firstRow);
   if (any(greaterThanEqual(pixel, params.size))) return;
-  vec4 sum = accumulation[pixel.y * params.size.x + pixel.x];
+  uint index = pixel.y * params.size.x + pixel.x;
+  vec4 sum = accumulation[index];
   // A pixel without samples yet (right after a restart) keeps what the image
   // showed before, so a new view wipes over the old one band by band.
   if (sum.a <= 0.0) return;
   vec3 mean = sum.rgb / sum.a;
-  vec3 display = vec3(toneMapChannel(mean.r), toneMapChannel(mean.g), toneMapChannel(mean.b));
-  imageStore(displayImage, ivec2(pixel), vec4(display, 1.0));
+  pixels[index] = toneMapChannel(mean.r) | (toneMapChannel(mean.g) << 8) |
+                  (toneMapChannel(mean.b) << 16) | (255u << 24);
 }

@@ -7,8 +7,8 @@
 vec3 hitPosition(Ray ray, SurfaceHit hit) {
   vec3 p = ray.origin + hit.t * ray.direction;
 #ifdef RT_FEATURE_SPHERES
-  if (primitives[hit.primitiveIndex].kind == RT_PRIM_SPHERE) {
-    vec4 sphere = primitives[hit.primitiveIndex].a;
+  if (primitiveInfo(hit.primitiveIndex).x == RT_PRIM_SPHERE) {
+    vec4 sphere = primitiveRow(hit.primitiveIndex, 0u);
     p = sphere.xyz + sphere.w * hit.normal;
   }
 #endif

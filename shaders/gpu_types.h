@@ -87,6 +87,7 @@ struct GpuPrimitive {
   uint flags;
 };
 RT_ASSERT_STD430_SIZE(GpuPrimitive, 64);
+#define RT_TEXELS_PER_PRIMITIVE 4u  // read as RGBA32F texels (bindings.glsl)
 
 // Binary BVH node (32 bytes). count == 0: interior node whose children are
 // firstIndex and firstIndex + 1; count > 0: leaf over primitives
@@ -98,6 +99,7 @@ struct GpuBvhNode {
   uint count;
 };
 RT_ASSERT_STD430_SIZE(GpuBvhNode, 32);
+#define RT_TEXELS_PER_BVH_NODE 2u
 
 struct GpuMaterial {
   vec3 diffuseColor;

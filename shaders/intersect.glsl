@@ -117,31 +117,30 @@ bool intersectCylinder(vec3 center, vec3 axis, float radius, float halfHeight, R
 }
 #endif
 
-// Reads only the fields the primitive's kind needs: on CPU drivers every
-// storage-buffer read is a per-lane gather, so loading whole records costs
-// more than the intersection arithmetic.
+// Reads only the texels the primitive's kind needs: on CPU drivers memory
+// reads at divergent indices cost more than the intersection arithmetic.
 // `barycentric` is (u, v) of v1 and v2 on triangles, (0, 0) on other kinds.
 bool intersectPrimitive(uint index, Ray ray, float tMin, inout float tMax, out vec3 normal,
                         out vec2 barycentric) {
   normal = vec3(0.0, 0.0, 1.0);
   barycentric = vec2(0.0);
-  uint kind = primitives[index].kind;
+  uint kind = primitiveInfo(index).x;
 #ifdef RT_FEATURE_SPHERES
   if (kind == RT_PRIM_SPHERE) {
-    vec4 sphere = primitives[index].a;
+    vec4 sphere = primitiveRow(index, 0u);
     return intersectSphere(sphere.xyz, sphere.w, ray, tMin, tMax, normal);
   }
 #endif
 #ifdef RT_FEATURE_TRIANGLES
   if (kind == RT_PRIM_TRIANGLE) {
-    return intersectTriangle(primitives[index].a.xyz, primitives[index].b.xyz,
-                             primitives[index].c.xyz, ray, tMin, tMax, normal, barycentric);
+    return intersectTriangle(primitiveRow(index, 0u).xyz, primitiveRow(index, 1u).xyz,
+                             primitiveRow(index, 2u).xyz, ray, tMin, tMax, normal, barycentric);
   }
 #endif
 #ifdef RT_FEATURE_CYLINDERS
   if (kind == RT_PRIM_CYLINDER) {
-    vec4 a = primitives[index].a;
-    vec4 b = primitives[index].b;
+    vec4 a = primitiveRow(index, 0u);
+    vec4 b = primitiveRow(index, 1u);
     return intersectCylinder(a.xyz, b.xyz, a.w, b.w, ray, tMin, tMax, normal);
   }
 #endif

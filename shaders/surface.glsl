@@ -72,7 +72,7 @@ SurfacePoint surfaceAt(Ray ray, SurfaceHit hit) {
   surface.geometricNormal = hit.normal;
   surface.shadingNormal = hit.normal;
   surface.uv = hit.barycentric;
-  GpuPrimitive prim = primitives[hit.primitiveIndex];
+  GpuPrimitive prim = loadPrimitive(hit.primitiveIndex);
 #ifdef RT_FEATURE_SPHERES
   if (prim.kind == RT_PRIM_SPHERE) surface.uv = sphereUv(hit.normal);
 #endif

@@ -52,12 +52,13 @@ bool traverse(Ray ray, float tMin, inout float tMax, bool anyHit, out SurfaceHit
   uint stack[RT_BVH_MAX_DEPTH];
   uint stackSize = 0u;
   uint node = 0u;
-  if (boxEntry(bvhNodes[0].boundsMin, bvhNodes[0].boundsMax, ray, invDir, tMin, tMax) ==
+  GpuBvhNode root = loadNode(0u);
+  if (boxEntry(root.boundsMin, root.boundsMax, ray, invDir, tMin, tMax) ==
       RT_FAR) {
     return false;
   }
   while (true) {
-    GpuBvhNode current = bvhNodes[node];
+    GpuBvhNode current = loadNode(node);
     if (current.count > 0u) {
       for (uint i = current.firstIndex; i < current.firstIndex + current.count; ++i) {
         vec3 normal;
@@ -73,9 +74,11 @@ bool traverse(Ray ray, float tMin, inout float tMax, bool anyHit, out SurfaceHit
     } else {
       uint left = current.firstIndex;
       uint right = left + 1u;
-      float tLeft = boxEntry(bvhNodes[left].boundsMin, bvhNodes[left].boundsMax, ray, invDir,
+      GpuBvhNode leftNode = loadNode(left);
+      GpuBvhNode rightNode = loadNode(right);
+      float tLeft = boxEntry(leftNode.boundsMin, leftNode.boundsMax, ray, invDir,
                              tMin, tMax);
-      float tRight = boxEntry(bvhNodes[right].boundsMin, bvhNodes[right].boundsMax, ray, invDir,
+      float tRight = boxEntry(rightNode.boundsMin, rightNode.boundsMax, ray, invDir,
                               tMin, tMax);
       bool hitLeft = tLeft != RT_FAR;
       bool hitRight = tRight != RT_FAR;

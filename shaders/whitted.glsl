@@ -98,7 +98,7 @@ vec3 traceRadiance(Ray primary, uvec3 branchKey) {
       radiance += job.weight * sceneInfo.binaryHitColor;
       continue;
     }
-    GpuMaterial material = materials[primitives[hit.primitiveIndex].materialIndex];
+    GpuMaterial material = materials[primitiveInfo(hit.primitiveIndex).y];
     SurfacePoint surface = surfaceAt(job.ray, hit);
     bool entering = dot(job.ray.direction, surface.geometricNormal) < 0.0;
     faceViewer(surface, -job.ray.direction);

@@ -1,9 +1,126 @@
-// Temporary until the viewer lands (src/viewer): reports that it is missing.
+// raytracer view SCENE [options]: the interactive viewer (src/viewer). This
+// file only turns the command line into rt::viewer::ViewerOptions.
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
 #include <cstdio>
+#include <optional>
+#include <regex>
+#include <string>
 
 #include "app/Commands.hpp"
+#include "util/Error.hpp"
+#include "viewer/ViewerOptions.hpp"
 
-int runViewCommand(int, char**) {
-  std::fprintf(stderr, "error: the interactive viewer is not part of this build\n");
-  return 1;
+namespace {
+
+constexpr uint32_t kMaxWindowSide = 16384;
+constexpr uint32_t kMaxSamples = 1u << 20;
+
+struct CommandLine {
+  std::string scenePath;
+  std::string size;
+  std::string sampler;
+  std::string shading;
+  std::string device;
+  bool noOverlay = false;
+  bool noWatch = false;
+  double frameMilliseconds = 75.0;
+};
+
+void parseSize(const std::string& text, rt::viewer::ViewerOptions& options) {
+  static const std::regex pattern(R"((\d{1,9})x(\d{1,9}))");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern)) {
+    throw rt::Error(fmt::format("--size {}: expected WIDTHxHEIGHT, e.g. 800x600", text));
+  }
+  uint32_t width = static_cast<uint32_t>(std::stoul(match[1].str()));
+  uint32_t height = static_cast<uint32_t>(std::stoul(match[2].str()));
+  if (width == 0 || height == 0 || width > kMaxWindowSide || height > kMaxWindowSide) {
+    throw rt::Error(fmt::format("--size {}: each side must be 1..{}", text, kMaxWindowSide));
+  }
+  options.width = width;
+  options.height = height;
+}
+
+void finishOptions(const CommandLine& cli, rt::viewer::ViewerOptions& options) {
+  options.scenePath = cli.scenePath;
+  if (!cli.size.empty()) parseSize(cli.size, options);
+  if (cli.sampler == "random") options.sampler = rt::SamplerKind::Random;
+  if (cli.sampler == "jittered") options.sampler = rt::SamplerKind::Jittered;
+  if (cli.shading == "standard") options.shading = rt::ShadingModel::Standard;
+  if (cli.shading == "coursework") options.shading = rt::ShadingModel::Coursework;
+  if (!cli.device.empty()) {
+    if (cli.device.find_first_not_of("0123456789") != std::string::npos || cli.device.size() > 6) {
+      throw rt::Error(fmt::format("--device {}: expected a device number", cli.device));
+    }
+    options.deviceIndex = static_cast<uint32_t>(std::stoul(cli.device));
+  }
+  options.overlay = !cli.noOverlay;
+  options.watch = !cli.noWatch;
+  options.frameSeconds = cli.frameMilliseconds * 1e-3;
+  if (!options.screenshot.empty() && options.screenshot.extension() != ".png") {
+    throw rt::Error(
+        fmt::format("--screenshot {}: must be a .png file", options.screenshot.string()));
+  }
+}
+
+}  // namespace
+
+int runViewCommand(int argc, char** argv) {
+  CommandLine cli;
+  rt::viewer::ViewerOptions options;
+  CLI::App app{
+      "Interactive viewer: progressive rendering in a window, hot reload of shaders "
+      "and the scene file.",
+      "raytracer view"};
+  app.add_option("scene", cli.scenePath, "Scene file (.json)")->required();
+  app.add_option("--size", cli.size,
+                 "Initial window size WIDTHxHEIGHT (default: the scene's); "
+                 "the render always has the window's size");
+  app.add_option("--max-spp", options.samplesTarget,
+                 "Samples per pixel to accumulate, then stop (default: the scene's, else 16)")
+      ->check(CLI::Range(1u, kMaxSamples));
+  app.add_option("--spp-per-frame", options.samplesPerFrame,
+                 "Fixed samples per pixel per frame over the whole image (default: adaptive "
+                 "row bands sized for --frame-ms)")
+      ->check(CLI::Range(1u, kMaxSamples));
+  app.add_option("--frame-ms", cli.frameMilliseconds, "Target frame time of adaptive mode (75)")
+      ->check(CLI::Range(5.0, 2000.0));
+  app.add_option("--frames", options.frames, "Exit after N frames (default: when closed)");
+  app.add_option("--camera-path", options.cameraPath,
+                 "Text file of camera steps, one per frame (see src/viewer/CameraPath.hpp)");
+  app.add_option("--screenshot", options.screenshot,
+                 "Write the last presented frame (the swapchain image) to this .png");
+  app.add_option("--save-dir", options.saveFolder, "Folder for Ctrl+S saves (default: .)");
+  app.add_flag("--no-overlay", cli.noOverlay, "Start with the overlay hidden (H toggles it)");
+  app.add_flag("--no-watch", cli.noWatch, "Do not reload shaders or the scene on changes");
+  app.add_option("--shader-dir", options.shaderDir,
+                 "Folder with the GLSL shaders, watched for changes (default: built-in path)");
+  app.add_flag("--validation", options.validation,
+               "Enable the Vulkan validation layer; any message fails the run");
+  app.add_option("--device", cli.device, "Number of the Vulkan device to use");
+  app.add_option("--seed", options.seed, "Random seed (as the render command)");
+  app.add_option("--sampler", cli.sampler, "Pixel sampler (default: the scene's, else jittered)")
+      ->check(CLI::IsMember({"random", "jittered"}));
+  app.add_option("--shading", cli.shading, "Shading model (as the render command)")
+      ->check(CLI::IsMember({"standard", "coursework"}));
+  app.add_option("--exposure", options.exposure, "Extra exposure factor")
+      ->check(CLI::PositiveNumber);
+  app.add_flag("-v,--verbose", options.verbose, "Log every frame (default: about once a second)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "error: %s (see raytracer view --help)\n", e.what());
+    return 2;
+  }
+  try {
+    finishOptions(cli, options);
+    return rt::viewer::runViewer(options);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
 }

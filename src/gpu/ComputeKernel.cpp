@@ -5,8 +5,23 @@
 
 namespace rt {
 
+namespace {
+
+std::vector<KernelBinding> storageOnly(const std::vector<uint32_t>& bindings) {
+  std::vector<KernelBinding> result;
+  for (uint32_t binding : bindings) result.push_back({binding});
+  return result;
+}
+
+}  // namespace
+
 ComputeKernel::ComputeKernel(VulkanContext& context, const std::vector<uint32_t>& spirv,
                              const std::vector<uint32_t>& storageBindings,
+                             uint32_t pushConstantBytes)
+    : ComputeKernel(context, spirv, storageOnly(storageBindings), pushConstantBytes) {}
+
+ComputeKernel::ComputeKernel(VulkanContext& context, const std::vector<uint32_t>& spirv,
+                             const std::vector<KernelBinding>& kernelBindings,
                              uint32_t pushConstantBytes)
     : context_(context), pushConstantBytes_(pushConstantBytes) {
   VkDevice device = context.device();
@@ -17,9 +32,10 @@ ComputeKernel::ComputeKernel(VulkanContext& context, const std::vector<uint32_t>
     vkCheck(vkCreateShaderModule(device, &moduleInfo, nullptr, &module_), "vkCreateShaderModule");
 
     std::vector<VkDescriptorSetLayoutBinding> bindings;
-    for (uint32_t binding : storageBindings) {
-      bindings.push_back(
-          {binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+    std::vector<VkDescriptorPoolSize> poolSizes;
+    for (const KernelBinding& binding : kernelBindings) {
+      bindings.push_back({binding.binding, binding.type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+      poolSizes.push_back({binding.type, 1});
     }
     VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     layoutInfo.bindingCount = static_cast<uint32_t>(bindings.size());
@@ -45,12 +61,10 @@ ComputeKernel::ComputeKernel(VulkanContext& context, const std::vector<uint32_t>
     vkCheck(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline_),
             "vkCreateComputePipelines");
 
-    VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                  static_cast<uint32_t>(bindings.size())};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = 1;
-    poolInfo.poolSizeCount = 1;
-    poolInfo.pPoolSizes = &poolSize;
+    poolInfo.poolSizeCount = static_cast<uint32_t>(poolSizes.size());
+    poolInfo.pPoolSizes = poolSizes.data();
     vkCheck(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool_), "vkCreateDescriptorPool");
     VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     setInfo.descriptorPool = pool_;
@@ -67,6 +81,8 @@ ComputeKernel::~ComputeKernel() { destroy(); }
 
 void ComputeKernel::destroy() {
   VkDevice device = context_.device();
+  for (VkBufferView view : views_) vkDestroyBufferView(device, view, nullptr);
+  views_.clear();
   if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
   if (pipeline_) vkDestroyPipeline(device, pipeline_, nullptr);
   if (pipelineLayout_) vkDestroyPipelineLayout(device, pipelineLayout_, nullptr);
@@ -87,6 +103,23 @@ void ComputeKernel::bind(uint32_t binding, const Buffer& buffer) {
   write.descriptorCount = 1;
   write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   write.pBufferInfo = &bufferInfo;
+  vkUpdateDescriptorSets(context_.device(), 1, &write, 0, nullptr);
+}
+
+void ComputeKernel::bindTexels(uint32_t binding, const Buffer& buffer, VkFormat format) {
+  VkBufferViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+  viewInfo.buffer = buffer.handle();
+  viewInfo.format = format;
+  viewInfo.range = VK_WHOLE_SIZE;
+  VkBufferView view = VK_NULL_HANDLE;
+  vkCheck(vkCreateBufferView(context_.device(), &viewInfo, nullptr, &view), "vkCreateBufferView");
+  views_.push_back(view);
+  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  write.dstSet = set_;
+  write.dstBinding = binding;
+  write.descriptorCount = 1;
+  write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+  write.pTexelBufferView = &view;
   vkUpdateDescriptorSets(context_.device(), 1, &write, 0, nullptr);
 }
 

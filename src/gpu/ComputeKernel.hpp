@@ -12,17 +12,27 @@ namespace rt {
 class Buffer;
 class VulkanContext;
 
+// One binding of descriptor set 0.
+struct KernelBinding {
+  uint32_t binding = 0;
+  VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;  // or UNIFORM_TEXEL_BUFFER
+};
+
 class ComputeKernel {
  public:
-  // `storageBindings` lists the binding numbers of set 0 (all storage buffers).
+  ComputeKernel(VulkanContext& context, const std::vector<uint32_t>& spirv,
+                const std::vector<KernelBinding>& bindings, uint32_t pushConstantBytes);
+  // All bindings storage buffers.
   ComputeKernel(VulkanContext& context, const std::vector<uint32_t>& spirv,
                 const std::vector<uint32_t>& storageBindings, uint32_t pushConstantBytes);
   ~ComputeKernel();
   ComputeKernel(const ComputeKernel&) = delete;
   ComputeKernel& operator=(const ComputeKernel&) = delete;
 
-  // Points a binding at a buffer; only while no dispatch is in flight.
+  // Points a storage-buffer binding at a buffer; only while no dispatch is in flight.
   void bind(uint32_t binding, const Buffer& buffer);
+  // Points a uniform-texel-buffer binding at a buffer read as `format` texels.
+  void bindTexels(uint32_t binding, const Buffer& buffer, VkFormat format);
 
   // Records a dispatch followed by a barrier that makes its writes visible to
   // the next dispatch and to transfers.
@@ -40,6 +50,7 @@ class ComputeKernel {
   VkPipeline pipeline_ = VK_NULL_HANDLE;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
+  std::vector<VkBufferView> views_;  // owned, one per bindTexels call
 };
 
 }  // namespace rt

@@ -15,9 +15,9 @@ BatchIntersector::BatchIntersector(VulkanContext& context, const ShaderCompiler&
   buffers_ = std::make_unique<SceneBuffers>(context, flat_);
   std::vector<uint32_t> spirv =
       compiler.compile("intersect_batch.comp", detectFeatures(scene, flat_).defines());
-  std::vector<uint32_t> bindings = SceneBuffers::bindings();
-  bindings.push_back(RT_BINDING_RAYS);
-  bindings.push_back(RT_BINDING_HITS);
+  std::vector<KernelBinding> bindings = SceneBuffers::bindings();
+  bindings.push_back({RT_BINDING_RAYS});
+  bindings.push_back({RT_BINDING_HITS});
   kernel_ = std::make_unique<ComputeKernel>(context, spirv, bindings,
                                             static_cast<uint32_t>(sizeof(gpu::GpuBatchParams)));
   buffers_->bindTo(*kernel_);

@@ -52,9 +52,9 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
 }
 
 std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
-  std::vector<uint32_t> bindings = SceneBuffers::bindings();
-  bindings.push_back(RT_BINDING_ACCUMULATION);
-  if (rayCounter_) bindings.push_back(RT_BINDING_RAY_COUNTER);
+  std::vector<KernelBinding> bindings = SceneBuffers::bindings();
+  bindings.push_back({RT_BINDING_ACCUMULATION});
+  if (rayCounter_) bindings.push_back({RT_BINDING_RAY_COUNTER});
   auto kernel = std::make_unique<ComputeKernel>(
       context_, compiler_.compile("trace.comp", features_.defines()), bindings,
       static_cast<uint32_t>(sizeof(gpu::GpuFrameParams)));

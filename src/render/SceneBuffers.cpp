@@ -23,12 +23,26 @@ Buffer makeStorage(VulkanContext& context, const std::vector<T>& items, const ch
   return buffer;
 }
 
+// Records read as RGBA32F texels (see shaders/bindings.glsl).
+template <typename T>
+Buffer makeTexels(VulkanContext& context, const std::vector<T>& items, const char* what) {
+  static_assert(sizeof(T) % 16 == 0, "texel records are whole RGBA32F texels");
+  VkDeviceSize texels = std::max<VkDeviceSize>(1, items.size()) * (sizeof(T) / 16);
+  if (texels > context.limits().maxTexelBufferElements) {
+    throw Error(fmt::format("scene too large: {} need {} texels, the device allows {}", what,
+                            texels, context.limits().maxTexelBufferElements));
+  }
+  Buffer buffer(context, texels * 16, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+  if (!items.empty()) buffer.upload(items.data(), items.size() * sizeof(T));
+  return buffer;
+}
+
 }  // namespace
 
 SceneBuffers::SceneBuffers(VulkanContext& context, const FlatScene& scene)
     : info_(makeStorage(context, std::vector<gpu::GpuSceneInfo>{scene.info}, "scene info")),
-      primitives_(makeStorage(context, scene.primitives, "primitives")),
-      bvhNodes_(makeStorage(context, scene.bvhNodes, "BVH nodes")),
+      primitives_(makeTexels(context, scene.primitives, "primitives")),
+      bvhNodes_(makeTexels(context, scene.bvhNodes, "BVH nodes")),
       materials_(makeStorage(context, scene.materials, "materials")),
       pointLights_(makeStorage(context, scene.pointLights, "point lights")),
       vertices_(makeStorage(context, scene.vertices, "vertices")),
@@ -37,8 +51,8 @@ SceneBuffers::SceneBuffers(VulkanContext& context, const FlatScene& scene)
 
 void SceneBuffers::bindTo(ComputeKernel& kernel) const {
   kernel.bind(RT_BINDING_SCENE_INFO, info_);
-  kernel.bind(RT_BINDING_PRIMITIVES, primitives_);
-  kernel.bind(RT_BINDING_BVH_NODES, bvhNodes_);
+  kernel.bindTexels(RT_BINDING_PRIMITIVES, primitives_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  kernel.bindTexels(RT_BINDING_BVH_NODES, bvhNodes_, VK_FORMAT_R32G32B32A32_SFLOAT);
   kernel.bind(RT_BINDING_MATERIALS, materials_);
   kernel.bind(RT_BINDING_POINT_LIGHTS, pointLights_);
   kernel.bind(RT_BINDING_VERTICES, vertices_);
@@ -46,10 +60,12 @@ void SceneBuffers::bindTo(ComputeKernel& kernel) const {
   kernel.bind(RT_BINDING_TEXELS, texels_);
 }
 
-std::vector<uint32_t> SceneBuffers::bindings() {
-  return {RT_BINDING_SCENE_INFO,   RT_BINDING_PRIMITIVES, RT_BINDING_BVH_NODES,
-          RT_BINDING_MATERIALS,    RT_BINDING_POINT_LIGHTS, RT_BINDING_VERTICES,
-          RT_BINDING_TEXTURE_INFO, RT_BINDING_TEXELS};
+std::vector<KernelBinding> SceneBuffers::bindings() {
+  constexpr VkDescriptorType kTexels = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+  return {{RT_BINDING_SCENE_INFO},   {RT_BINDING_PRIMITIVES, kTexels},
+          {RT_BINDING_BVH_NODES, kTexels}, {RT_BINDING_MATERIALS},
+          {RT_BINDING_POINT_LIGHTS}, {RT_BINDING_VERTICES},
+          {RT_BINDING_TEXTURE_INFO}, {RT_BINDING_TEXELS}};
 }
 
 void SceneBuffers::updateInfo(const gpu::GpuSceneInfo& info) { info_.upload(&info, sizeof(info)); }

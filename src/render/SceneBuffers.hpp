@@ -5,11 +5,11 @@
 #include <vector>
 
 #include "gpu/Buffer.hpp"
+#include "gpu/ComputeKernel.hpp"
 #include "render/FlatScene.hpp"
 
 namespace rt {
 
-class ComputeKernel;
 class VulkanContext;
 
 class SceneBuffers {
@@ -17,7 +17,7 @@ class SceneBuffers {
   SceneBuffers(VulkanContext& context, const FlatScene& scene);
   void bindTo(ComputeKernel& kernel) const;
   // The binding numbers bindTo() fills (set 0), for kernel layouts.
-  static std::vector<uint32_t> bindings();
+  static std::vector<KernelBinding> bindings();
   // Replaces the per-scene constants (camera moves); no dispatch may be in flight.
   void updateInfo(const gpu::GpuSceneInfo& info);
   size_t bytes() const;

@@ -35,6 +35,19 @@ void recordImageBarrier(VkCommandBuffer commands, const VkImageMemoryBarrier& ba
   vkCmdPipelineBarrier(commands, srcStage, dstStage, 0, 0, nullptr, 0, nullptr, 1, &barrier);
 }
 
+void recordBufferBarrier(VkCommandBuffer commands, VkBuffer buffer, VkAccessFlags srcAccess,
+                         VkAccessFlags dstAccess, VkPipelineStageFlags srcStage,
+                         VkPipelineStageFlags dstStage) {
+  VkBufferMemoryBarrier barrier{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+  barrier.srcAccessMask = srcAccess;
+  barrier.dstAccessMask = dstAccess;
+  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.buffer = buffer;
+  barrier.size = VK_WHOLE_SIZE;
+  vkCmdPipelineBarrier(commands, srcStage, dstStage, 0, 0, nullptr, 1, &barrier, 0, nullptr);
+}
+
 }  // namespace
 
 FitRect fitInto(glm::uvec2 image, VkExtent2D target) {
@@ -58,7 +71,7 @@ DisplayPass::~DisplayPass() {
   VkDevice device = context_.device();
   vkDeviceWaitIdle(device);
   releaseRetired();
-  destroyImage();
+  destroyTargets();
   if (pipeline_) vkDestroyPipeline(device, pipeline_, nullptr);
   if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
   if (pipelineLayout_) vkDestroyPipelineLayout(device, pipelineLayout_, nullptr);
@@ -68,11 +81,11 @@ DisplayPass::~DisplayPass() {
 void DisplayPass::checkFormatSupport() const {
   VkFormatProperties properties{};
   vkGetPhysicalDeviceFormatProperties(context_.physicalDevice(), kDisplayFormat, &properties);
-  VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT |
+  VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_TRANSFER_DST_BIT |
                                 VK_FORMAT_FEATURE_BLIT_SRC_BIT |
                                 VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
   if ((properties.optimalTilingFeatures & needed) != needed) {
-    throw Error("Vulkan: this device cannot use RGBA8 storage images as blit sources");
+    throw Error("Vulkan: this device cannot use RGBA8 images as blit sources");
   }
 }
 
@@ -81,7 +94,7 @@ void DisplayPass::createLayouts() {
   VkDescriptorSetLayoutBinding bindings[] = {
       {RT_DISPLAY_BINDING_ACCUMULATION, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
        VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {RT_DISPLAY_BINDING_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT,
+      {RT_DISPLAY_BINDING_PIXELS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
        nullptr}};
   VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   layoutInfo.bindingCount = 2;
@@ -98,12 +111,11 @@ void DisplayPass::createLayouts() {
   vkCheck(vkCreatePipelineLayout(device, &pipelineLayoutInfo, nullptr, &pipelineLayout_),
           "vkCreatePipelineLayout");
 
-  VkDescriptorPoolSize poolSizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
-                                      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
+  VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
-  poolInfo.poolSizeCount = 2;
-  poolInfo.pPoolSizes = poolSizes;
+  poolInfo.poolSizeCount = 1;
+  poolInfo.pPoolSizes = &poolSize;
   vkCheck(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool_), "vkCreateDescriptorPool");
   VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   setInfo.descriptorPool = pool_;
@@ -147,8 +159,12 @@ void DisplayPass::releaseRetired() {
   retired_.clear();
 }
 
-void DisplayPass::createImage(uint32_t width, uint32_t height) {
+void DisplayPass::createTargets(uint32_t width, uint32_t height) {
   VkDevice device = context_.device();
+  pixels_ = std::make_unique<Buffer>(context_, VkDeviceSize(width) * height * sizeof(uint32_t),
+                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  pixels_->fillZero();  // black until the first samples arrive
+
   VkImageCreateInfo imageInfo{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   imageInfo.imageType = VK_IMAGE_TYPE_2D;
   imageInfo.format = kDisplayFormat;
@@ -157,8 +173,7 @@ void DisplayPass::createImage(uint32_t width, uint32_t height) {
   imageInfo.arrayLayers = 1;
   imageInfo.samples = VK_SAMPLE_COUNT_1_BIT;
   imageInfo.tiling = VK_IMAGE_TILING_OPTIMAL;
-  imageInfo.usage =
-      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  imageInfo.usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   imageInfo.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   imageInfo.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   vkCheck(vkCreateImage(device, &imageInfo, nullptr, &image_), "vkCreateImage");
@@ -171,97 +186,106 @@ void DisplayPass::createImage(uint32_t width, uint32_t height) {
       context_.findMemoryType(requirements.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   vkCheck(vkAllocateMemory(device, &allocInfo, nullptr, &memory_), "vkAllocateMemory");
   vkCheck(vkBindImageMemory(device, image_, memory_, 0), "vkBindImageMemory");
-
-  VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  viewInfo.image = image_;
-  viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
-  viewInfo.format = kDisplayFormat;
-  viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  vkCheck(vkCreateImageView(device, &viewInfo, nullptr, &view_), "vkCreateImageView");
   size_ = {width, height};
 
-  // The image lives in GENERAL (storage writes and blit reads) and starts
-  // black: pixels without samples keep their old value (see display.comp).
+  // Between frames the image waits in TRANSFER_SRC_OPTIMAL for the blit.
   context_.submitAndWait([&](VkCommandBuffer commands) {
-    recordImageBarrier(commands,
-                       imageBarrier(image_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
-                                    VK_ACCESS_TRANSFER_WRITE_BIT),
-                       VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    recordImageBarrier(
+        commands,
+        imageBarrier(image_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                     VK_ACCESS_TRANSFER_WRITE_BIT),
+        VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
     VkClearColorValue black{};
     black.float32[3] = 1.0f;
     VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdClearColorImage(commands, image_, VK_IMAGE_LAYOUT_GENERAL, &black, 1, &range);
+    vkCmdClearColorImage(commands, image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &range);
     recordImageBarrier(commands,
-                       imageBarrier(image_, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
-                                    VK_ACCESS_TRANSFER_WRITE_BIT,
-                                    VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT),
-                       VK_PIPELINE_STAGE_TRANSFER_BIT,
-                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT);
+                       imageBarrier(image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                    VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT),
+                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
   });
 }
 
-void DisplayPass::destroyImage() {
+void DisplayPass::destroyTargets() {
   VkDevice device = context_.device();
-  if (view_) vkDestroyImageView(device, view_, nullptr);
   if (image_) vkDestroyImage(device, image_, nullptr);
   if (memory_) vkFreeMemory(device, memory_, nullptr);
-  view_ = VK_NULL_HANDLE;
   image_ = VK_NULL_HANDLE;
   memory_ = VK_NULL_HANDLE;
+  pixels_.reset();
   size_ = glm::uvec2(0);
 }
 
 void DisplayPass::setSource(const Buffer& accumulation, uint32_t width, uint32_t height) {
   if (size_ != glm::uvec2(width, height)) {
-    destroyImage();
-    createImage(width, height);
+    destroyTargets();
+    createTargets(width, height);
   }
-  VkDescriptorBufferInfo bufferInfo{accumulation.handle(), 0, VK_WHOLE_SIZE};
-  VkDescriptorImageInfo imageInfo{VK_NULL_HANDLE, view_, VK_IMAGE_LAYOUT_GENERAL};
+  VkDescriptorBufferInfo accumulationInfo{accumulation.handle(), 0, VK_WHOLE_SIZE};
+  VkDescriptorBufferInfo pixelsInfo{pixels_->handle(), 0, VK_WHOLE_SIZE};
   VkWriteDescriptorSet writes[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
                                     {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
   writes[0].dstSet = set_;
   writes[0].dstBinding = RT_DISPLAY_BINDING_ACCUMULATION;
   writes[0].descriptorCount = 1;
   writes[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  writes[0].pBufferInfo = &bufferInfo;
-  writes[1].dstSet = set_;
-  writes[1].dstBinding = RT_DISPLAY_BINDING_IMAGE;
-  writes[1].descriptorCount = 1;
-  writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-  writes[1].pImageInfo = &imageInfo;
+  writes[0].pBufferInfo = &accumulationInfo;
+  writes[1] = writes[0];
+  writes[1].dstBinding = RT_DISPLAY_BINDING_PIXELS;
+  writes[1].pBufferInfo = &pixelsInfo;
   vkUpdateDescriptorSets(context_.device(), 2, writes, 0, nullptr);
 }
 
-void DisplayPass::recordToneMap(VkCommandBuffer commands, float exposure) const {
-  // The previous frame's blit read the image; this pass overwrites it.
-  recordImageBarrier(commands,
-                     imageBarrier(image_, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
-                                  VK_ACCESS_TRANSFER_READ_BIT, VK_ACCESS_SHADER_WRITE_BIT),
-                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-  gpu::GpuDisplayParams params{size_, exposure, 0};
+void DisplayPass::recordToneMap(VkCommandBuffer commands, float exposure, uint32_t firstRow,
+                                uint32_t rows) const {
+  rows = std::min(rows, size_.y - std::min(firstRow, size_.y));
+  if (rows == 0) return;
+  // The previous frame's copy read the pixels; this pass updates them.
+  recordBufferBarrier(commands, pixels_->handle(), VK_ACCESS_TRANSFER_READ_BIT,
+                      VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+  gpu::GpuDisplayParams params{size_, exposure, firstRow};
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-  vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_,
-                          0, nullptr);
+  vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0,
+                          nullptr);
   vkCmdPushConstants(commands, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(params),
                      &params);
   vkCmdDispatch(commands, divideRoundUp(size_.x, RT_DISPLAY_WORKGROUP_SIZE),
-                divideRoundUp(size_.y, RT_DISPLAY_WORKGROUP_SIZE), 1);
+                divideRoundUp(rows, RT_DISPLAY_WORKGROUP_SIZE), 1);
+
+  // Pixels into the image, which the previous frame's blit read.
+  recordBufferBarrier(commands, pixels_->handle(), VK_ACCESS_SHADER_WRITE_BIT,
+                      VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT);
   recordImageBarrier(commands,
-                     imageBarrier(image_, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
-                                  VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT),
-                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+                     imageBarrier(image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_ACCESS_TRANSFER_READ_BIT,
+                                  VK_ACCESS_TRANSFER_WRITE_BIT),
+                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+  VkBufferImageCopy region{};
+  region.bufferOffset = VkDeviceSize(firstRow) * size_.x * sizeof(uint32_t);
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageOffset = {0, static_cast<int32_t>(firstRow), 0};
+  region.imageExtent = {size_.x, rows, 1};
+  vkCmdCopyBufferToImage(commands, pixels_->handle(), image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         1, &region);
+  recordImageBarrier(commands,
+                     imageBarrier(image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT),
+                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
 }
 
 void DisplayPass::recordBlit(VkCommandBuffer commands, VkImage target,
                              VkExtent2D targetExtent) const {
   // The acquire semaphore is waited for at the transfer stage; the old
   // contents of the swapchain image do not matter.
-  recordImageBarrier(commands,
-                     imageBarrier(target, VK_IMAGE_LAYOUT_UNDEFINED,
-                                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
-                                  VK_ACCESS_TRANSFER_WRITE_BIT),
-                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+  recordImageBarrier(
+      commands,
+      imageBarrier(target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                   VK_ACCESS_TRANSFER_WRITE_BIT),
+      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
   FitRect fit = fitInto(size_, targetExtent);
   bool coversTarget = fit.offset == glm::ivec2(0) &&
                       fit.size == glm::ivec2(targetExtent.width, targetExtent.height);
@@ -270,8 +294,7 @@ void DisplayPass::recordBlit(VkCommandBuffer commands, VkImage target,
     VkClearColorValue black{};
     black.float32[3] = 1.0f;
     VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdClearColorImage(commands, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1,
-                         &range);
+    vkCmdClearColorImage(commands, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &range);
     recordImageBarrier(commands,
                        imageBarrier(target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
@@ -287,17 +310,16 @@ void DisplayPass::recordBlit(VkCommandBuffer commands, VkImage target,
     region.dstOffsets[1] = {fit.offset.x + fit.size.x, fit.offset.y + fit.size.y, 1};
     // 1:1 copies stay exact; scaled ones are filtered.
     bool sameSize = fit.size == glm::ivec2(size_);
-    vkCmdBlitImage(commands, image_, VK_IMAGE_LAYOUT_GENERAL, target,
+    vkCmdBlitImage(commands, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region,
                    sameSize ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
   }
-  recordImageBarrier(commands,
-                     imageBarrier(target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                                  VK_ACCESS_TRANSFER_WRITE_BIT,
-                                  VK_ACCESS_COLOR_ATTACHMENT_READ_BIT |
-                                      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT),
-                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT);
+  recordImageBarrier(
+      commands,
+      imageBarrier(target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT,
+                   VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT),
+      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT);
 }
 
 }  // namespace rt::viewer

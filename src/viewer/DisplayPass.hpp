@@ -1,15 +1,17 @@
 // Shows the accumulation buffer in the window. A compute pass
-// (shaders/display.comp) tone maps it into an RGBA8 storage image of the
-// render's size; the image is then blitted into the swapchain image, scaled
-// to fit and centred (1:1 when the window and the render have the same size).
+// (shaders/display.comp) tone maps it into 8-bit RGBA pixels (a storage
+// buffer: on lavapipe much cheaper to write than a storage image), which are
+// copied into an RGBA8 image of the render's size; the image is then blitted
+// into the swapchain image, scaled to fit and centred (1:1, exact, when the
+// window and the render have the same size).
 #pragma once
 
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <memory>
+#include <vector>
 
 namespace rt {
 class Buffer;
@@ -40,14 +42,17 @@ class DisplayPass {
   void releaseRetired();
 
   // Points the pass at a new accumulation buffer of width x height pixels;
-  // recreates (and clears) the display image when the size changes. Only
-  // while no frame is in flight.
+  // recreates (and clears) the pixels and the image when the size changes.
+  // Only while no frame is in flight.
   void setSource(const Buffer& accumulation, uint32_t width, uint32_t height);
 
   glm::uvec2 imageSize() const { return size_; }
 
-  // Records the tone-mapping dispatch (after the render dispatches).
-  void recordToneMap(VkCommandBuffer commands, float exposure) const;
+  // Records the tone-mapping dispatch for rows [firstRow, firstRow + rows)
+  // (after the render dispatches) and the copy of those pixels into the
+  // display image. Rows that got no new samples need no update.
+  void recordToneMap(VkCommandBuffer commands, float exposure, uint32_t firstRow,
+                     uint32_t rows) const;
   // Records the blit into a swapchain image, which ends in
   // COLOR_ATTACHMENT_OPTIMAL for the overlay pass.
   void recordBlit(VkCommandBuffer commands, VkImage target, VkExtent2D targetExtent) const;
@@ -55,8 +60,8 @@ class DisplayPass {
  private:
   void createLayouts();
   VkPipeline createPipeline() const;
-  void createImage(uint32_t width, uint32_t height);
-  void destroyImage();
+  void createTargets(uint32_t width, uint32_t height);
+  void destroyTargets();
   void checkFormatSupport() const;
 
   VulkanContext& context_;
@@ -67,9 +72,9 @@ class DisplayPass {
   std::vector<VkPipeline> retired_;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
+  std::unique_ptr<Buffer> pixels_;
   VkImage image_ = VK_NULL_HANDLE;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
-  VkImageView view_ = VK_NULL_HANDLE;
   glm::uvec2 size_{0};
 };
 

@@ -16,12 +16,12 @@ constexpr VkFormat kPreferredFormats[] = {VK_FORMAT_B8G8R8A8_UNORM, VK_FORMAT_R8
 
 std::vector<VkSurfaceFormatKHR> surfaceFormats(const VulkanContext& context) {
   uint32_t count = 0;
-  vkCheck(vkGetPhysicalDeviceSurfaceFormatsKHR(context.physicalDevice(), context.surface(),
-                                               &count, nullptr),
+  vkCheck(vkGetPhysicalDeviceSurfaceFormatsKHR(context.physicalDevice(), context.surface(), &count,
+                                               nullptr),
           "vkGetPhysicalDeviceSurfaceFormatsKHR");
   std::vector<VkSurfaceFormatKHR> formats(count);
-  vkCheck(vkGetPhysicalDeviceSurfaceFormatsKHR(context.physicalDevice(), context.surface(),
-                                               &count, formats.data()),
+  vkCheck(vkGetPhysicalDeviceSurfaceFormatsKHR(context.physicalDevice(), context.surface(), &count,
+                                               formats.data()),
           "vkGetPhysicalDeviceSurfaceFormatsKHR");
   return formats;
 }
@@ -126,10 +126,10 @@ void Swapchain::createSwapchain(VkExtent2D framebufferSize) {
   if (caps.currentExtent.width != UINT32_MAX) {
     extent_ = caps.currentExtent;
   } else {
-    extent_.width = std::clamp(framebufferSize.width, caps.minImageExtent.width,
-                               caps.maxImageExtent.width);
-    extent_.height = std::clamp(framebufferSize.height, caps.minImageExtent.height,
-                                caps.maxImageExtent.height);
+    extent_.width =
+        std::clamp(framebufferSize.width, caps.minImageExtent.width, caps.maxImageExtent.width);
+    extent_.height =
+        std::clamp(framebufferSize.height, caps.minImageExtent.height, caps.maxImageExtent.height);
   }
   minImageCount_ = std::max(caps.minImageCount + 1, 2u);
   if (caps.maxImageCount > 0) minImageCount_ = std::min(minImageCount_, caps.maxImageCount);
@@ -204,7 +204,8 @@ void Swapchain::createPerImageObjects() {
 void Swapchain::destroyPerImageObjects() {
   VkDevice device = context_.device();
   for (VkSemaphore semaphore : renderFinished_) vkDestroySemaphore(device, semaphore, nullptr);
-  for (VkFramebuffer framebuffer : framebuffers_) vkDestroyFramebuffer(device, framebuffer, nullptr);
+  for (VkFramebuffer framebuffer : framebuffers_)
+    vkDestroyFramebuffer(device, framebuffer, nullptr);
   for (VkImageView view : views_) vkDestroyImageView(device, view, nullptr);
   renderFinished_.clear();
   framebuffers_.clear();

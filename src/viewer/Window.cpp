@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <utility>
 
 #include "gpu/VulkanContext.hpp"
 #include "util/Error.hpp"
@@ -44,6 +46,10 @@ Window::Window(uint32_t width, uint32_t height, const std::string& title) {
   glfwSetMouseButtonCallback(window_, onMouseButton);
   glfwSetScrollCallback(window_, onScroll);
   glfwSetKeyCallback(window_, onKey);
+  glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double, double) { onActivity(w); });
+  glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) { onActivity(w); });
+  glfwSetWindowRefreshCallback(window_, onActivity);
+  glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned int) { onActivity(w); });
   lastCursor_ = cursorInFramebufferPixels();
 }
 
@@ -53,6 +59,10 @@ Window::~Window() {
 }
 
 bool Window::shouldClose() const { return glfwWindowShouldClose(window_); }
+
+void Window::resize(uint32_t width, uint32_t height) {
+  glfwSetWindowSize(window_, static_cast<int>(width), static_cast<int>(height));
+}
 
 void Window::requestClose() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
 
@@ -65,8 +75,7 @@ std::vector<const char*> Window::requiredInstanceExtensions() {
 
 VkSurfaceKHR Window::createSurface(VkInstance instance) const {
   VkSurfaceKHR surface = VK_NULL_HANDLE;
-  vkCheck(glfwCreateWindowSurface(instance, window_, nullptr, &surface),
-          "glfwCreateWindowSurface");
+  vkCheck(glfwCreateWindowSurface(instance, window_, nullptr, &surface), "glfwCreateWindowSurface");
   return surface;
 }
 
@@ -91,7 +100,8 @@ glm::dvec2 Window::cursorInFramebufferPixels() const {
   int windowHeight = 1;
   glfwGetWindowSize(window_, &windowWidth, &windowHeight);
   glm::uvec2 framebuffer = framebufferSize();
-  return {x * framebuffer.x / std::max(windowWidth, 1), y * framebuffer.y / std::max(windowHeight, 1)};
+  return {x * framebuffer.x / std::max(windowWidth, 1),
+          y * framebuffer.y / std::max(windowHeight, 1)};
 }
 
 InputEvents Window::takeInput(bool uiHasMouse, bool uiHasKeyboard) {
@@ -119,15 +129,23 @@ InputEvents Window::takeInput(bool uiHasMouse, bool uiHasKeyboard) {
 
 bool Window::keyHeld(int key) const { return glfwGetKey(window_, key) == GLFW_PRESS; }
 
+bool Window::takeActivity() { return std::exchange(active_, false); }
+
+void Window::onActivity(GLFWwindow* window) { owner(window).active_ = true; }
+
 void Window::onMouseButton(GLFWwindow* window, int button, int action, int mods) {
   Window& self = owner(window);
+  self.active_ = true;
   if (action != GLFW_PRESS) return;
   self.pending_.clicks.push_back({self.cursorInFramebufferPixels(), button, mods});
 }
 
-void Window::onScroll(GLFWwindow* window, double, double dy) { owner(window).pending_.scroll += dy; }
+void Window::onScroll(GLFWwindow* window, double, double dy) {
+  owner(window).pending_.scroll += dy;
+}
 
 void Window::onKey(GLFWwindow* window, int key, int, int action, int mods) {
+  owner(window).active_ = true;
   if (action != GLFW_PRESS) return;
   owner(window).pending_.keys.push_back({key, mods});
 }

@@ -6,10 +6,9 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 struct GLFWwindow;
 
@@ -44,6 +43,7 @@ class Window {
 
   GLFWwindow* handle() const { return window_; }
   bool shouldClose() const;
+  void resize(uint32_t width, uint32_t height);
   void requestClose();
 
   // Instance extensions the surface needs, and the surface itself.
@@ -61,16 +61,21 @@ class Window {
   // drop what the overlay consumed.
   InputEvents takeInput(bool uiHasMouse, bool uiHasKeyboard);
   bool keyHeld(int key) const;
+  // Whether anything happened (input, resize, expose) since the last call:
+  // an idle viewer redraws only then.
+  bool takeActivity();
 
  private:
   static void onMouseButton(GLFWwindow* window, int button, int action, int mods);
   static void onScroll(GLFWwindow* window, double dx, double dy);
   static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
+  static void onActivity(GLFWwindow* window);
   glm::dvec2 cursorInFramebufferPixels() const;
 
   GLFWwindow* window_ = nullptr;
   InputEvents pending_;
   glm::dvec2 lastCursor_{0.0};
+  bool active_ = true;
 };
 
 }  // namespace rt::viewer

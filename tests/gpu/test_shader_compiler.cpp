@@ -55,14 +55,14 @@ TEST_SUITE("shader-compiler") {
   TEST_CASE("every kernel compiles with all features, and the device accepts it") {
     struct Entry {
       const char* file;
-      std::vector<uint32_t> bindings;
+      std::vector<KernelBinding> bindings;
       uint32_t pushBytes;
     };
-    std::vector<uint32_t> render = SceneBuffers::bindings();
-    render.push_back(RT_BINDING_ACCUMULATION);
-    std::vector<uint32_t> batch = SceneBuffers::bindings();
-    batch.push_back(RT_BINDING_RAYS);
-    batch.push_back(RT_BINDING_HITS);
+    std::vector<KernelBinding> render = SceneBuffers::bindings();
+    render.push_back({RT_BINDING_ACCUMULATION});
+    std::vector<KernelBinding> batch = SceneBuffers::bindings();
+    batch.push_back({RT_BINDING_RAYS});
+    batch.push_back({RT_BINDING_HITS});
     const std::vector<Entry> entries = {
         {"trace.comp", render, sizeof(gpu::GpuFrameParams)},
         {"intersect_batch.comp", batch, sizeof(gpu::GpuBatchParams)}};

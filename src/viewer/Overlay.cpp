@@ -1,0 +1,172 @@
+#include "viewer/Overlay.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "gpu/VulkanContext.hpp"
+#include "util/Error.hpp"
+#include "viewer/Swapchain.hpp"
+#include "viewer/ThirdParty.hpp"
+#include "viewer/Window.hpp"
+
+namespace rt::viewer {
+namespace {
+
+constexpr uint32_t kMaxBounces = 64;
+constexpr int kMaxSamplesTarget = 1 << 20;
+const ImVec4 kErrorColor(1.0f, 0.45f, 0.4f, 1.0f);
+
+void checkImGuiVulkanResult(VkResult result) {
+  if (result < 0) std::fprintf(stderr, "error: ImGui Vulkan backend: VkResult %d\n", result);
+}
+
+void showStatistics(const OverlayStats& stats) {
+  ImGui::Text("%s", stats.scene.c_str());
+  ImGui::Text("%ux%u on %s", stats.renderSize.x, stats.renderSize.y, stats.device.c_str());
+  ImGui::Text("features: %s", stats.features.c_str());
+  ImGui::Separator();
+  ImGui::Text("samples per pixel: %u / %u", stats.samplesDone, stats.samplesTarget);
+  ImGui::Text("samples/s: %.2f M", stats.samplesPerSecond * 1e-6);
+  ImGui::Text("frame time: %.1f ms", stats.frameMilliseconds);
+}
+
+void editRenderSettings(OverlaySettings& settings, OverlayActions& actions) {
+  ImGui::Separator();
+  const char* samplers[] = {"random", "jittered"};
+  actions.samplerChanged = ImGui::Combo("sampler", &settings.sampler, samplers, 2);
+  bool stepped = ImGui::InputInt("target spp", &settings.samplesTarget, 1, 16,
+                                 ImGuiInputTextFlags_EnterReturnsTrue);
+  settings.samplesTarget = std::clamp(settings.samplesTarget, 1, kMaxSamplesTarget);
+  actions.targetChanged = stepped || ImGui::IsItemDeactivatedAfterEdit();
+  // A new bounce count rebuilds the renderer: apply it when the drag ends.
+  ImGui::SliderInt("bounces", &settings.bounces, 0, static_cast<int>(kMaxBounces));
+  actions.bouncesChanged = ImGui::IsItemDeactivatedAfterEdit();
+  ImGui::SliderFloat("exposure", &settings.exposure, 0.01f, 100.0f, "%.3f",
+                     ImGuiSliderFlags_Logarithmic);
+}
+
+void editLens(OverlaySettings& settings, OverlayActions& actions) {
+  ImGui::Separator();
+  float scale = std::max(settings.lensScale, 1e-3f);
+  bool radius = ImGui::SliderFloat("lens radius", &settings.apertureRadius, 0.0f, 0.2f * scale,
+                                   "%.4f", ImGuiSliderFlags_Logarithmic);
+  bool focus = ImGui::SliderFloat("focus distance", &settings.focusDistance, 1e-3f * scale,
+                                  10.0f * scale, "%.3f", ImGuiSliderFlags_Logarithmic);
+  actions.lensChanged = radius || focus;
+  ImGui::TextDisabled("Ctrl+click: focus on the surface under the cursor");
+}
+
+void showMessages(const OverlayMessages& messages) {
+  if (!messages.shaders.empty()) ImGui::Text("shaders: %s", messages.shaders.c_str());
+  if (!messages.shaderError.empty()) {
+    ImGui::TextColored(kErrorColor, "shader error (last good shaders keep rendering):");
+    ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
+    ImGui::TextWrapped("%s", messages.shaderError.c_str());
+    ImGui::PopStyleColor();
+  }
+  if (!messages.sceneError.empty()) {
+    ImGui::TextColored(kErrorColor, "scene error (last good scene kept):");
+    ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
+    ImGui::TextWrapped("%s", messages.sceneError.c_str());
+    ImGui::PopStyleColor();
+  }
+  if (!messages.notice.empty()) ImGui::TextWrapped("%s", messages.notice.c_str());
+}
+
+}  // namespace
+
+Overlay::Overlay(Window& window, VulkanContext& context, const Swapchain& swapchain)
+    : context_(context) {
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the working folder
+  ImGui::StyleColorsDark();
+  createDescriptorPool();
+  // Installs ImGui's GLFW callbacks, which chain to the window's own.
+  ImGui_ImplGlfw_InitForVulkan(window.handle(), true);
+
+  ImGui_ImplVulkan_InitInfo info{};
+  info.Instance = context.instance();
+  info.PhysicalDevice = context.physicalDevice();
+  info.Device = context.device();
+  info.QueueFamily = context.queueFamily();
+  info.Queue = context.queue();
+  info.DescriptorPool = pool_;
+  info.Subpass = 0;
+  info.MinImageCount = swapchain.minImageCount();
+  info.ImageCount = std::max(swapchain.imageCount(), swapchain.minImageCount());
+  info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+  info.CheckVkResultFn = checkImGuiVulkanResult;
+  ImGui_ImplVulkan_Init(&info, swapchain.renderPass());
+  uploadFonts();
+}
+
+Overlay::~Overlay() {
+  vkDeviceWaitIdle(context_.device());
+  ImGui_ImplVulkan_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  vkDestroyDescriptorPool(context_.device(), pool_, nullptr);
+}
+
+void Overlay::createDescriptorPool() {
+  // ImGui needs one combined image sampler (the font atlas).
+  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4};
+  VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  info.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  info.maxSets = 4;
+  info.poolSizeCount = 1;
+  info.pPoolSizes = &size;
+  vkCheck(vkCreateDescriptorPool(context_.device(), &info, nullptr, &pool_),
+          "vkCreateDescriptorPool");
+}
+
+void Overlay::uploadFonts() {
+  context_.submitAndWait(
+      [](VkCommandBuffer commands) { ImGui_ImplVulkan_CreateFontsTexture(commands); });
+  ImGui_ImplVulkan_DestroyFontUploadObjects();
+}
+
+bool Overlay::wantsMouse() const { return visible_ && ImGui::GetIO().WantCaptureMouse; }
+
+bool Overlay::wantsKeyboard() const { return visible_ && ImGui::GetIO().WantCaptureKeyboard; }
+
+OverlayActions Overlay::build(const OverlayStats& stats, OverlaySettings& settings,
+                              const OverlayMessages& messages) {
+  ImGui_ImplVulkan_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  OverlayActions actions;
+  if (visible_) {
+    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.8f);
+    ImGui::Begin("raytracer", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::PushItemWidth(ImGui::GetFontSize() * 10.0f);
+    showStatistics(stats);
+    editRenderSettings(settings, actions);
+    editLens(settings, actions);
+    ImGui::Separator();
+    actions.save = ImGui::Button("save image (Ctrl+S)");
+    ImGui::SameLine();
+    actions.resetCamera = ImGui::Button("reset camera (R)");
+    showMessages(messages);
+    ImGui::TextDisabled("drag: orbit, right/middle drag: pan, wheel: zoom,");
+    ImGui::TextDisabled("WASD/QE: fly (Shift: faster), H: hide, P: print camera");
+    ImGui::PopItemWidth();
+    ImGui::End();
+  }
+  ImGui::Render();
+  return actions;
+}
+
+void Overlay::record(VkCommandBuffer commands) {
+  ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), commands);
+}
+
+void Overlay::onSwapchainRecreated(const Swapchain& swapchain) {
+  ImGui_ImplVulkan_SetMinImageCount(swapchain.minImageCount());
+}
+
+}  // namespace rt::viewer

@@ -1,0 +1,90 @@
+// The Dear ImGui overlay: statistics, render settings and messages (shader
+// and scene errors), drawn by ImGui's Vulkan backend in the swapchain render
+// pass on top of the blitted render.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <string>
+
+namespace rt {
+class VulkanContext;
+}
+
+namespace rt::viewer {
+
+class Swapchain;
+class Window;
+
+struct OverlayStats {
+  uint32_t samplesDone = 0;
+  uint32_t samplesTarget = 0;
+  double samplesPerSecond = 0.0;
+  double frameMilliseconds = 0.0;
+  glm::uvec2 renderSize{0};
+  std::string device;
+  std::string features;
+  std::string scene;
+};
+
+// Values the overlay shows and lets the user edit.
+struct OverlaySettings {
+  int sampler = 1;  // 0: random, 1: jittered
+  int samplesTarget = 16;
+  int bounces = 4;
+  float exposure = 1.0f;
+  float apertureRadius = 0.0f;
+  float focusDistance = 1.0f;
+  float lensScale = 1.0f;  // scene radius: range of the lens sliders
+};
+
+struct OverlayMessages {
+  std::string shaders;      // last reload, e.g. "reloaded in 850 ms"
+  std::string shaderError;  // "file:line: error: message" lines
+  std::string sceneError;
+  std::string notice;  // e.g. "saved: out.png"
+};
+
+// What the user asked for this frame.
+struct OverlayActions {
+  bool samplerChanged = false;
+  bool targetChanged = false;
+  bool bouncesChanged = false;
+  bool lensChanged = false;
+  bool save = false;
+  bool resetCamera = false;
+};
+
+class Overlay {
+ public:
+  Overlay(Window& window, VulkanContext& context, const Swapchain& swapchain);
+  ~Overlay();
+  Overlay(const Overlay&) = delete;
+  Overlay& operator=(const Overlay&) = delete;
+
+  void setVisible(bool visible) { visible_ = visible; }
+  bool visible() const { return visible_; }
+  // Whether the overlay uses the mouse or keyboard (then the camera must not).
+  bool wantsMouse() const;
+  bool wantsKeyboard() const;
+
+  // Builds this frame's UI (nothing when hidden) and returns the user's edits.
+  OverlayActions build(const OverlayStats& stats, OverlaySettings& settings,
+                       const OverlayMessages& messages);
+  // Records the draw commands; inside the swapchain render pass.
+  void record(VkCommandBuffer commands);
+
+  void onSwapchainRecreated(const Swapchain& swapchain);
+
+ private:
+  void createDescriptorPool();
+  void uploadFonts();
+
+  VulkanContext& context_;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  bool visible_ = true;
+};
+
+}  // namespace rt::viewer

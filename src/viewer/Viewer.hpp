@@ -1,0 +1,179 @@
+// The interactive viewer: a window showing a ProgressiveRenderer's
+// accumulation while it grows, with camera controls, an ImGui overlay and hot
+// reload of shaders and the scene file.
+//
+// Frame loop (one frame in flight): wait for the previous frame's fence; with
+// nothing on the GPU, apply what changed (file reloads, camera moves, edited
+// settings, window size); then record one command buffer: the render bands
+// the FramePlanner chose, the display pass (tone map the rows that changed,
+// copy them into an RGBA8 image, blit that into the swapchain image), the
+// overlay render pass and, when asked, a copy of the swapchain image for a
+// screenshot; submit and present. The render always has the window's size:
+// a resize rebuilds the renderer once the size held for a moment, and until
+// then the old image is shown scaled.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "render/ProgressiveRenderer.hpp"
+#include "scene/Scene.hpp"
+#include "viewer/CameraPath.hpp"
+#include "viewer/FileWatcher.hpp"
+#include "viewer/FramePlanner.hpp"
+#include "viewer/OrbitCamera.hpp"
+#include "viewer/Overlay.hpp"
+#include "viewer/ViewerOptions.hpp"
+#include "viewer/Window.hpp"
+
+namespace rt {
+class BatchIntersector;
+class ShaderCompiler;
+class VulkanContext;
+}  // namespace rt
+
+namespace rt::viewer {
+
+class DisplayPass;
+class Swapchain;
+class SwapchainReadback;
+
+// Samples per second over the last second or so.
+class RateMeter {
+ public:
+  using Clock = std::chrono::steady_clock;
+  void add(double samples, Clock::time_point now);
+  double perSecond() const { return rate_; }
+
+ private:
+  Clock::time_point start_ = Clock::now();
+  double samples_ = 0.0;
+  double rate_ = 0.0;
+};
+
+class Viewer {
+ public:
+  explicit Viewer(const ViewerOptions& options);
+  ~Viewer();
+  Viewer(const Viewer&) = delete;
+  Viewer& operator=(const Viewer&) = delete;
+
+  int run();
+
+ private:
+  using Clock = std::chrono::steady_clock;
+
+  // Setup.
+  void createFrameObjects();
+  void destroyFrameObjects();
+  void startWatching();
+  void initialiseSettings();
+
+  // The renderer (all only between frames).
+  std::unique_ptr<ProgressiveRenderer> makeRenderer(glm::uvec2 size) const;  // throws
+  void useRenderer(std::unique_ptr<ProgressiveRenderer> renderer);
+  bool rebuildRenderer(glm::uvec2 size);  // false: error reported, old renderer kept
+  void restartAccumulation();
+  void applyCameraChange();
+  void applyResize();
+  SamplerKind samplerSetting() const;
+
+  // Between frames: results of the last frame, reloads, input.
+  void waitForFrame();
+  void handleFileChanges();
+  void reloadShaders();
+  void reloadScene();
+  void handleInput(const InputEvents& input);
+  void handleKey(const KeyPress& key);
+  void flyWithHeldKeys();
+  void applyPathStep(const PathStep& step);
+  void applyOverlayActions(const OverlayActions& actions);
+  void focusAt(glm::dvec2 renderPixel);
+  glm::dvec2 windowToRenderPixel(glm::dvec2 framebufferPixel) const;
+  void saveImage(std::filesystem::path path);
+  void printCamera() const;
+  void notice(const std::string& text);
+  void reportShaderError(const std::string& what);
+
+  // The frame.
+  bool scripted() const;  // --frames or a camera path: no waiting for people
+  bool idle() const;
+  bool prepareFrame();  // false: nothing to draw this time
+  bool drawFrame();
+  void recordFrame(VkCommandBuffer commands, uint32_t imageIndex);
+  struct RowRange {
+    uint32_t first = 0;
+    uint32_t count = 0;
+  };
+  RowRange recordRenderBands(VkCommandBuffer commands);
+  void recreateSwapchain();
+  void logFrame();
+  bool accumulating() const;
+  OverlayStats overlayStats() const;
+
+  ViewerOptions options_;
+  Scene scene_;  // the last scene file that loaded and built
+  std::unique_ptr<Window> window_;
+  std::unique_ptr<VulkanContext> context_;
+  std::unique_ptr<ShaderCompiler> compiler_;
+  std::unique_ptr<Swapchain> swapchain_;
+  std::unique_ptr<DisplayPass> display_;
+  std::unique_ptr<Overlay> overlay_;
+  std::unique_ptr<ProgressiveRenderer> renderer_;
+  std::unique_ptr<BatchIntersector> intersector_;  // built on the first focus click
+  std::unique_ptr<SwapchainReadback> readback_;
+  std::unique_ptr<FileWatcher> watcher_;
+
+  // Per-frame Vulkan objects: one frame in flight.
+  VkCommandPool commandPool_ = VK_NULL_HANDLE;
+  VkCommandBuffer commands_ = VK_NULL_HANDLE;
+  VkFence frameFence_ = VK_NULL_HANDLE;
+  VkSemaphore imageAcquired_ = VK_NULL_HANDLE;
+  bool frameInFlight_ = false;
+  bool swapchainStale_ = false;
+
+  FramePlanner planner_;
+  OrbitCamera camera_;
+  CameraPathPlayer path_;
+  OverlaySettings settings_;
+  OverlayMessages messages_;
+  Debouncer shaderChanges_{std::chrono::milliseconds(50)};
+  Debouncer sceneChanges_{std::chrono::milliseconds(50)};
+  bool cameraChanged_ = false;
+  bool displayStale_ = true;  // tone map every row next frame
+  float displayedExposure_ = 0.0f;
+  bool rebuildFailed_ = false;         // do not retry a rebuild until the shaders change
+  bool sceneWaitsForShaders_ = false;  // an edited scene to load once shaders build
+  glm::uvec2 renderSizeWanted_{0};
+  Clock::time_point resizeSeenAt_{};
+
+  // Frame bookkeeping.
+  uint64_t framesPresented_ = 0;
+  Clock::time_point lastFrameDone_ = Clock::now();
+  Clock::time_point lastInputAt_ = Clock::now();
+  Clock::time_point accumulationStart_ = Clock::now();
+  Clock::time_point lastLogAt_{};
+  Clock::time_point lastPresentAt_{};
+  double frameMilliseconds_ = 0.0;
+  bool frameBusy_ = false;           // the frame being prepared did heavy host work
+  bool submittedFrameBusy_ = false;  // ... the frame in flight
+  bool submittedFrameRendered_ = false;
+  uint64_t submittedPixelSamples_ = 0;
+  RateMeter rate_;
+  bool doneLogged_ = false;
+  std::vector<std::filesystem::path> screenshots_;  // of the frame being prepared
+  std::vector<std::filesystem::path> submittedScreenshots_;
+  // When the file behind a successful reload was saved, until the first
+  // frame drawn with the new shaders or scene is presented.
+  std::optional<Clock::time_point> reloadSavedAt_;
+  std::optional<Clock::time_point> submittedReloadSavedAt_;
+  bool quit_ = false;
+};
+
+}  // namespace rt::viewer

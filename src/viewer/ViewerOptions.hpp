@@ -1,0 +1,40 @@
+// Everything `raytracer view` can be told on its command line.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+
+#include "render/Conventions.hpp"
+#include "scene/Scene.hpp"
+
+namespace rt::viewer {
+
+struct ViewerOptions {
+  std::filesystem::path scenePath;
+  uint32_t width = 0;  // initial window (and render) size; 0: the scene camera's
+  uint32_t height = 0;
+  std::optional<uint32_t> samplesTarget;  // default: the scene's spp, else 16 (as the CLI)
+  uint32_t samplesPerFrame = 0;           // 0: adaptive bands of about frameSeconds
+  double frameSeconds = 0.075;
+  uint32_t frames = 0;  // exit after this many frames; 0: when the window closes
+  std::filesystem::path cameraPath;
+  std::filesystem::path screenshot;  // written from the last presented frame
+  std::filesystem::path saveFolder = ".";
+  bool overlay = true;
+  std::filesystem::path shaderDir;  // empty: ShaderCompiler::defaultShaderDir()
+  bool watch = true;                // hot reload of shaders and scene
+  bool validation = false;
+  std::optional<uint32_t> deviceIndex;
+  uint32_t seed = 0;
+  std::optional<SamplerKind> sampler;
+  std::optional<ShadingModel> shading;
+  float exposure = 1.0f;  // extra factor on the scene's exposure
+  bool verbose = false;   // a log line every frame (otherwise about once a second)
+};
+
+// Runs the viewer until the window closes, --frames are done, or SIGINT /
+// SIGTERM; returns the exit status. Throws rt::Error on setup failures.
+int runViewer(const ViewerOptions& options);
+
+}  // namespace rt::viewer
