@@ -19,7 +19,7 @@
 #include "io/Image.hpp"
 #include "render/Conventions.hpp"
 #include "render/Renderer.hpp"
-#include "scene/SceneLoader.hpp"
+#include "scene/SceneFile.hpp"
 #include "util/Error.hpp"
 
 namespace {
@@ -145,7 +145,7 @@ int run(const CommandLine& cli) {
     throw rt::Error(fmt::format("{}: unsupported output format (use .png, .ppm, .exr or .hdr)",
                                 cli.outputPath));
   }
-  rt::Scene scene = rt::loadScene(cli.scenePath);
+  rt::Scene scene = rt::loadSceneFile(cli.scenePath);
   for (const std::string& warning : scene.warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
   rt::RenderOptions options = renderOptions(cli, scene);
@@ -193,7 +193,7 @@ int runRenderCommand(int argc, char** argv) {
   CommandLine cli;
   CLI::App app{"GPU compute ray tracer (Vulkan). Renders a JSON scene to an image.", "raytracer"};
   app.set_version_flag("--version", std::string("raytracer ") + RT_VERSION);
-  app.add_option("scene", cli.scenePath, "Scene file (.json)");
+  app.add_option("scene", cli.scenePath, "Scene file (.json, or a .gltf/.glb model)");
   app.add_option("output", cli.outputPath, "Output image: .png, .ppm, .exr or .hdr");
   app.add_option("--spp", cli.samples, "Samples per pixel (default: the scene's, else 16)")
       ->check(CLI::Range(1u, kMaxSamples));

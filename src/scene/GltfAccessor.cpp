@@ -52,12 +52,19 @@ int expectedType(AccessorUse use) {
     case AccessorUse::Indices: return TINYGLTF_TYPE_SCALAR;
     case AccessorUse::Vec2: return TINYGLTF_TYPE_VEC2;
     case AccessorUse::Vec3: return TINYGLTF_TYPE_VEC3;
+    case AccessorUse::Vec4: return TINYGLTF_TYPE_VEC4;
   }
   return TINYGLTF_TYPE_SCALAR;
 }
 
 int componentsOf(AccessorUse use) {
-  return use == AccessorUse::Vec3 ? 3 : use == AccessorUse::Vec2 ? 2 : 1;
+  switch (use) {
+    case AccessorUse::Indices: return 1;
+    case AccessorUse::Vec2: return 2;
+    case AccessorUse::Vec3: return 3;
+    case AccessorUse::Vec4: return 4;
+  }
+  return 1;
 }
 
 bool isIndexComponent(int componentType) {
@@ -158,9 +165,9 @@ struct Layout {
   bool normalized = false;
 };
 
-void checkTypes(const Context& context, const tinygltf::Accessor& accessor, AccessorUse use,
-                const std::string& where) {
-  std::string name = "accessor: ";
+void checkTypes(const Context& context, int index, AccessorUse use, const std::string& where) {
+  const tinygltf::Accessor& accessor = context.model().accessors[size_t(index)];
+  std::string name = "accessor " + std::to_string(index) + ": ";
   if (componentSize(accessor.componentType) == 0) {
     context.fail(where, name + "componentType " + std::to_string(accessor.componentType) +
                             " is not a glTF 2.0 component type");
@@ -181,41 +188,35 @@ void checkTypes(const Context& context, const tinygltf::Accessor& accessor, Acce
   }
 }
 
-Layout layoutOf(const Context& context, int index, AccessorUse use, const std::string& where) {
-  const tinygltf::Accessor& accessor = accessorAt(context, index, where);
-  std::string name = "accessor " + std::to_string(index);
-  checkTypes(context, accessor, use, where);
-  Layout layout;
-  layout.count = accessor.count;
-  layout.componentType = accessor.componentType;
-  layout.componentBytes = componentSize(accessor.componentType);
-  layout.components = componentsOf(use);
-  layout.normalized = accessor.normalized;
-  if (layout.count == 0) context.fail(where, name + " has count 0 (at least 1 is required)");
-  size_t elementSize = size_t(layout.componentBytes) * size_t(layout.components);
-  if (accessor.bufferView < 0) {
-    if (!accessor.sparse.isSparse) {
-      context.fail(where, name + " has neither a buffer view nor sparse values");
-    }
-    if (layout.count > kMaxUnbackedElements) {
-      context.fail(where, name + " has no buffer view and " + std::to_string(layout.count) +
-                              " elements (at most " + std::to_string(kMaxUnbackedElements) +
-                              " without a buffer view)");
-    }
-    return layout;
+// An accessor without a buffer view: zeros that sparse values overwrite.
+void checkUnbacked(const Context& context, const tinygltf::Accessor& accessor,
+                   const std::string& name, const std::string& where) {
+  if (!accessor.sparse.isSparse) {
+    context.fail(where, name + " has neither a buffer view nor sparse values");
   }
+  if (accessor.count > kMaxUnbackedElements) {
+    context.fail(where, name + " has no buffer view and " + std::to_string(accessor.count) +
+                            " elements (at most " + std::to_string(kMaxUnbackedElements) +
+                            " without a buffer view)");
+  }
+}
+
+// Sets the stride and the first element, after checking that every element
+// lies inside the accessor's buffer view.
+void locateInView(const Context& context, const tinygltf::Accessor& accessor,
+                  const std::string& name, const std::string& where, Layout& layout) {
+  size_t elementSize = size_t(layout.componentBytes) * size_t(layout.components);
+  std::string viewName = "buffer view " + std::to_string(accessor.bufferView);
   Bytes view = viewBytes(context, accessor.bufferView, where + ": " + name);
   size_t declaredStride = context.model().bufferViews[size_t(accessor.bufferView)].byteStride;
   layout.stride = declaredStride ? declaredStride : elementSize;
   if (layout.stride < elementSize) {
-    context.fail(where, name + ": byteStride " + std::to_string(layout.stride) +
-                            " of buffer view " + std::to_string(accessor.bufferView) +
+    context.fail(where, name + ": byteStride " + std::to_string(layout.stride) + " of " + viewName +
                             " is smaller than one element (" + std::to_string(elementSize) +
                             " bytes)");
   }
   if (!fits(accessor.byteOffset, layout.stride, layout.count, elementSize, view.size)) {
-    context.fail(where, name + " reads past the end of buffer view " +
-                            std::to_string(accessor.bufferView) + " (offset " +
+    context.fail(where, name + " reads past the end of " + viewName + " (offset " +
                             std::to_string(accessor.byteOffset) + ", " +
                             std::to_string(layout.count) + " elements of " +
                             std::to_string(elementSize) + " bytes every " +
@@ -223,6 +224,24 @@ Layout layoutOf(const Context& context, int index, AccessorUse use, const std::s
                             std::to_string(view.size) + " bytes)");
   }
   layout.data = view.data + accessor.byteOffset;
+}
+
+Layout layoutOf(const Context& context, int index, AccessorUse use, const std::string& where) {
+  const tinygltf::Accessor& accessor = accessorAt(context, index, where);
+  std::string name = "accessor " + std::to_string(index);
+  checkTypes(context, index, use, where);
+  if (accessor.count == 0) context.fail(where, name + " has count 0 (at least 1 is required)");
+  Layout layout;
+  layout.count = accessor.count;
+  layout.componentType = accessor.componentType;
+  layout.componentBytes = componentSize(accessor.componentType);
+  layout.components = componentsOf(use);
+  layout.normalized = accessor.normalized;
+  if (accessor.bufferView < 0) {
+    checkUnbacked(context, accessor, name, where);
+  } else {
+    locateInView(context, accessor, name, where, layout);
+  }
   return layout;
 }
 
@@ -239,48 +258,65 @@ void readDense(const Layout& layout, std::vector<T>& out) {
   }
 }
 
-// Overwrites the elements that the accessor's sparse block names.
-template <typename T>
-void applySparse(const Context& context, int index, const Layout& layout,
-                 const std::string& where, std::vector<T>& out) {
-  const tinygltf::Accessor& accessor = context.model().accessors[size_t(index)];
-  if (!accessor.sparse.isSparse) return;
+// A sparse block's substitutions, validated: `count` indices of
+// `indexType` and as many elements laid out like the accessor's, tightly.
+struct SparseLayout {
+  size_t count = 0;
+  int indexType = 0;
+  const unsigned char* indices = nullptr;
+  const unsigned char* values = nullptr;
+};
+
+SparseLayout sparseLayoutOf(const Context& context, const tinygltf::Accessor& accessor,
+                            const Layout& layout, const std::string& name,
+                            const std::string& where) {
   const auto& sparse = accessor.sparse;
-  std::string name = "accessor " + std::to_string(index) + ": sparse";
   if (sparse.count < 1 || size_t(sparse.count) > layout.count) {
     context.fail(where, name + ".count " + std::to_string(sparse.count) + " is not within 1.." +
                             std::to_string(layout.count));
   }
-  size_t count = size_t(sparse.count);
-  int indexType = sparse.indices.componentType;
-  if (!isIndexComponent(indexType)) {
-    context.fail(where, name + ".indices.componentType " + componentName(indexType) +
+  SparseLayout out{size_t(sparse.count), sparse.indices.componentType, nullptr, nullptr};
+  if (!isIndexComponent(out.indexType)) {
+    context.fail(where, name + ".indices.componentType " + componentName(out.indexType) +
                             " is not UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
   }
-  size_t indexBytes = size_t(componentSize(indexType));
+  size_t indexBytes = size_t(componentSize(out.indexType));
   size_t elementSize = size_t(layout.componentBytes) * size_t(layout.components);
   Bytes indices = viewBytes(context, sparse.indices.bufferView, where + ": " + name + ".indices");
   Bytes values = viewBytes(context, sparse.values.bufferView, where + ": " + name + ".values");
   if (sparse.indices.byteOffset < 0 ||
-      !fits(size_t(sparse.indices.byteOffset), indexBytes, count, indexBytes, indices.size)) {
+      !fits(size_t(sparse.indices.byteOffset), indexBytes, out.count, indexBytes, indices.size)) {
     context.fail(where, name + ".indices read past the end of their buffer view");
   }
   if (sparse.values.byteOffset < 0 ||
-      !fits(size_t(sparse.values.byteOffset), elementSize, count, elementSize, values.size)) {
+      !fits(size_t(sparse.values.byteOffset), elementSize, out.count, elementSize, values.size)) {
     context.fail(where, name + ".values read past the end of their buffer view");
   }
-  const unsigned char* indexData = indices.data + sparse.indices.byteOffset;
-  const unsigned char* valueData = values.data + sparse.values.byteOffset;
-  for (size_t k = 0; k < count; ++k) {
-    auto target = static_cast<size_t>(decode(indexData + k * indexBytes, indexType, false));
+  out.indices = indices.data + sparse.indices.byteOffset;
+  out.values = values.data + sparse.values.byteOffset;
+  return out;
+}
+
+// Overwrites the elements that the accessor's sparse block names.
+template <typename T>
+void applySparse(const Context& context, int index, const Layout& layout, const std::string& where,
+                 std::vector<T>& out) {
+  const tinygltf::Accessor& accessor = context.model().accessors[size_t(index)];
+  if (!accessor.sparse.isSparse) return;
+  std::string name = "accessor " + std::to_string(index) + ": sparse";
+  SparseLayout sparse = sparseLayoutOf(context, accessor, layout, name, where);
+  size_t indexBytes = size_t(componentSize(sparse.indexType));
+  size_t elementSize = size_t(layout.componentBytes) * size_t(layout.components);
+  for (size_t k = 0; k < sparse.count; ++k) {
+    auto target =
+        static_cast<size_t>(decode(sparse.indices + k * indexBytes, sparse.indexType, false));
     if (target >= layout.count) {
-      context.fail(where, name + ".indices[" + std::to_string(k) + "] = " +
-                              std::to_string(target) + " is not below the accessor's count " +
-                              std::to_string(layout.count));
+      context.fail(where, name + ".indices[" + std::to_string(k) + "] = " + std::to_string(target) +
+                              " is not below the accessor's count " + std::to_string(layout.count));
     }
     for (int c = 0; c < layout.components; ++c) {
       out[target * size_t(layout.components) + size_t(c)] = static_cast<T>(
-          decode(valueData + k * elementSize + size_t(c) * size_t(layout.componentBytes),
+          decode(sparse.values + k * elementSize + size_t(c) * size_t(layout.componentBytes),
                  layout.componentType, layout.normalized));
     }
   }

@@ -13,15 +13,16 @@ namespace rt::gltf {
 
 // What a caller accepts from an accessor.
 enum class AccessorUse {
-  Indices,     // SCALAR of UNSIGNED_BYTE/SHORT/INT, not normalized
-  Vec3,        // VEC3 of FLOAT, or of (normalized) 8/16-bit integers (KHR_mesh_quantization)
-  Vec2,        // VEC2, same component types
+  Indices,  // SCALAR of UNSIGNED_BYTE/SHORT/INT, not normalized
+  Vec3,     // VEC3 of FLOAT, or of (normalized) 8/16-bit integers (KHR_mesh_quantization)
+  Vec2,     // VEC2, same component types
+  Vec4,     // VEC4, same component types
 };
 
 // The element count of accessor `index`, after checking that it exists.
 size_t accessorCount(const Context& context, int index, const std::string& where);
 
-// All elements as floats, `components` per element (3 for Vec3, 2 for Vec2),
+// All elements as floats, `components` per element (4, 3 or 2),
 // normalized integers mapped to [0, 1] or [-1, 1], sparse substitutions applied.
 std::vector<float> readFloats(Context& context, int index, AccessorUse use,
                               const std::string& where);

@@ -16,6 +16,25 @@ std::string withWhere(const std::string& fileName, const std::string& where,
 
 }  // namespace
 
+std::string percentDecoded(const std::string& uri) {
+  auto hex = [](char c) -> int {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  };
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
+      out += static_cast<char>(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
 std::string item(const char* array, int index) {
   return std::string(array) + "[" + std::to_string(index) + "]";
 }
@@ -41,8 +60,11 @@ void Context::warn(const std::string& where, const std::string& what) {
 }
 
 void Context::ignored(const std::string& feature, const std::string& where) {
-  std::vector<std::string>& places = ignored_[feature];
-  if (places.empty() || places.back() != where) places.push_back(where);
+  Places& places = ignored_[feature];
+  if (places.count > 0 && places.last == where) return;
+  places.last = where;
+  ++places.count;
+  if (places.first.size() < kMaxPlacesListed) places.first.push_back(where);
 }
 
 void Context::charge(uint64_t bytes, const std::string& where) {
@@ -58,11 +80,9 @@ void Context::charge(uint64_t bytes, const std::string& where) {
 std::vector<std::string> Context::takeWarnings() {
   for (const auto& [feature, places] : ignored_) {
     std::string list;
-    for (size_t i = 0; i < places.size() && i < kMaxPlacesListed; ++i) {
-      list += (i ? ", " : "") + places[i];
-    }
-    if (places.size() > kMaxPlacesListed) {
-      list += ", ... (" + std::to_string(places.size()) + " in all)";
+    for (const std::string& place : places.first) list += (list.empty() ? "" : ", ") + place;
+    if (places.count > places.first.size()) {
+      list += ", ... (" + std::to_string(places.count) + " in all)";
     }
     warn("", feature + " ignored (" + list + ")");
   }

@@ -17,6 +17,9 @@ namespace rt::gltf {
 std::string item(const char* array, int index);
 std::string item(const char* array, size_t index);
 
+// A URI's %XX escapes decoded (glTF URIs name relative files this way).
+std::string percentDecoded(const std::string& uri);
+
 class Context {
  public:
   Context(std::string fileName, const tinygltf::Model& model);
@@ -48,7 +51,12 @@ class Context {
   uint64_t budgetLeft_ = 0;
   std::vector<std::string> warnings_;
   std::set<std::string> seen_;
-  std::map<std::string, std::vector<std::string>> ignored_;
+  struct Places {
+    std::vector<std::string> first;  // the first few, for the message
+    std::string last;                // repeats of the same place count once
+    size_t count = 0;
+  };
+  std::map<std::string, Places> ignored_;
 };
 
 }  // namespace rt::gltf

@@ -7,8 +7,10 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <string_view>
 
+#include "scene/GltfContext.hpp"
 #include "util/Error.hpp"
 
 namespace rt::gltf {
@@ -29,9 +31,13 @@ constexpr int kMaxJsonDepth = 100;
 constexpr uint64_t kMaxParsedBytes = uint64_t(2) << 30;
 
 constexpr std::array kSupportedExtensions = {
-    "KHR_materials_transmission", "KHR_materials_ior",
-    "KHR_lights_punctual",        "KHR_texture_transform",
-    "KHR_materials_emissive_strength", "KHR_mesh_quantization",
+    "KHR_materials_transmission",
+    "KHR_materials_ior",
+    "KHR_lights_punctual",
+    "KHR_texture_transform",
+    "KHR_materials_emissive_strength",
+    "KHR_mesh_quantization",
+    "EXT_mesh_gpu_instancing",
 };
 
 uint32_t readU32(const unsigned char* bytes) {
@@ -41,26 +47,6 @@ uint32_t readU32(const unsigned char* bytes) {
 
 void appendU32(std::vector<unsigned char>& out, uint32_t value) {
   for (int shift = 0; shift < 32; shift += 8) out.push_back(uint8_t(value >> shift));
-}
-
-// Reads a regular file (a URI naming /dev/zero or a FIFO must not hang us)
-// of at most kMaxFileBytes. Returns an empty string or what went wrong.
-std::string readRegularFile(const fs::path& path, std::vector<unsigned char>& out) {
-  std::error_code error;
-  fs::file_status status = fs::status(path, error);
-  if (error) return "cannot open: " + error.message();
-  if (!fs::is_regular_file(status)) return "cannot open: not a regular file";
-  uint64_t size = fs::file_size(path, error);
-  if (error) return "cannot open: " + error.message();
-  if (size > kMaxFileBytes) {
-    return "file is " + std::to_string(size >> 20) + " MiB, more than the 1024 MiB allowed";
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::string("cannot open: ") + std::strerror(errno);
-  out.resize(size_t(size));
-  in.read(reinterpret_cast<char*>(out.data()), std::streamsize(size));
-  if (uint64_t(in.gcount()) != size) return "cannot read the whole file";
-  return {};
 }
 
 // tinygltf file system callbacks: no "~" expansion, no fallback to the
@@ -89,8 +75,8 @@ bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigne
 // uses are decoded). tinygltf does not check that an image's buffer view lies
 // inside its buffer, so that is checked here before any byte is read; the
 // model being filled is the user pointer.
-bool keepEncodedImage(tinygltf::Image* image, const int index, std::string* err, std::string*,
-                      int, int, const unsigned char* bytes, int size, void* user) {
+bool keepEncodedImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int,
+                      int, const unsigned char* bytes, int size, void* user) {
   const auto* model = static_cast<const tinygltf::Model*>(user);
   image->as_is = true;
   if (image->bufferView < 0) {
@@ -185,8 +171,7 @@ std::string checkJsonShape(std::string_view json) {
   }
   if (estimate > kMaxParsedBytes) {
     return "the JSON would take about " + std::to_string(estimate >> 20) +
-           " MiB to parse, more than the " + std::to_string(kMaxParsedBytes >> 20) +
-           " MiB allowed";
+           " MiB to parse, more than the " + std::to_string(kMaxParsedBytes >> 20) + " MiB allowed";
   }
   return {};
 }
@@ -267,23 +252,113 @@ std::vector<unsigned char> canonicalGlb(const GlbChunks& chunks) {
   return out;
 }
 
-void checkVersionAndExtensions(const tinygltf::Model& model, const std::string& fileName,
-                               std::vector<std::string>& warnings) {
-  const std::string& version = model.asset.version;
+void checkVersion(const std::string& version, const std::string& minVersion,
+                  const std::string& fileName) {
   if (version.rfind("2.", 0) != 0) {
-    throw Error(fileName + ": asset.version: glTF " + version +
-                " is not supported (only glTF 2.x)");
+    throw Error(fileName + ": asset.version: glTF '" + version +
+                "' is not supported (only glTF 2.x)");
   }
-  const std::string& minVersion = model.asset.minVersion;
   if (!minVersion.empty() && minVersion != "2.0") {
     throw Error(fileName + ": asset.minVersion: the file needs glTF " + minVersion +
                 ", this loader reads glTF 2.0");
   }
-  for (const std::string& name : model.extensionsRequired) {
+}
+
+void checkRequiredExtensions(const std::vector<std::string>& required,
+                             const std::string& fileName) {
+  for (const std::string& name : required) {
     if (!isSupportedExtension(name)) {
       throw Error(fileName + ": glTF requires extension " + name + ", which is not supported");
     }
   }
+}
+
+// A buffer file that cannot be read, named with its index and the reason.
+void checkBufferFiles(const nlohmann::json& buffers, const fs::path& baseDir,
+                      const std::string& fileName) {
+  if (!buffers.is_array()) return;
+  for (size_t i = 0; i < buffers.size(); ++i) {
+    if (!buffers[i].is_object() || !buffers[i].value("uri", nlohmann::json()).is_string()) continue;
+    std::string uri = buffers[i]["uri"];
+    if (uri.rfind("data:", 0) == 0) continue;
+    fs::path path = baseDir / percentDecoded(uri);
+    std::error_code error;
+    if (!fs::is_regular_file(path, error)) {
+      throw Error(fileName + ": buffers[" + std::to_string(i) + "]: cannot read '" + uri +
+                  "': " + (fs::exists(path, error) ? "not a regular file" : "file not found"));
+    }
+  }
+}
+
+// A non-negative integer member of a JSON object, if it is one.
+std::optional<uint64_t> unsignedMember(const nlohmann::json& object, const char* key) {
+  if (!object.is_object() || !object.contains(key)) return std::nullopt;
+  const nlohmann::json& value = object[key];
+  if (!value.is_number_unsigned()) return std::nullopt;
+  return value.get<uint64_t>();
+}
+
+// tinygltf 2.7 takes the address of an image's buffer-view bytes before our
+// callback can check them (an abort under _GLIBCXX_ASSERTIONS); so images
+// stored in buffer views are checked first, from a parse that keeps only
+// "images", "bufferViews" and "buffers" (without their data URIs). Buffer
+// sizes are the declared byteLength, which tinygltf enforces.
+void checkImageViews(std::string_view json, const std::string& fileName) {
+  auto keepViews = [](int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    if (event != nlohmann::json::parse_event_t::key) return true;
+    if (depth == 1) return parsed == "images" || parsed == "bufferViews" || parsed == "buffers";
+    return parsed != "uri";
+  };
+  nlohmann::json root = nlohmann::json::parse(json.begin(), json.end(), keepViews, false);
+  if (!root.is_object() || !root.contains("images") || !root["images"].is_array()) return;
+  const nlohmann::json& views = root.value("bufferViews", nlohmann::json::array());
+  const nlohmann::json& buffers = root.value("buffers", nlohmann::json::array());
+  const nlohmann::json& images = root["images"];
+  for (size_t i = 0; i < images.size(); ++i) {
+    std::optional<uint64_t> view = unsignedMember(images[i], "bufferView");
+    if (!view || !views.is_array() || *view >= views.size()) continue;
+    std::optional<uint64_t> buffer = unsignedMember(views[*view], "buffer");
+    if (!buffer || !buffers.is_array() || *buffer >= buffers.size()) continue;
+    uint64_t offset = unsignedMember(views[*view], "byteOffset").value_or(0);
+    uint64_t length = unsignedMember(views[*view], "byteLength").value_or(0);
+    uint64_t size = unsignedMember(buffers[*buffer], "byteLength").value_or(0);
+    if (offset > size || length > size - offset) {
+      throw Error(fileName + ": images[" + std::to_string(i) + "]: buffer view " +
+                  std::to_string(*view) + " (bytes " + std::to_string(offset) + " + " +
+                  std::to_string(length) + ") lies outside buffer " + std::to_string(*buffer) +
+                  " (" + std::to_string(size) + " bytes)");
+    }
+  }
+}
+
+// When tinygltf refuses a file, the reason may be a version or a required
+// extension that changes what the data means (Draco-compressed accessors have
+// no buffer view, for instance), or a missing buffer file; those make better
+// messages. Only "asset", "extensionsRequired" and "buffers" are kept from
+// this second parse.
+void explainRefusal(std::string_view json, const fs::path& baseDir, const std::string& fileName) {
+  auto keepDeclarations = [](int depth, nlohmann::json::parse_event_t event,
+                             nlohmann::json& parsed) {
+    if (depth != 1 || event != nlohmann::json::parse_event_t::key) return true;
+    return parsed == "asset" || parsed == "extensionsRequired" || parsed == "buffers";
+  };
+  nlohmann::json root = nlohmann::json::parse(json.begin(), json.end(), keepDeclarations, false);
+  if (!root.is_object()) return;
+  const nlohmann::json& asset = root.value("asset", nlohmann::json::object());
+  if (asset.is_object() && asset.value("version", nlohmann::json()).is_string()) {
+    checkVersion(asset["version"], asset.value("minVersion", ""), fileName);
+  }
+  const nlohmann::json& required = root.value("extensionsRequired", nlohmann::json::array());
+  for (const nlohmann::json& name : required.is_array() ? required : nlohmann::json::array()) {
+    if (name.is_string()) checkRequiredExtensions({name.get<std::string>()}, fileName);
+  }
+  checkBufferFiles(root.value("buffers", nlohmann::json()), baseDir, fileName);
+}
+
+void checkVersionAndExtensions(const tinygltf::Model& model, const std::string& fileName,
+                               std::vector<std::string>& warnings) {
+  checkVersion(model.asset.version, model.asset.minVersion, fileName);
+  checkRequiredExtensions(model.extensionsRequired, fileName);
   for (const std::string& name : model.extensionsUsed) {
     if (!isSupportedExtension(name)) {
       warnings.push_back(fileName + ": uses extension " + name + ", which is ignored");
@@ -300,43 +375,81 @@ tinygltf::TinyGLTF makeParser(tinygltf::Model& model) {
 
 }  // namespace
 
+std::string readRegularFile(const fs::path& path, std::vector<unsigned char>& out) {
+  std::error_code error;
+  fs::file_status status = fs::status(path, error);
+  if (error) return "cannot open: " + error.message();
+  if (!fs::is_regular_file(status)) return "cannot open: not a regular file";
+  uint64_t size = fs::file_size(path, error);
+  if (error) return "cannot open: " + error.message();
+  if (size > kMaxFileBytes) {
+    return "file is " + std::to_string(size >> 20) + " MiB, more than the 1024 MiB allowed";
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::string("cannot open: ") + std::strerror(errno);
+  out.resize(size_t(size));
+  in.read(reinterpret_cast<char*>(out.data()), std::streamsize(size));
+  if (uint64_t(in.gcount()) != size) return "cannot read the whole file";
+  return {};
+}
+
 bool isSupportedExtension(const std::string& name) {
   return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), name) !=
          kSupportedExtensions.end();
 }
 
+namespace {
+
+// The bytes tinygltf will parse: the .gltf text, or a canonical GLB.
+struct Source {
+  std::vector<unsigned char> bytes;
+  std::string_view json;  // inside `bytes`
+  bool glb = false;
+};
+
+// Reads the file and runs every check that must come before tinygltf.
+Source readSource(const fs::path& file, const std::string& fileName,
+                  std::vector<std::string>& warnings) {
+  Source source;
+  if (std::string problem = readRegularFile(file, source.bytes); !problem.empty()) {
+    throw Error(fileName + ": " + problem);
+  }
+  source.glb = source.bytes.size() >= 4 && std::memcmp(source.bytes.data(), "glTF", 4) == 0;
+  if (source.glb) {
+    GlbChunks chunks = splitGlb(source.bytes, fileName, warnings);
+    std::vector<unsigned char> canonical = canonicalGlb(chunks);
+    size_t jsonSize = chunks.json.size();
+    source.bytes.swap(canonical);  // `chunks` pointed into the old bytes
+    source.json =
+        std::string_view(reinterpret_cast<const char*>(source.bytes.data() + 20), jsonSize);
+  } else {
+    source.json =
+        std::string_view(reinterpret_cast<const char*>(source.bytes.data()), source.bytes.size());
+  }
+  if (std::string problem = checkJsonShape(source.json); !problem.empty()) {
+    throw Error(fileName + ": " + problem);
+  }
+  if (source.json.find("\"images\"") != std::string_view::npos) {
+    checkImageViews(source.json, fileName);
+  }
+  return source;
+}
+
+}  // namespace
+
 tinygltf::Model readModel(const fs::path& file, std::vector<std::string>& warnings) {
   const std::string fileName = file.string();
-  std::vector<unsigned char> bytes;
-  if (std::string problem = readRegularFile(file, bytes); !problem.empty()) {
-    throw Error(fileName + ": " + problem);
-  }
-  const bool isGlb = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  GlbChunks chunks;
-  if (isGlb) {
-    chunks = splitGlb(bytes, fileName, warnings);
-  } else {
-    chunks.json = std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-  }
-  if (std::string problem = checkJsonShape(chunks.json); !problem.empty()) {
-    throw Error(fileName + ": " + problem);
-  }
-
+  Source source = readSource(file, fileName, warnings);
   tinygltf::Model model;
   tinygltf::TinyGLTF parser = makeParser(model);
   std::string baseDir = fs::absolute(file).parent_path().string();
   std::string err, warn;
-  bool ok = false;
-  if (isGlb) {
-    std::vector<unsigned char> glb = canonicalGlb(chunks);
-    std::vector<unsigned char>().swap(bytes);  // chunks pointed into it; not used again
-    ok = parser.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), unsigned(glb.size()),
-                                     baseDir);
-  } else {
-    ok = parser.LoadASCIIFromString(&model, &err, &warn, chunks.json.data(),
-                                    unsigned(chunks.json.size()), baseDir);
-  }
+  bool ok = source.glb ? parser.LoadBinaryFromMemory(&model, &err, &warn, source.bytes.data(),
+                                                     unsigned(source.bytes.size()), baseDir)
+                       : parser.LoadASCIIFromString(&model, &err, &warn, source.json.data(),
+                                                    unsigned(source.json.size()), baseDir);
   if (!ok) {
+    explainRefusal(source.json, baseDir, fileName);
     std::string what = oneLine(err.empty() ? warn : err);
     throw Error(fileName + ": " + (what.empty() ? "not a valid glTF file" : what));
   }

@@ -10,7 +10,7 @@
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
 #include "render/BatchIntersector.hpp"
-#include "scene/SceneLoader.hpp"
+#include "scene/SceneFile.hpp"
 #include "util/Error.hpp"
 #include "viewer/DisplayPass.hpp"
 #include "viewer/SceneBounds.hpp"
@@ -75,7 +75,7 @@ void RateMeter::add(double samples, Clock::time_point now) {
 
 Viewer::Viewer(const ViewerOptions& options)
     : options_(options), planner_(options.frameSeconds, options.samplesPerFrame) {
-  scene_ = loadScene(options_.scenePath);
+  scene_ = loadSceneFile(options_.scenePath);
   for (const std::string& warning : scene_.warnings) {
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
   }

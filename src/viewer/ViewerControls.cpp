@@ -11,7 +11,7 @@
 #include "gpu/VulkanContext.hpp"
 #include "render/BatchIntersector.hpp"
 #include "render/FlatScene.hpp"
-#include "scene/SceneLoader.hpp"
+#include "scene/SceneFile.hpp"
 #include "util/Error.hpp"
 #include "viewer/DisplayPass.hpp"
 #include "viewer/SceneBounds.hpp"
@@ -122,7 +122,7 @@ void Viewer::reloadShaders() {
 void Viewer::reloadScene() {
   Scene fresh;
   try {
-    fresh = loadScene(options_.scenePath);
+    fresh = loadSceneFile(options_.scenePath);
   } catch (const std::exception& e) {
     messages_.sceneError = e.what();
     std::fprintf(stderr, "scene: error %s\n", e.what());
