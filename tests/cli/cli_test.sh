@@ -105,6 +105,12 @@ if [[ -d "$SHARED/scene-format/official" ]]; then
       fail "official scene $scene: $(cat "$SCRATCH/stderr")"
     fi
   done < <(find "$SHARED/scene-format/official" -name '*.json' | sort)
+  box=$(find "$SHARED/assets/gltf" -name Box.glb | head -1)
+  if "$RAYTRACER" "$box" "$SCRATCH/box.png" --size 64x48 --spp 1 -q 2>"$SCRATCH/stderr" && [[ -s "$SCRATCH/box.png" ]]; then
+    pass
+  else
+    fail "glb render: $(cat "$SCRATCH/stderr")"
+  fi
 else
   echo "skipped official scenes: $SHARED not found"
 fi
