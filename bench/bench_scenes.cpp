@@ -26,16 +26,16 @@ void printTable(const std::vector<Row>& rows, const std::string& device, uint32_
                 uint32_t height, uint32_t spp) {
   std::printf("device: %s; %ux%u, %u spp, jittered sampler\n\n", device.c_str(), width, height,
               spp);
-  std::printf("| %-42s | %-38s | %6s | %8s | %10s | %10s | %8s |\n", "scene", "features", "prims",
+  std::printf("| %-42s | %-50s | %6s | %8s | %10s | %10s | %8s |\n", "scene", "features", "prims",
               "time s", "Msamples/s", "Mrays/s", "rays/spl");
   std::printf("|%s|%s|%s|%s|%s|%s|%s|\n", std::string(44, '-').c_str(),
-              std::string(40, '-').c_str(), std::string(8, '-').c_str(),
+              std::string(52, '-').c_str(), std::string(8, '-').c_str(),
               std::string(10, '-').c_str(), std::string(12, '-').c_str(),
               std::string(12, '-').c_str(), std::string(10, '-').c_str());
   for (const Row& row : rows) {
     double seconds = row.stats.renderSeconds;
     double rays = double(row.stats.raysTraced);
-    std::printf("| %-42s | %-38s | %6u | %8.3f | %10.2f | %10.2f | %8.2f |\n", row.scene.c_str(),
+    std::printf("| %-42s | %-50s | %6u | %8.3f | %10.2f | %10.2f | %8.2f |\n", row.scene.c_str(),
                 row.stats.features.summary().c_str(), row.stats.primitives, seconds,
                 row.samples / seconds * 1e-6, rays / seconds * 1e-6, rays / row.samples);
   }
