@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "app/CommandLine.hpp"
 #include "app/Commands.hpp"
 #include "io/Image.hpp"
 #include "render/Merge.hpp"
@@ -11,20 +12,14 @@
 
 int runMergeCommand(int argc, char** argv) {
   std::vector<std::string> paths;
-  CLI::App app{"Merges renders of disjoint sample ranges (raytracer --samples FROM:TO) into "
-               "one image",
-               "raytracer merge"};
+  CLI::App app{
+      "Merges renders of disjoint sample ranges (raytracer --samples FROM:TO) into "
+      "one image",
+      "raytracer merge"};
   app.add_option("files", paths, "PART.exr ... OUTPUT (.exr keeps sample counts for re-merging)")
       ->required()
       ->expected(2, -1);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "error: %s (see merge --help)\n", e.what());
-    return 2;
-  }
+  if (std::optional<int> status = rt::cli::parse(app, argc, argv)) return *status;
   try {
     std::string output = paths.back();
     paths.pop_back();

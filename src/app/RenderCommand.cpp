@@ -1,7 +1,6 @@
 // raytracer SCENE OUTPUT [options]: the offline render command. A thin
 // client of the renderer library: parse arguments, load, render, write.
 #include <fmt/format.h>
-
 #include <signal.h>
 
 #include <CLI/CLI.hpp>
@@ -12,6 +11,7 @@
 #include <regex>
 #include <string>
 
+#include "app/CommandLine.hpp"
 #include "app/Commands.hpp"
 #include "app/Progress.hpp"
 #include "gpu/ShaderCompiler.hpp"
@@ -25,8 +25,7 @@
 namespace {
 
 constexpr uint32_t kDefaultSamples = 16;
-constexpr uint32_t kMaxImageSide = 16384;
-constexpr uint32_t kMaxSamples = 1u << 20;
+using rt::cli::kMaxSamples;
 
 struct CommandLine {
   std::string scenePath;
@@ -45,21 +44,6 @@ struct CommandLine {
   bool validation = false;
   bool quiet = false;
 };
-
-void parseSize(const std::string& text, rt::RenderOptions& options) {
-  static const std::regex pattern(R"((\d{1,9})x(\d{1,9}))");
-  std::smatch match;
-  if (!std::regex_match(text, match, pattern)) {
-    throw rt::Error(fmt::format("--size {}: expected WIDTHxHEIGHT, e.g. 800x600", text));
-  }
-  uint32_t width = static_cast<uint32_t>(std::stoul(match[1].str()));
-  uint32_t height = static_cast<uint32_t>(std::stoul(match[2].str()));
-  if (width == 0 || height == 0 || width > kMaxImageSide || height > kMaxImageSide) {
-    throw rt::Error(fmt::format("--size {}: each side must be 1..{}", text, kMaxImageSide));
-  }
-  options.width = width;
-  options.height = height;
-}
 
 // --samples FROM:TO: sample indices [FROM, TO) of a --spp render.
 void parseSampleRange(const std::string& text, rt::RenderOptions& options) {
@@ -104,26 +88,22 @@ void listDevices() {
 rt::ContextOptions contextOptions(const CommandLine& cli) {
   rt::ContextOptions options;
   options.validation = cli.validation;
-  if (!cli.device.empty()) {
-    if (cli.device.find_first_not_of("0123456789") != std::string::npos || cli.device.size() > 6) {
-      throw rt::Error(fmt::format("--device {}: expected 'list' or a device number", cli.device));
-    }
-    options.deviceIndex = static_cast<uint32_t>(std::stoul(cli.device));
-  }
+  if (!cli.device.empty()) options.deviceIndex = rt::cli::parseDeviceIndex(cli.device);
   return options;
 }
 
 rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) {
   rt::RenderOptions options;
-  if (!cli.size.empty()) parseSize(cli.size, options);
+  if (!cli.size.empty()) {
+    rt::cli::Size size = rt::cli::parseSize(cli.size);
+    options.width = size.width;
+    options.height = size.height;
+  }
   uint32_t fromScene = scene.settings.samplesPerPixel;
   options.samplesPerPixel = cli.samples ? *cli.samples : (fromScene ? fromScene : kDefaultSamples);
   options.seed = cli.seed;
-  options.sampler = scene.settings.sampler;
-  if (cli.sampler == "random") options.sampler = rt::SamplerKind::Random;
-  if (cli.sampler == "jittered") options.sampler = rt::SamplerKind::Jittered;
-  if (cli.shading == "standard") options.shading = rt::ShadingModel::Standard;
-  if (cli.shading == "coursework") options.shading = rt::ShadingModel::Coursework;
+  options.sampler = rt::cli::samplerNamed(cli.sampler, scene.settings.sampler);
+  options.shading = rt::cli::shadingNamed(cli.shading);
   if (!cli.sampleRange.empty()) parseSampleRange(cli.sampleRange, options);
   return options;
 }
@@ -162,7 +142,8 @@ int run(const CommandLine& cli) {
   installInterruptHandlers();
   auto start = std::chrono::steady_clock::now();
   options.shouldStop = [&] {
-    double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return interrupted.load() || (cli.timeBudget && elapsed >= *cli.timeBudget);
   };
   rt::ImageF image = renderer.render(
@@ -218,16 +199,7 @@ int runRenderCommand(int argc, char** argv) {
   app.add_option("--time", cli.timeBudget, "Stop after this many seconds (whole passes kept)")
       ->check(CLI::PositiveNumber);
   app.add_flag("-q,--quiet", cli.quiet, "No progress bar or summary");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "error: %s (see --help)\n", e.what());
-    return 2;
-  }
+  if (std::optional<int> status = rt::cli::parse(app, argc, argv)) return *status;
   try {
     if (cli.device == "list") {
       listDevices();

@@ -5,17 +5,16 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <optional>
-#include <regex>
 #include <string>
 
+#include "app/CommandLine.hpp"
 #include "app/Commands.hpp"
 #include "util/Error.hpp"
 #include "viewer/ViewerOptions.hpp"
 
 namespace {
 
-constexpr uint32_t kMaxWindowSide = 16384;
-constexpr uint32_t kMaxSamples = 1u << 20;
+using rt::cli::kMaxSamples;
 
 struct CommandLine {
   std::string scenePath;
@@ -28,34 +27,16 @@ struct CommandLine {
   double frameMilliseconds = 75.0;
 };
 
-void parseSize(const std::string& text, rt::viewer::ViewerOptions& options) {
-  static const std::regex pattern(R"((\d{1,9})x(\d{1,9}))");
-  std::smatch match;
-  if (!std::regex_match(text, match, pattern)) {
-    throw rt::Error(fmt::format("--size {}: expected WIDTHxHEIGHT, e.g. 800x600", text));
-  }
-  uint32_t width = static_cast<uint32_t>(std::stoul(match[1].str()));
-  uint32_t height = static_cast<uint32_t>(std::stoul(match[2].str()));
-  if (width == 0 || height == 0 || width > kMaxWindowSide || height > kMaxWindowSide) {
-    throw rt::Error(fmt::format("--size {}: each side must be 1..{}", text, kMaxWindowSide));
-  }
-  options.width = width;
-  options.height = height;
-}
-
 void finishOptions(const CommandLine& cli, rt::viewer::ViewerOptions& options) {
   options.scenePath = cli.scenePath;
-  if (!cli.size.empty()) parseSize(cli.size, options);
-  if (cli.sampler == "random") options.sampler = rt::SamplerKind::Random;
-  if (cli.sampler == "jittered") options.sampler = rt::SamplerKind::Jittered;
-  if (cli.shading == "standard") options.shading = rt::ShadingModel::Standard;
-  if (cli.shading == "coursework") options.shading = rt::ShadingModel::Coursework;
-  if (!cli.device.empty()) {
-    if (cli.device.find_first_not_of("0123456789") != std::string::npos || cli.device.size() > 6) {
-      throw rt::Error(fmt::format("--device {}: expected a device number", cli.device));
-    }
-    options.deviceIndex = static_cast<uint32_t>(std::stoul(cli.device));
+  if (!cli.size.empty()) {
+    rt::cli::Size size = rt::cli::parseSize(cli.size);
+    options.width = size.width;
+    options.height = size.height;
   }
+  if (!cli.sampler.empty()) options.sampler = rt::cli::samplerNamed(cli.sampler, {});
+  if (auto shading = rt::cli::shadingNamed(cli.shading)) options.shading = shading;
+  if (!cli.device.empty()) options.deviceIndex = rt::cli::parseDeviceIndex(cli.device);
   options.overlay = !cli.noOverlay;
   options.watch = !cli.noWatch;
   options.frameSeconds = cli.frameMilliseconds * 1e-3;
@@ -108,14 +89,7 @@ int runViewCommand(int argc, char** argv) {
   app.add_option("--exposure", options.exposure, "Extra exposure factor")
       ->check(CLI::PositiveNumber);
   app.add_flag("-v,--verbose", options.verbose, "Log every frame (default: about once a second)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "error: %s (see raytracer view --help)\n", e.what());
-    return 2;
-  }
+  if (std::optional<int> status = rt::cli::parse(app, argc, argv)) return *status;
   try {
     finishOptions(cli, options);
     return rt::viewer::runViewer(options);

@@ -1,0 +1,61 @@
+#include "app/CommandLine.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <regex>
+
+#include "util/Error.hpp"
+
+namespace rt::cli {
+
+std::optional<int> parse(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "error: %s (see %s --help)\n", e.what(), app.get_name().c_str());
+    return 2;
+  }
+  return std::nullopt;
+}
+
+Size parseSize(const std::string& text) {
+  static const std::regex pattern(R"((\d{1,9})x(\d{1,9}))");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern)) {
+    throw Error(fmt::format("--size {}: expected WIDTHxHEIGHT, e.g. 800x600", text));
+  }
+  Size size{static_cast<uint32_t>(std::stoul(match[1].str())),
+            static_cast<uint32_t>(std::stoul(match[2].str()))};
+  if (size.width == 0 || size.height == 0 || size.width > kMaxImageSide ||
+      size.height > kMaxImageSide) {
+    throw Error(fmt::format("--size {}: each side must be 1..{}", text, kMaxImageSide));
+  }
+  return size;
+}
+
+uint32_t parseDeviceIndex(const std::string& text) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos ||
+      text.size() > 6) {
+    throw Error(fmt::format("--device {}: expected 'list' or a device number", text));
+  }
+  return static_cast<uint32_t>(std::stoul(text));
+}
+
+SamplerKind samplerNamed(const std::string& name, SamplerKind fallback) {
+  if (name == "random") return SamplerKind::Random;
+  if (name == "jittered") return SamplerKind::Jittered;
+  return fallback;
+}
+
+std::optional<ShadingModel> shadingNamed(const std::string& name) {
+  if (name == "standard") return ShadingModel::Standard;
+  if (name == "coursework") return ShadingModel::Coursework;
+  return std::nullopt;
+}
+
+}  // namespace rt::cli

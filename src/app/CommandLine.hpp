@@ -1,0 +1,40 @@
+// Command-line pieces every subcommand shares: parsing with one-line errors,
+// and the values several commands accept (--size, --device, --sampler,
+// --shading).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "render/Conventions.hpp"
+#include "scene/Scene.hpp"
+
+namespace rt::cli {
+
+constexpr uint32_t kMaxImageSide = 16384;
+constexpr uint32_t kMaxSamples = 1u << 20;
+
+// Parses argv into `app`. Returns an exit status when the command should end
+// now (--help, --version: 0; a usage error, reported in one line: 2).
+std::optional<int> parse(CLI::App& app, int argc, char** argv);
+
+struct Size {
+  uint32_t width = 0;
+  uint32_t height = 0;
+};
+
+// "WIDTHxHEIGHT", each side 1..kMaxImageSide; throws rt::Error naming --size.
+Size parseSize(const std::string& text);
+
+// A device number for --device; throws rt::Error naming the text.
+uint32_t parseDeviceIndex(const std::string& text);
+
+// "random" / "jittered" / "" (keep `fallback`).
+SamplerKind samplerNamed(const std::string& name, SamplerKind fallback);
+
+// "standard" / "coursework" / "" (the scene family's default).
+std::optional<ShadingModel> shadingNamed(const std::string& name);
+
+}  // namespace rt::cli
