@@ -6,9 +6,9 @@
 
 #include "render/Merge.hpp"
 #include "render/Renderer.hpp"
-#include "util/Error.hpp"
 #include "scene/SceneLoader.hpp"
 #include "support/TestSupport.hpp"
+#include "util/Error.hpp"
 
 using namespace rt;
 
@@ -187,6 +187,31 @@ TEST_SUITE("render") {
     CHECK(stats.samplesDone < 50);
     CHECK(image.rgba[3] >= 1.0f);
     CHECK(allFinite(image));
+  }
+
+  TEST_CASE("thin lens: aperture 0 is the pinhole image; an open lens blurs off the focal plane") {
+    Scene scene = baseScene(48, 36);
+    addSphere(scene, diffuse({0.9f, 0.5f, 0.2f}));                          // at distance 5
+    addSphere(scene, diffuse({0.2f, 0.5f, 0.9f}), {1.5f, 0.5f, -5}, 1.0f);  // at distance 10
+    RenderOptions options;
+    options.samplesPerPixel = 16;
+    ImageF pinhole = renderScene(scene, options);
+    scene.camera.type = CameraType::ThinLens;
+    scene.camera.apertureRadius = 0.0f;
+    scene.camera.focusDistance = 5.0f;
+    CHECK(bitwiseEqual(pinhole, renderScene(scene, options)));
+    scene.camera.apertureRadius = 0.3f;
+    ImageF lens = renderScene(scene, options);
+    // The near sphere's centre (in focus) is unchanged; the far sphere's
+    // silhouette (out of focus) is smeared.
+    double nearChange = glm::length(pixel(lens, 24, 18) - pixel(pinhole, 24, 18));
+    double farChange = 0;
+    for (uint32_t x = 30; x < 48; ++x) {
+      for (uint32_t y = 0; y < 36; ++y)
+        farChange += glm::length(pixel(lens, x, y) - pixel(pinhole, x, y));
+    }
+    CHECK(nearChange < 0.02);
+    CHECK(farChange > 1.0);
   }
 
   TEST_CASE("both samplers converge to the same image") {
