@@ -95,15 +95,22 @@ void ComputeKernel::destroy() {
   module_ = VK_NULL_HANDLE;
 }
 
-void ComputeKernel::bind(uint32_t binding, const Buffer& buffer) {
-  VkDescriptorBufferInfo bufferInfo{buffer.handle(), 0, VK_WHOLE_SIZE};
+void ComputeKernel::writeDescriptor(uint32_t binding, VkDescriptorType type,
+                                    const VkDescriptorBufferInfo* bufferInfo,
+                                    const VkBufferView* texelView) {
   VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   write.dstSet = set_;
   write.dstBinding = binding;
   write.descriptorCount = 1;
-  write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  write.pBufferInfo = &bufferInfo;
+  write.descriptorType = type;
+  write.pBufferInfo = bufferInfo;
+  write.pTexelBufferView = texelView;
   vkUpdateDescriptorSets(context_.device(), 1, &write, 0, nullptr);
+}
+
+void ComputeKernel::bind(uint32_t binding, const Buffer& buffer) {
+  VkDescriptorBufferInfo bufferInfo{buffer.handle(), 0, VK_WHOLE_SIZE};
+  writeDescriptor(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bufferInfo, nullptr);
 }
 
 void ComputeKernel::bindTexels(uint32_t binding, const Buffer& buffer, VkFormat format) {
@@ -114,13 +121,7 @@ void ComputeKernel::bindTexels(uint32_t binding, const Buffer& buffer, VkFormat 
   VkBufferView view = VK_NULL_HANDLE;
   vkCheck(vkCreateBufferView(context_.device(), &viewInfo, nullptr, &view), "vkCreateBufferView");
   views_.push_back(view);
-  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  write.dstSet = set_;
-  write.dstBinding = binding;
-  write.descriptorCount = 1;
-  write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-  write.pTexelBufferView = &view;
-  vkUpdateDescriptorSets(context_.device(), 1, &write, 0, nullptr);
+  writeDescriptor(binding, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, nullptr, &view);
 }
 
 void ComputeKernel::recordDispatch(VkCommandBuffer commands, const void* pushConstants,

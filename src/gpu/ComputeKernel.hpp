@@ -41,6 +41,8 @@ class ComputeKernel {
 
  private:
   void destroy();
+  void writeDescriptor(uint32_t binding, VkDescriptorType type,
+                       const VkDescriptorBufferInfo* bufferInfo, const VkBufferView* texelView);
 
   VulkanContext& context_;
   uint32_t pushConstantBytes_ = 0;

@@ -29,6 +29,7 @@
 
 #include "render/Renderer.hpp"
 #include "scene/GltfLoader.hpp"
+#include "support/JsonMutations.hpp"
 #include "support/TestSupport.hpp"
 #include "util/Error.hpp"
 
@@ -1091,50 +1092,24 @@ TEST_SUITE("scene gltf errors") {
             {"children", {2}}});
     b.node({{"mesh", 0}, {"scale", {-1, 2, 1}}}, false);
     Json document = b.embedded();
-    std::vector<Json::json_pointer> pointers;
-    std::function<void(const Json&, const Json::json_pointer&)> collect =
-        [&](const Json& value, const Json::json_pointer& at) {
-          pointers.push_back(at);
-          if (value.is_object()) {
-            for (const auto& [key, child] : value.items()) collect(child, at / key);
-          } else if (value.is_array()) {
-            for (size_t i = 0; i < value.size(); ++i) collect(value[i], at / i);
-          }
-        };
-    collect(document, Json::json_pointer());
     const std::vector<Json> replacements = {nullptr,        "text",   -1,  0,    2,
                                             4000000000.0,   1e30,     0.5, true, Json::array(),
                                             Json::object(), {1, 2, 3}};
     size_t loaded = 0, rejected = 0;
-    for (const Json::json_pointer& pointer : pointers) {
-      std::vector<Json> variants;
-      for (const Json& replacement : replacements) {
-        variants.push_back(document);
-        variants.back()[pointer] = replacement;
-      }
-      if (!pointer.empty()) {
-        variants.push_back(document);
-        Json& parent = variants.back()[pointer.parent_pointer()];
-        if (parent.is_object()) {
-          parent.erase(pointer.back());
-        } else {
-          parent.erase(std::stoul(pointer.back()));
-        }
-      }
-      for (const Json& variant : variants) {
-        try {
-          rt::Scene scene = loadDoc("corrupt.gltf", variant);
-          std::string problem = unsoundness(scene);
-          CHECK_MESSAGE(problem.empty(), pointer.to_string() << ": " << problem);
-          ++loaded;
-        } catch (const rt::Error& error) {
-          CHECK_MESSAGE(!contains(error.what(), "\n"), error.what());
-          ++rejected;
-        } catch (const std::exception& error) {
-          FAIL("not an rt::Error at " << pointer.to_string() << ": " << error.what());
-        }
-      }
-    }
+    rt::test::forEachMutation<Json>(
+        document, replacements, [&](const Json::json_pointer& pointer, const Json& variant) {
+          try {
+            rt::Scene scene = loadDoc("corrupt.gltf", variant);
+            std::string problem = unsoundness(scene);
+            CHECK_MESSAGE(problem.empty(), pointer.to_string() << ": " << problem);
+            ++loaded;
+          } catch (const rt::Error& error) {
+            CHECK_MESSAGE(!contains(error.what(), "\n"), error.what());
+            ++rejected;
+          } catch (const std::exception& error) {
+            FAIL("not an rt::Error at " << pointer.to_string() << ": " << error.what());
+          }
+        });
     MESSAGE(loaded << " variants loaded, " << rejected << " rejected");
   }
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "scene/SceneLoader.hpp"
+#include "support/JsonMutations.hpp"
 #include "util/Error.hpp"
 
 // The build passes the absolute path of the shared folder; without it the
@@ -92,51 +93,23 @@ bool hasWarning(const rt::Scene& scene, const std::string& part) {
                      [&](const std::string& line) { return contains(line, part); });
 }
 
-// Every value's JSON pointer in `value`, the root included.
-void collectPointers(const Json& value, const Json::json_pointer& at,
-                     std::vector<Json::json_pointer>& out) {
-  out.push_back(at);
-  if (value.is_object()) {
-    for (const auto& [key, child] : value.items()) collectPointers(child, at / key, out);
-  } else if (value.is_array()) {
-    for (size_t i = 0; i < value.size(); ++i) collectPointers(value[i], at / i, out);
-  }
-}
-
 // Replaces or removes each value of `document` in turn: every variant must
 // either load or fail with rt::Error, never with another exception or a crash.
 // Returns how many variants were tried.
 size_t checkCorruptionsFailCleanly(const Json& document, const fs::path& file = "mem.json") {
   const std::vector<Json> replacements = {
       nullptr, "text", -1, 0, 2.5, 1e30, true, Json::array(), Json::object(), {1, 2, 3}};
-  std::vector<Json::json_pointer> pointers;
-  collectPointers(document, Json::json_pointer(), pointers);
   size_t tried = 0;
-  for (const Json::json_pointer& pointer : pointers) {
-    std::vector<Json> variants;
-    for (const Json& replacement : replacements) {
-      variants.push_back(document);
-      variants.back()[pointer] = replacement;
-    }
-    if (!pointer.empty()) {
-      variants.push_back(document);
-      Json& parent = variants.back()[pointer.parent_pointer()];
-      if (parent.is_object()) {
-        parent.erase(pointer.back());
-      } else {
-        parent.erase(std::stoul(pointer.back()));
-      }
-    }
-    for (const Json& variant : variants) {
-      ++tried;
-      try {
-        rt::parseScene(variant.dump(), file);
-      } catch (const rt::Error&) {
-      } catch (const std::exception& error) {
-        FAIL("not an rt::Error at " << pointer.to_string() << ": " << error.what());
-      }
-    }
-  }
+  rt::test::forEachMutation<Json>(
+      document, replacements, [&](const Json::json_pointer& pointer, const Json& variant) {
+        ++tried;
+        try {
+          rt::parseScene(variant.dump(), file);
+        } catch (const rt::Error&) {
+        } catch (const std::exception& error) {
+          FAIL("not an rt::Error at " << pointer.to_string() << ": " << error.what());
+        }
+      });
   return tried;
 }
 
