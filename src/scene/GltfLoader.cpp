@@ -15,6 +15,7 @@
 #include "scene/GltfMaterial.hpp"
 #include "scene/GltfMesh.hpp"
 #include "scene/GltfNodes.hpp"
+#include "scene/MessageText.hpp"
 
 namespace rt {
 namespace {
@@ -338,13 +339,16 @@ struct Imported {
 };
 
 Imported importFile(const fs::path& file, const glm::dmat4& placement) {
-  Imported out;
-  tinygltf::Model model = gltf::readModel(file, out.scene.warnings);
-  Context context(file.string(), model);
-  Importer importer(context, out.scene, fs::absolute(file).parent_path(), placement);
-  out.result = importer.run();
-  for (std::string& line : context.takeWarnings()) out.scene.warnings.push_back(std::move(line));
-  return out;
+  return withPrintableErrors([&] {
+    Imported out;
+    tinygltf::Model model = gltf::readModel(file, out.scene.warnings);
+    Context context(file.string(), model);
+    Importer importer(context, out.scene, fs::absolute(file).parent_path(), placement);
+    out.result = importer.run();
+    for (std::string& line : context.takeWarnings()) out.scene.warnings.push_back(std::move(line));
+    makePrintable(out.scene.warnings);
+    return out;
+  });
 }
 
 // Fov 45, 800x600, looking at the bounding sphere's centre from above the +z

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "scene/MessageText.hpp"
 #include "util/Error.hpp"
 
 namespace rt {
@@ -855,9 +856,7 @@ std::string readWholeFile(const fs::path& file) {
   return bytes;
 }
 
-}  // namespace
-
-TriangleMesh parsePly(std::string_view bytes, std::string_view name) {
+TriangleMesh parseMesh(std::string_view bytes, std::string_view name) {
   const Failure fail(name);
   const Header header = readHeader(bytes, fail);
   const std::vector<ElementPlan> plans = planElements(header, fail);
@@ -876,6 +875,14 @@ TriangleMesh parsePly(std::string_view bytes, std::string_view name) {
   return std::move(out.mesh);
 }
 
-TriangleMesh loadPly(const fs::path& file) { return parsePly(readWholeFile(file), file.string()); }
+}  // namespace
+
+TriangleMesh parsePly(std::string_view bytes, std::string_view name) {
+  return withPrintableErrors([&] { return parseMesh(bytes, name); });
+}
+
+TriangleMesh loadPly(const fs::path& file) {
+  return withPrintableErrors([&] { return parseMesh(readWholeFile(file), file.string()); });
+}
 
 }  // namespace rt

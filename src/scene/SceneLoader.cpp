@@ -14,6 +14,7 @@
 #include <system_error>
 
 #include "scene/JsonReader.hpp"
+#include "scene/MessageText.hpp"
 #include "scene/PlyLoader.hpp"
 #include "util/Error.hpp"
 
@@ -693,9 +694,7 @@ fs::path absoluteFolderOf(const fs::path& file) {
   return (failed ? file : absolute).lexically_normal().parent_path();
 }
 
-}  // namespace
-
-Scene parseScene(std::string_view jsonText, const fs::path& file) {
+Scene readScene(std::string_view jsonText, const fs::path& file) {
   Diagnostics diagnostics(file.string());
   const Json document = parseJson(jsonText, file.string());
   Scene scene;
@@ -714,9 +713,18 @@ Scene parseScene(std::string_view jsonText, const fs::path& file) {
   ignoreRendererKeys(top);
   top.reportUnknownKeys();
   scene.warnings = diagnostics.takeWarnings();
+  makePrintable(scene.warnings);
   return scene;
 }
 
-Scene loadScene(const fs::path& file) { return parseScene(readFileText(file), file); }
+}  // namespace
+
+Scene parseScene(std::string_view jsonText, const fs::path& file) {
+  return withPrintableErrors([&] { return readScene(jsonText, file); });
+}
+
+Scene loadScene(const fs::path& file) {
+  return withPrintableErrors([&] { return readScene(readFileText(file), file); });
+}
 
 }  // namespace rt
