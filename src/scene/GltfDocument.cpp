@@ -331,6 +331,25 @@ void checkImageViews(std::string_view json, const std::string& fileName) {
   }
 }
 
+// tinygltf reports JSON syntax errors as "[json.exception...] parse error at
+// line L, column C" (and an empty file as "JSON string too short"); messages
+// say where in bytes, as the scene loader's do. A parse that keeps nothing
+// finds the offset. `where` names the text: the file, or its GLB JSON chunk.
+void checkJsonSyntax(std::string_view json, const std::string& where) {
+  if (json.empty()) throw Error(where + ": empty file");
+  auto keepNothing = [](int, nlohmann::json::parse_event_t, nlohmann::json&) { return false; };
+  try {
+    const nlohmann::json nothing = nlohmann::json::parse(json.begin(), json.end(), keepNothing);
+  } catch (const nlohmann::json::parse_error& error) {
+    const std::string_view message = error.what();
+    const size_t idEnd = message.find("] ");
+    throw Error(where + ": byte " + std::to_string(error.byte) + ": " +
+                std::string(idEnd == std::string_view::npos ? message : message.substr(idEnd + 2)));
+  } catch (const nlohmann::json::exception&) {
+    // Not a syntax error (e.g. a number too large): tinygltf's message stands.
+  }
+}
+
 // When tinygltf refuses a file, the reason may be a version or a required
 // extension that changes what the data means (Draco-compressed accessors have
 // no buffer view, for instance), or a missing buffer file; those make better
@@ -449,6 +468,7 @@ tinygltf::Model readModel(const fs::path& file, std::vector<std::string>& warnin
                        : parser.LoadASCIIFromString(&model, &err, &warn, source.json.data(),
                                                     unsigned(source.json.size()), baseDir);
   if (!ok) {
+    checkJsonSyntax(source.json, source.glb ? fileName + ": GLB JSON chunk" : fileName);
     explainRefusal(source.json, baseDir, fileName);
     std::string what = oneLine(err.empty() ? warn : err);
     throw Error(fileName + ": " + (what.empty() ? "not a valid glTF file" : what));
