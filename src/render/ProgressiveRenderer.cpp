@@ -13,11 +13,30 @@ namespace {
 
 uint32_t divideRoundUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 
+// The largest memory heap: no single allocation can exceed it.
+VkDeviceSize largestHeap(const VulkanContext& context) {
+  VkPhysicalDeviceMemoryProperties memory;
+  vkGetPhysicalDeviceMemoryProperties(context.physicalDevice(), &memory);
+  VkDeviceSize largest = 0;
+  for (uint32_t i = 0; i < memory.memoryHeapCount; ++i) {
+    largest = std::max(largest, memory.memoryHeaps[i].size);
+  }
+  return largest;
+}
+
+// One vec4 per pixel in one storage buffer; an image beyond what the device
+// can bind or allocate is refused up front with the numbers, not left to a
+// failing vkAllocateMemory.
 VkDeviceSize accumulationBytes(VulkanContext& context, const FlatScene& flat) {
-  VkDeviceSize bytes = VkDeviceSize(flat.info.width) * flat.info.height * sizeof(glm::vec4);
-  if (bytes > context.limits().maxStorageBufferRange) {
-    throw Error(fmt::format("image {}x{} is too large for one accumulation buffer on this device",
-                            flat.info.width, flat.info.height));
+  const VkDeviceSize bytes = VkDeviceSize(flat.info.width) * flat.info.height * sizeof(glm::vec4);
+  const VkDeviceSize limit =
+      std::min<VkDeviceSize>(context.limits().maxStorageBufferRange, largestHeap(context));
+  if (bytes > limit) {
+    throw Error(fmt::format(
+        "image {}x{} is too large for this device: its accumulation buffer needs {} MiB "
+        "({} bytes per pixel), the device allows {} MiB in one buffer, i.e. at most {} pixels",
+        flat.info.width, flat.info.height, bytes >> 20, sizeof(glm::vec4), limit >> 20,
+        limit / sizeof(glm::vec4)));
   }
   return bytes;
 }
@@ -41,7 +60,8 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
       width_(flat_.info.width),
       height_(flat_.info.height),
       sceneBuffers_(context, flat_),
-      accumulation_(context, accumulationBytes(context, flat_), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
+      accumulation_(context, accumulationBytes(context, flat_),
+                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
   accumulation_.fillZero();
   samplesDone_ = options.firstSample;
   if (options.countRays) {
