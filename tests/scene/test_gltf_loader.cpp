@@ -1314,7 +1314,11 @@ TEST_SUITE("scene gltf render") {
         {"Duck/glTF-Binary/Duck.glb", "gltf-duck.png"},
     };
     rt::Renderer renderer(rt::test::gpu(), rt::test::shaderCompiler());
-    for (const auto& [model, output] : models) {
+    for (const auto& entry : models) {
+      // Named references, not a structured binding: clang 14 cannot capture
+      // those in CAPTURE's lambda.
+      const std::string& model = entry.first;
+      const std::string& output = entry.second;
       CAPTURE(model);
       rt::Scene scene = rt::loadGltfScene(*dir / model);
       rt::RenderOptions options;

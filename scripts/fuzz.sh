@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# Fuzzes the loaders of untrusted files (JSON scenes, PLY meshes, glTF
+# models) with libFuzzer under AddressSanitizer + UndefinedBehaviorSanitizer,
+# each target for SECONDS (default 60), seeded from ../shared. The corpus
+# grows in build-asan/fuzz/corpus/<target> and is reused by the next run.
+# A crash, sanitizer report, leak, timeout (10 s for one input) or memory
+# blow-up (2 GiB) keeps its input in build-asan/fuzz/findings/<target>/ and
+# fails the script; re-run that input alone with the printed command.
+# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (targets: scene_json ply gltf)
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+seconds=${1:-60}
+shift || true
+targets=("$@")
+((${#targets[@]})) || targets=(scene_json ply gltf)
+if ! [[ $seconds =~ ^[0-9]+$ ]] || ((seconds < 1)); then
+  echo "fuzz.sh: SECONDS must be a positive integer, got '$seconds'" >&2
+  exit 2
+fi
+
+bash "$root/scripts/build-sanitized.sh"
+shared=$(cd "$root/.." && pwd)/shared
+work=$root/build-asan/fuzz
+
+# seed_files TARGET: the seed inputs (small enough to mutate quickly).
+seed_files() {
+  [[ -d $shared ]] || return 0
+  case $1 in
+    scene_json) find "$shared/scene-format" -name '*.json' -size -256k ;;
+    ply) find "$shared/assets/ply" "$shared/scene-format" -name '*.ply' -size -128k ;;
+    gltf) find "$shared/assets/gltf" "$shared/assets/gltf-invalid" \
+      \( -name '*.gltf' -o -name '*.glb' \) -size -256k ;;
+  esac
+}
+
+summary=()
+failed=0
+for target in "${targets[@]}"; do
+  binary=$work/fuzz_$target
+  [[ -x $binary ]] || { echo "fuzz.sh: no fuzz target '$target'" >&2; exit 2; }
+  seeds=$work/seeds/$target
+  corpus=$work/corpus/$target
+  findings=$work/findings/$target
+  rm -rf "$seeds"
+  mkdir -p "$seeds" "$corpus" "$findings"
+  # Copied under their content hash: seed names repeat across folders.
+  while IFS= read -r file; do
+    cp "$file" "$seeds/$(sha1sum "$file" | cut -c1-16)$(basename "$file" | sed 's/.*\(\.[^.]*\)$/\1/')"
+  done < <(seed_files "$target")
+  log=$work/$target.log
+  echo "fuzz $target: ${seconds}s, $(ls "$seeds" | wc -l) seeds, $(ls "$corpus" | wc -l) corpus inputs"
+  status=0
+  started=$(mktemp)
+  ASAN_OPTIONS=abort_on_error=1:detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    "$binary" "$corpus" "$seeds" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+    -artifact_prefix="$findings/" -print_final_stats=1 -close_fd_mask=1 >"$log" 2>&1 || status=$?
+  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log")
+  cov=$(grep -Eo 'cov: [0-9]+' "$log" | tail -1 | cut -d' ' -f2)
+  summary+=("$(printf '%-11s %10s runs %8s exec/s  cov %6s  status %s' "$target" "${runs:-?}" "${rate:-?}" "${cov:-?}" "$status")")
+  if ((status != 0)); then
+    failed=1
+    grep -E 'ERROR|SUMMARY|fuzz finding|runtime error|==[0-9]+==' "$log" | head -20 >&2 || true
+    find "$findings" -type f -newer "$started" | while IFS= read -r input; do
+      echo "reproduce: $binary $input" >&2
+    done
+    echo "fuzz $target FAILED (log: $log)" >&2
+  fi
+  rm -f "$started"
+done
+printf '%s\n' "target          executions   exec/s  coverage" "${summary[@]}"
+exit $failed

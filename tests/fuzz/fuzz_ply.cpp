@@ -1,0 +1,23 @@
+// libFuzzer target: the PLY loader, from bytes (ASCII and both binary
+// byte orders; the header decides).
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "FuzzSupport.hpp"
+#include "scene/PlyLoader.hpp"
+#include "util/Error.hpp"
+
+namespace {
+constexpr std::string_view kName = "fuzz.ply";
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  try {
+    rt::fuzz::checkMesh(rt::parsePly(bytes, kName));
+  } catch (const rt::Error& error) {
+    rt::fuzz::checkErrorMessage(error.what(), kName);
+  }
+  return 0;
+}

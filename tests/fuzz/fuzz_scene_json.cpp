@@ -1,0 +1,44 @@
+// libFuzzer target: the JSON scene loader, from bytes. The scene seems to sit
+// in a scratch folder where the files the seed scenes reference (PLY meshes,
+// textures) are linked at the same relative places, so inputs derived from
+// the seeds also exercise mesh and texture loading.
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "FuzzSupport.hpp"
+#include "scene/SceneLoader.hpp"
+#include "util/Error.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Larger referenced files would make every input that names them slow.
+constexpr uintmax_t kMaxLinkedBytes = uintmax_t(1) << 20;
+
+fs::path scenePath;
+
+}  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  const fs::path root = rt::fuzz::makeScratchDir("scene");
+  const fs::path sceneDir = root / "scenes" / "examples";
+  std::vector<fs::path> seedRoots;
+  if (const fs::path shared = rt::fuzz::sharedDir(); !shared.empty()) {
+    seedRoots.push_back(shared / "scene-format");
+  }
+  rt::fuzz::linkReferencedFiles(seedRoots, sceneDir, root, kMaxLinkedBytes);
+  scenePath = sceneDir / "fuzz.json";
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  try {
+    rt::fuzz::checkScene(rt::parseScene(text, scenePath));
+  } catch (const rt::Error& error) {
+    rt::fuzz::checkErrorMessage(error.what(), scenePath.string());
+  }
+  return 0;
+}
