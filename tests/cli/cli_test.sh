@@ -95,6 +95,93 @@ expect_error "bad --size" '--size 0x10' "$SCRATCH/good.json" "$SCRATCH/out.png" 
 expect_error "bad --spp" 'spp' "$SCRATCH/good.json" "$SCRATCH/out.png" --spp 0
 expect_error "bad --device" '--device 99' "$SCRATCH/good.json" "$SCRATCH/out.png" --device 99
 
+# --- hostile input: scenes ------------------------------------------------
+write nan.json "${GOOD/\"radius\":1/\"radius\":NaN}"
+expect_error "NaN literal" 'nan\.json: byte [0-9]+' "$SCRATCH/nan.json" "$SCRATCH/out.png"
+write overflow.json "${GOOD/\"radius\":1/\"radius\":1e400}"
+expect_error "number overflow" 'overflow\.json: byte [0-9]+: number overflow' "$SCRATCH/overflow.json" "$SCRATCH/out.png"
+write samples.json "${GOOD/\"nbounces\":2/\"nbounces\":2,\"nsamples\":1000000000000}"
+expect_error "absurd sample count" 'samples\.json: nsamples: must be between' "$SCRATCH/samples.json" "$SCRATCH/out.png"
+write fov.json "${GOOD/\"fov\":45/\"fov\":-45}"
+expect_error "negative fov" 'fov\.json: camera\.fov' "$SCRATCH/fov.json" "$SCRATCH/out.png"
+printf '%0.s[' $(seq 20000) >"$SCRATCH/deep.json"
+expect_error "deep nesting" 'deep\.json: byte [0-9]+' "$SCRATCH/deep.json" "$SCRATCH/out.png"
+write control.json "${GOOD/\"type\":\"sphere\"/\"type\":\"sp\\nhe\\u001bre\"}"
+expect_error "control characters in a message" "control\\.json: scene\\.shapes\\[0\\]\\.type: unknown shape type 'sp\\\\nhe\\\\x1Bre'" "$SCRATCH/control.json" "$SCRATCH/out.png"
+mkdir -p "$SCRATCH/folder.json"
+expect_error "a folder as the scene" 'folder\.json: cannot open' "$SCRATCH/folder.json" "$SCRATCH/out.png"
+expect_error "image too large for the device" 'too large for this device' "$SCRATCH/good.json" "$SCRATCH/out.png" --size 16384x16384 -q
+
+# --- hostile input: PLY meshes and textures --------------------------------
+# with_mesh NAME FILE: good.json with its sphere replaced by a trimesh from FILE.
+with_mesh() { write "$1" "${GOOD/\"type\":\"sphere\",\"center\":\[0,0,-3\],\"radius\":1/\"type\":\"trimesh\",\"file\":\"$2\"}"; }
+# with_texture NAME FILE: good.json whose material uses FILE as its texture.
+with_texture() { write "$1" "${GOOD/\"specularexponent\":10/\"specularexponent\":10,\"tPath\":\"$2\"}"; }
+PLY_HEAD='ply
+format ascii 1.0
+element vertex 3
+property float x
+property float y
+property float z'
+write huge-count.ply "$PLY_HEAD
+element face 1000000000000
+property list uchar int vertex_indices
+end_header
+0 0 0
+1 0 0
+0 1 0
+3 0 1 2
+"
+write short.ply "${PLY_HEAD/ascii/binary_little_endian}
+element face 1
+property list uchar int vertex_indices
+end_header
+abcdef"
+write empty.ply ''
+head -c 256 /dev/urandom >"$SCRATCH/noise.ply"
+mkdir -p "$SCRATCH/folder.ply"
+for mesh in huge-count short empty noise folder missing; do
+  with_mesh "mesh-$mesh.json" "$mesh.ply"
+done
+expect_error "PLY: 1e12 faces declared" "mesh-huge-count\.json: scene\.shapes\[0\]\.file: .*huge-count\.ply: byte [0-9]+: element 'face' declares 1000000000000" "$SCRATCH/mesh-huge-count.json" "$SCRATCH/out.png"
+expect_error "PLY: truncated binary" 'mesh-short\.json: scene\.shapes\[0\]\.file: .*short\.ply: byte [0-9]+' "$SCRATCH/mesh-short.json" "$SCRATCH/out.png"
+expect_error "PLY: empty" 'mesh-empty\.json: scene\.shapes\[0\]\.file: .*empty\.ply: byte 0: empty file' "$SCRATCH/mesh-empty.json" "$SCRATCH/out.png"
+expect_error "PLY: noise" 'mesh-noise\.json: scene\.shapes\[0\]\.file: .*noise\.ply: byte 0: not a PLY file' "$SCRATCH/mesh-noise.json" "$SCRATCH/out.png"
+expect_error "PLY: a folder" 'mesh-folder\.json: scene\.shapes\[0\]\.file: mesh file not found: folder\.ply' "$SCRATCH/mesh-folder.json" "$SCRATCH/out.png"
+expect_error "PLY: missing" 'mesh-missing\.json: scene\.shapes\[0\]\.file: mesh file not found: missing\.ply' "$SCRATCH/mesh-missing.json" "$SCRATCH/out.png"
+write empty.png ''
+head -c 256 /dev/urandom >"$SCRATCH/noise.png"
+printf '\x89PNG\r\n\x1a\n\0\0\0\rIHDR\x7f\xff\xff\xff\x7f\xff\xff\xff\x08\x06\0\0\0' >"$SCRATCH/giant.png"
+mkdir -p "$SCRATCH/folder.png"
+for texture in empty noise giant folder missing; do
+  with_texture "texture-$texture.json" "$texture.png"
+done
+for texture in empty noise giant; do
+  expect_error "texture: $texture" "texture-$texture\.json: scene\.shapes\[0\]\.material\.tPath: cannot use texture: .*$texture\.png" "$SCRATCH/texture-$texture.json" "$SCRATCH/out.png"
+done
+for texture in folder missing; do
+  expect_error "texture: $texture" "texture-$texture\.json: scene\.shapes\[0\]\.material\.tPath: texture file not found: $texture\.png" "$SCRATCH/texture-$texture.json" "$SCRATCH/out.png"
+done
+
+# --- hostile input: glTF ------------------------------------------------------
+write empty.gltf ''
+write syntax.gltf '{"asset":{"version":"2.0"},,}'
+head -c 256 /dev/urandom >"$SCRATCH/noise.glb"
+printf 'glTF\2\0\0\0\377\377\0\0' >"$SCRATCH/truncated.glb"
+mkdir -p "$SCRATCH/folder.gltf"
+expect_error "glTF: empty" 'empty\.gltf: empty file' "$SCRATCH/empty.gltf" "$SCRATCH/out.png"
+expect_error "glTF: syntax error" 'syntax\.gltf: byte 28: ' "$SCRATCH/syntax.gltf" "$SCRATCH/out.png"
+expect_error "glTF: noise" 'noise\.glb: ' "$SCRATCH/noise.glb" "$SCRATCH/out.png"
+expect_error "glTF: truncated GLB" 'truncated\.glb: GLB: truncated' "$SCRATCH/truncated.glb" "$SCRATCH/out.png"
+expect_error "glTF: a folder" 'folder\.gltf: cannot open: not a regular file' "$SCRATCH/folder.gltf" "$SCRATCH/out.png"
+expect_error "glTF: missing" 'nope\.glb: cannot open' "$SCRATCH/nope.glb" "$SCRATCH/out.png"
+if [[ -d "$SHARED/assets/gltf-invalid" ]]; then
+  invalid=$SHARED/assets/gltf-invalid
+  expect_error "glTF: node cycle" 'RecursiveNodes\.gltf: nodes\[0\]: .*cycle' "$invalid/assimp-testmodels-deb/glTF2/RecursiveNodes/RecursiveNodes.gltf" "$SCRATCH/out.png"
+  expect_error "glTF: index out of range" 'IndexOutOfRange\.gltf: meshes\[0\]\.primitives\[0\]\.indices' "$invalid/assimp-testmodels-deb/glTF2/IndexOutOfRange/IndexOutOfRange.gltf" "$SCRATCH/out.png"
+  expect_error "glTF: infinite positions" 'BoxWithInfinites\.glb: meshes\[0\].*not finite' "$invalid/assimp-testmodels-deb/glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb" "$SCRATCH/out.png"
+fi
+
 # --- official scenes load and render (small) -------------------------------
 if [[ -d "$SHARED/scene-format/official" ]]; then
   while IFS= read -r scene; do
