@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <regex>
 
 #include "util/Error.hpp"
@@ -21,6 +23,19 @@ std::optional<int> parse(CLI::App& app, int argc, char** argv) {
     return 2;
   }
   return std::nullopt;
+}
+
+CLI::Validator positiveFiniteNumber() {
+  return CLI::Validator(
+      [](const std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(value) || !(value > 0.0)) {
+          return "must be a positive, finite number, got '" + text + "'";
+        }
+        return {};
+      },
+      "POSITIVE");
 }
 
 Size parseSize(const std::string& text) {

@@ -25,6 +25,10 @@ struct Size {
   uint32_t height = 0;
 };
 
+// Checks that an option is a positive, finite number (CLI::PositiveNumber
+// lets NaN through and prints DBL_MAX in full).
+CLI::Validator positiveFiniteNumber();
+
 // "WIDTHxHEIGHT", each side 1..kMaxImageSide; throws rt::Error naming --size.
 Size parseSize(const std::string& text);
 

@@ -192,12 +192,12 @@ int runRenderCommand(int argc, char** argv) {
   app.add_option("--shader-dir", cli.shaderDir,
                  "Folder with the GLSL shaders (default: built-in path)");
   app.add_option("--exposure", cli.exposure, "Extra exposure factor applied before tone mapping")
-      ->check(CLI::PositiveNumber);
+      ->check(rt::cli::positiveFiniteNumber());
   app.add_option("--samples", cli.sampleRange,
                  "Render only sample indices FROM:TO of the --spp samples (merge the pieces "
                  "with `raytracer merge`; write .exr, whose alpha holds the sample count)");
   app.add_option("--time", cli.timeBudget, "Stop after this many seconds (whole passes kept)")
-      ->check(CLI::PositiveNumber);
+      ->check(rt::cli::positiveFiniteNumber());
   app.add_flag("-q,--quiet", cli.quiet, "No progress bar or summary");
   if (std::optional<int> status = rt::cli::parse(app, argc, argv)) return *status;
   try {

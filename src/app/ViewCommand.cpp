@@ -87,7 +87,7 @@ int runViewCommand(int argc, char** argv) {
   app.add_option("--shading", cli.shading, "Shading model (as the render command)")
       ->check(CLI::IsMember({"standard", "coursework"}));
   app.add_option("--exposure", options.exposure, "Extra exposure factor")
-      ->check(CLI::PositiveNumber);
+      ->check(rt::cli::positiveFiniteNumber());
   app.add_flag("-v,--verbose", options.verbose, "Log every frame (default: about once a second)");
   if (std::optional<int> status = rt::cli::parse(app, argc, argv)) return *status;
   try {

@@ -93,6 +93,9 @@ expect_error "bad extension" 'out\.bmp.*unsupported' "$SCRATCH/good.json" "$SCRA
 expect_error "unwritable output" 'cannot write' "$SCRATCH/good.json" "$SCRATCH/no/such/dir/out.png" -q
 expect_error "bad --size" '--size 0x10' "$SCRATCH/good.json" "$SCRATCH/out.png" --size 0x10
 expect_error "bad --spp" 'spp' "$SCRATCH/good.json" "$SCRATCH/out.png" --spp 0
+expect_error "NaN --exposure" '--exposure: must be a positive, finite number' "$SCRATCH/good.json" "$SCRATCH/out.png" --exposure nan
+expect_error "negative --exposure" '--exposure: must be a positive, finite number' "$SCRATCH/good.json" "$SCRATCH/out.png" --exposure -1
+expect_error "NaN --time" '--time: must be a positive, finite number' "$SCRATCH/good.json" "$SCRATCH/out.png" --time nan
 expect_error "bad --device" '--device 99' "$SCRATCH/good.json" "$SCRATCH/out.png" --device 99
 
 # --- hostile input: scenes ------------------------------------------------
