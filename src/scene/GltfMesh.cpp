@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "scene/GltfAccessor.hpp"
+#include "scene/UnitVector.hpp"
 
 namespace rt::gltf {
 namespace {
@@ -66,12 +67,7 @@ std::vector<glm::vec3> readNormals(Context& context, const PrimitiveRef& ref, si
       toVectors<glm::vec3>(readAttribute(context, ref, "NORMAL", AccessorUse::Vec3, vertexCount));
   size_t bad = 0;
   for (glm::vec3& n : normals) {
-    float length = glm::length(n);
-    if (!(length > 1e-20f) || !std::isfinite(length)) {
-      ++bad;
-    } else {
-      n /= length;
-    }
+    if (!normalizeInPlace(n)) ++bad;
   }
   if (bad == 0) return normals;
   context.warn(ref.where + ".attributes.NORMAL",

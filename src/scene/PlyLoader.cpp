@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "scene/MessageText.hpp"
+#include "scene/UnitVector.hpp"
 #include "util/Error.hpp"
 
 namespace rt {
@@ -807,10 +808,9 @@ void normalizeNormals(TriangleMesh& mesh) {
   std::vector<bool> missing(normals.size(), false);
   bool anyMissing = false;
   for (size_t i = 0; i < normals.size(); ++i) {
-    const float length = glm::length(normals[i]);
-    missing[i] = !(length > 0.0f && std::isfinite(length));
+    missing[i] = !normalizeInPlace(normals[i]);
     anyMissing = anyMissing || missing[i];
-    normals[i] = missing[i] ? glm::vec3(0.0f) : normals[i] / length;
+    if (missing[i]) normals[i] = glm::vec3(0.0f);
   }
   if (!anyMissing) return;
   for (const glm::uvec3& face : mesh.faces) {
@@ -821,9 +821,7 @@ void normalizeNormals(TriangleMesh& mesh) {
     }
   }
   for (size_t i = 0; i < normals.size(); ++i) {
-    if (!missing[i]) continue;
-    const float length = glm::length(normals[i]);
-    normals[i] = length > 0.0f && std::isfinite(length) ? normals[i] / length : glm::vec3(0, 0, 1);
+    if (missing[i] && !normalizeInPlace(normals[i])) normals[i] = glm::vec3(0, 0, 1);
   }
 }
 

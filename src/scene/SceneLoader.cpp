@@ -16,6 +16,7 @@
 #include "scene/JsonReader.hpp"
 #include "scene/MessageText.hpp"
 #include "scene/PlyLoader.hpp"
+#include "scene/UnitVector.hpp"
 #include "util/Error.hpp"
 
 namespace rt {
@@ -209,10 +210,9 @@ void readSampling(JsonObject& top, JsonObject& camera, RenderSettings& settings)
 // ------------------------------------------------------------------- camera
 
 glm::vec3 unitVector(const JsonNode& node) {
-  const glm::vec3 value = node.vec3();
-  const float length = glm::length(value);
-  if (!(length > 0.0f && std::isfinite(length))) node.fail("must be a non-zero, finite vector");
-  return value / length;
+  glm::vec3 value = node.vec3();
+  if (!normalizeInPlace(value)) node.fail("must be a non-zero, finite vector");
+  return value;
 }
 
 // Family A `lookat` is a view direction, family B `lookAt` a target point
@@ -226,12 +226,11 @@ glm::vec3 readForward(JsonObject& camera, glm::vec3 position) {
   }
   if (direction) return unitVector(*direction);
   if (!target) return kDefaultForward;
-  const glm::vec3 offset = target->vec3() - position;
-  const float length = glm::length(offset);
-  if (!(length > 0.0f && std::isfinite(length))) {
-    target->fail("target point must differ from the camera position");
+  glm::vec3 offset = target->vec3() - position;
+  if (!normalizeInPlace(offset)) {
+    target->fail("target point must differ from the camera position by a finite offset");
   }
-  return offset / length;
+  return offset;
 }
 
 // `up` is kept as given (the ray builder orthogonalises it) but must span an
@@ -240,11 +239,11 @@ glm::vec3 readUp(JsonObject& camera, glm::vec3 forward) {
   const std::optional<JsonNode> node = camera.optionalOneOf({"up", "upVector"});
   const glm::vec3 up = node ? node->vec3() : kDefaultUp;
   const std::string path = node ? node->path() : camera.childPath("up");
-  const float length = glm::length(up);
-  if (!(length > 0.0f && std::isfinite(length))) {
+  glm::vec3 direction = up;
+  if (!normalizeInPlace(direction)) {
     camera.diagnostics().fail(path, "must be a non-zero, finite vector");
   }
-  if (glm::length(glm::cross(forward, up / length)) < kParallelTolerance) {
+  if (glm::length(glm::cross(forward, direction)) < kParallelTolerance) {
     camera.diagnostics().fail(path, node ? "is parallel to the view direction"
                                          : "missing, and the default up (0, 1, 0) is parallel "
                                            "to the view direction");

@@ -2,16 +2,21 @@
 // excerpts come from the file, so they may carry line breaks, terminal escape
 // sequences or bytes that are not UTF-8. Every error and warning must still
 // be one printable line; syntax errors in glTF JSON give a byte offset.
+// Vectors may be tiny (denormal) or huge and must still normalise to unit
+// length (a fuzzer finding: denormal PLY normals came out 9% too long).
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <glm/geometric.hpp>
 #include <string>
 
 #include "scene/GltfLoader.hpp"
 #include "scene/MessageText.hpp"
 #include "scene/PlyLoader.hpp"
 #include "scene/SceneLoader.hpp"
+#include "scene/UnitVector.hpp"
 #include "util/Error.hpp"
 
 namespace fs = std::filesystem;
@@ -143,5 +148,51 @@ TEST_SUITE("scene hostile messages") {
     const std::string required = errorOf([&] { rt::loadGltfScene(extension); });
     CHECK(isPrintableLine(required));
     CHECK(contains(required, "requires extension EXT_\\n\\x1B[31m"));
+  }
+}
+
+TEST_SUITE("scene hostile vectors") {
+  bool isUnit(const glm::vec3& v) { return std::abs(glm::length(v) - 1.0f) < 1e-5f; }
+
+  TEST_CASE("normalizeInPlace: denormal and huge vectors become unit; zero and NaN do not") {
+    for (glm::vec3 v : {glm::vec3(2.2e-39f, 2.3e-39f, 1.1e-39f), glm::vec3(1e-45f, 0.0f, 0.0f),
+                        glm::vec3(3e38f, -3e38f, 3e38f), glm::vec3(0.0f, 3.0f, 4.0f)}) {
+      CAPTURE(v.x);
+      REQUIRE(rt::normalizeInPlace(v));
+      CHECK(isUnit(v));
+    }
+    glm::vec3 both(2e-39f, 2e-39f, 0.0f);
+    REQUIRE(rt::normalizeInPlace(both));
+    CHECK(both.x == doctest::Approx(std::sqrt(0.5f)));
+    for (glm::vec3 v : {glm::vec3(0.0f), glm::vec3(NAN, 1.0f, 0.0f), glm::vec3(INFINITY, 0, 0)}) {
+      const glm::vec3 before = v;
+      CHECK_FALSE(rt::normalizeInPlace(v));
+      CHECK((v == before || std::isnan(v.x)));
+    }
+  }
+
+  TEST_CASE("PLY: denormal normals load as unit normals; denormal faces get a unit fallback") {
+    const std::string header =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const rt::TriangleMesh tiny = rt::parsePly(header +
+                                                   "0 0 0 2.2e-39 2.3e-39 1.1e-39\n"
+                                                   "1 0 0 0 0 1e-45\n"
+                                                   "0 1 0 3e38 3e38 0\n3 0 1 2\n",
+                                               "tiny.ply");
+    for (const glm::vec3& n : tiny.normals) CHECK(isUnit(n));
+    const rt::TriangleMesh fallback = rt::parsePly(header +
+                                                       "0 0 0 0 0 0\n"
+                                                       "1e-39 0 0 0 0 0\n"
+                                                       "0 1e-39 0 0 0 0\n3 0 1 2\n",
+                                                   "fallback.ply");
+    for (const glm::vec3& n : fallback.normals) CHECK(isUnit(n));
+  }
+
+  TEST_CASE("JSON scenes: a denormal view direction or target offset gives a unit forward") {
+    std::string scene = sceneWithShape(kSphere);
+    scene.replace(scene.find("[0,0,-1]"), 8, "[1e-39,2e-39,-1e-39]");
+    CHECK(isUnit(rt::parseScene(scene, "tiny.json").camera.forward));
   }
 }
