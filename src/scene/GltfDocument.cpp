@@ -9,6 +9,7 @@
 #include <fstream>
 #include <optional>
 #include <string_view>
+#include <utility>
 
 #include "scene/GltfContext.hpp"
 #include "util/Error.hpp"
@@ -114,6 +115,34 @@ std::string oneLine(const std::string& text) {
   return out;
 }
 
+// tinygltf quotes whole data URIs (megabytes of base64) and other values
+// from the file in some messages: data URIs keep their start, and the whole
+// message at most kMaxQuotedMessage characters.
+constexpr size_t kMaxQuotedMessage = 300;
+
+std::string shortenDataUris(const std::string& text) {
+  constexpr size_t kKept = 48;
+  std::string out;
+  size_t pos = 0;
+  while (pos < text.size()) {
+    const size_t start = text.find("data:", pos);
+    if (start == std::string::npos) break;
+    size_t end = text.find_first_of(" '\"", start);
+    if (end == std::string::npos) end = text.size();
+    out.append(text, pos, start - pos);
+    if (end - start > kKept + 3) {
+      out.append(text, start, kKept);
+      out += "...";
+    } else {
+      out.append(text, start, end - start);
+    }
+    pos = end;
+  }
+  out.append(text, std::min(pos, text.size()), std::string::npos);
+  if (out.size() > kMaxQuotedMessage) out = out.substr(0, kMaxQuotedMessage - 3) + "...";
+  return out;
+}
+
 void appendLines(const std::string& fileName, const std::string& text,
                  std::vector<std::string>& lines) {
   size_t start = 0;
@@ -121,7 +150,7 @@ void appendLines(const std::string& fileName, const std::string& text,
     size_t end = text.find('\n', start);
     if (end == std::string::npos) end = text.size();
     std::string line = text.substr(start, end - start);
-    if (!line.empty()) lines.push_back(fileName + ": " + line);
+    if (!line.empty()) lines.push_back(fileName + ": " + shortenDataUris(line));
     start = end + 1;
   }
 }
@@ -331,6 +360,12 @@ void checkImageViews(std::string_view json, const std::string& fileName) {
   }
 }
 
+// nlohmann prefixes "[json.exception.parse_error.101] "; users need only the rest.
+std::string withoutExceptionId(std::string_view message) {
+  const size_t idEnd = message.find("] ");
+  return std::string(idEnd == std::string_view::npos ? message : message.substr(idEnd + 2));
+}
+
 // tinygltf reports JSON syntax errors as "[json.exception...] parse error at
 // line L, column C" (and an empty file as "JSON string too short"); messages
 // say where in bytes, as the scene loader's do. A parse that keeps nothing
@@ -341,12 +376,103 @@ void checkJsonSyntax(std::string_view json, const std::string& where) {
   try {
     const nlohmann::json nothing = nlohmann::json::parse(json.begin(), json.end(), keepNothing);
   } catch (const nlohmann::json::parse_error& error) {
-    const std::string_view message = error.what();
-    const size_t idEnd = message.find("] ");
     throw Error(where + ": byte " + std::to_string(error.byte) + ": " +
-                std::string(idEnd == std::string_view::npos ? message : message.substr(idEnd + 2)));
-  } catch (const nlohmann::json::exception&) {
-    // Not a syntax error (e.g. a number too large): tinygltf's message stands.
+                withoutExceptionId(error.what()));
+  } catch (const nlohmann::json::out_of_range& error) {
+    // A number beyond double ("number overflow parsing '1e999'") comes
+    // without an offset: point at the number's text.
+    const std::string message = withoutExceptionId(error.what());
+    const size_t open = message.find('\'');
+    const size_t close = message.rfind('\'');
+    const size_t found =
+        open < close ? json.find(std::string_view(message).substr(open + 1, close - open - 1))
+                     : std::string_view::npos;
+    throw Error(where + ": byte " +
+                std::to_string(found == std::string_view::npos ? 0 : found + 1) + ": " + message);
+  }
+}
+
+// Names of the top-level arrays whose objects tinygltf calls `type` in
+// "'<key>' property is missing in <type>." (nested objects are not listed).
+std::optional<std::string> arrayOfType(std::string_view type) {
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 13> kArrays = {{
+      {"Accessor", "accessors"},
+      {"Animation", "animations"},
+      {"Buffer", "buffers"},
+      {"BufferView", "bufferViews"},
+      {"Camera", "cameras"},
+      {"Image", "images"},
+      {"Material", "materials"},
+      {"Mesh", "meshes"},
+      {"Node", "nodes"},
+      {"Sampler", "samplers"},
+      {"Scene", "scenes"},
+      {"Skin", "skins"},
+      {"Texture", "textures"},
+  }};
+  for (const auto& [name, array] : kArrays) {
+    if (name == type) return std::string(array);
+  }
+  return std::nullopt;
+}
+
+// The top-level arrays `names` of the document (without data URIs).
+nlohmann::json topLevelArrays(std::string_view json, const std::vector<std::string>& names) {
+  auto keepArrays = [&names](int depth, nlohmann::json::parse_event_t event,
+                             nlohmann::json& parsed) {
+    if (event != nlohmann::json::parse_event_t::key) return true;
+    if (depth == 1) return std::find(names.begin(), names.end(), parsed) != names.end();
+    return parsed != "uri";
+  };
+  return nlohmann::json::parse(json.begin(), json.end(), keepArrays, false);
+}
+
+// The first element of `array` (an array of objects) that `bad` accepts.
+template <typename Predicate>
+std::optional<size_t> firstElement(const nlohmann::json& root, const std::string& array,
+                                   Predicate bad) {
+  if (!root.is_object() || !root.contains(array) || !root[array].is_array()) return std::nullopt;
+  const nlohmann::json& items = root[array];
+  for (size_t i = 0; i < items.size(); ++i) {
+    if (items[i].is_object() && bad(items[i])) return i;
+  }
+  return std::nullopt;
+}
+
+// tinygltf's "'byteLength' property is missing in BufferView." and "'count'
+// property is not a positive integer." name no object; when the complaint is
+// one of these two, find the first object it fits and say where it is.
+void locateComplaint(std::string_view json, const std::string& complaint,
+                     const std::string& fileName) {
+  const size_t keyEnd = complaint.find("' property is ");
+  if (complaint.empty() || complaint[0] != '\'' || keyEnd == std::string::npos) return;
+  const std::string key = complaint.substr(1, keyEnd - 1);
+  const std::string rest = complaint.substr(keyEnd + 14);
+  const std::string missingIn = "missing in ";
+  if (rest.rfind(missingIn, 0) == 0 && rest.size() > missingIn.size() && rest.back() == '.') {
+    std::string type = rest.substr(missingIn.size(), rest.size() - missingIn.size() - 1);
+    std::erase_if(type, [](char c) { return c == '`' || c == '\''; });  // "`Accessor'" too
+    const std::optional<std::string> array = arrayOfType(type);
+    if (!array) return;
+    const nlohmann::json root = topLevelArrays(json, {*array});
+    const auto at =
+        firstElement(root, *array, [&](const nlohmann::json& o) { return !o.contains(key); });
+    if (at)
+      throw Error(fileName + ": " + item(array->c_str(), *at) + "." + key + ": missing (required)");
+  } else if (rest == "not a positive integer.") {
+    const std::vector<std::string> arrays = {"buffers", "bufferViews", "accessors"};
+    const nlohmann::json root = topLevelArrays(json, arrays);
+    for (const std::string& array : arrays) {
+      const auto bad = [&](const nlohmann::json& o) {
+        return o.contains(key) && !o[key].is_number_unsigned();
+      };
+      if (const auto at = firstElement(root, array, bad)) {
+        std::string value = root[array][*at][key].dump();
+        if (value.size() > 40) value = value.substr(0, 40) + "...";
+        throw Error(fileName + ": " + item(array.c_str(), *at) + "." + key +
+                    ": must be a non-negative integer, got " + value);
+      }
+    }
   }
 }
 
@@ -470,7 +596,8 @@ tinygltf::Model readModel(const fs::path& file, std::vector<std::string>& warnin
   if (!ok) {
     checkJsonSyntax(source.json, source.glb ? fileName + ": GLB JSON chunk" : fileName);
     explainRefusal(source.json, baseDir, fileName);
-    std::string what = oneLine(err.empty() ? warn : err);
+    std::string what = shortenDataUris(oneLine(err.empty() ? warn : err));
+    locateComplaint(source.json, what.substr(0, what.find("; ")), fileName);
     throw Error(fileName + ": " + (what.empty() ? "not a valid glTF file" : what));
   }
   appendLines(fileName, warn, warnings);

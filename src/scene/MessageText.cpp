@@ -1,5 +1,6 @@
 #include "scene/MessageText.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 
@@ -54,7 +55,8 @@ void appendEscaped(std::string& out, char c) {
 
 std::string printableLine(std::string_view text) {
   std::string out;
-  out.reserve(text.size());
+  out.reserve(std::min(text.size(), kMaxMessageLength));
+  size_t fits = 0;  // length of the longest prefix that leaves room for "..."
   for (size_t pos = 0; pos < text.size();) {
     const auto c = static_cast<uint8_t>(text[pos]);
     if (c >= 0x20 && c < 0x7F) {
@@ -65,6 +67,12 @@ std::string printableLine(std::string_view text) {
       pos += length;
     } else {
       appendEscaped(out, text[pos++]);
+    }
+    if (out.size() <= kMaxMessageLength - 3) fits = out.size();
+    if (out.size() > kMaxMessageLength) {
+      out.resize(fits);
+      out += "...";
+      break;
     }
   }
   return out;

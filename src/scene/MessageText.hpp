@@ -4,6 +4,7 @@
 // printable line.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -13,8 +14,13 @@
 
 namespace rt {
 
-// `text` with control characters written as \n, \r, \t or \xNN, and bytes
-// that do not form UTF-8 as \xNN. Idempotent: printable text is unchanged.
+// Longer messages are cut (ending in "..."): quoted excerpts can be
+// megabytes (a data URI, a JSON token), while what matters comes first.
+constexpr size_t kMaxMessageLength = 1000;
+
+// `text` with control characters written as \n, \r, \t or \xNN, bytes that
+// do not form UTF-8 as \xNN, and cut to kMaxMessageLength characters.
+// Idempotent: a printable line of at most that length is unchanged.
 std::string printableLine(std::string_view text);
 
 // Every warning made printable.

@@ -85,6 +85,18 @@ TEST_SUITE("scene hostile messages") {
     CHECK(rt::printableLine(once) == once);
   }
 
+  TEST_CASE("printableLine cuts long text, never inside an escape") {
+    const std::string cut = rt::printableLine(std::string(5000, 'a'));
+    CHECK(cut.size() == rt::kMaxMessageLength);
+    CHECK(cut.substr(cut.size() - 4) == "a...");
+    CHECK(rt::printableLine(cut) == cut);
+    const std::string escapes = rt::printableLine(std::string(5000, '\x01'));
+    CHECK(escapes.size() <= rt::kMaxMessageLength);
+    CHECK(escapes.substr(escapes.size() - 7) == "\\x01...");
+    const std::string exact(rt::kMaxMessageLength, 'b');
+    CHECK(rt::printableLine(exact) == exact);
+  }
+
   TEST_CASE("JSON scenes: file text in errors and warnings stays on one line") {
     const std::string badType =
         sceneWithShape(R"({"type":"sp\nhe\u001bre","center":[0,0,-3],"radius":1})");
@@ -142,12 +154,50 @@ TEST_SUITE("scene hostile messages") {
     CHECK(contains(errorOf([&] { rt::loadGltfScene(binary); }),
                    binary.string() + ": GLB JSON chunk: byte 33: "));
 
+    const fs::path overflow =
+        writeScratch("overflow.gltf", R"({"asset":{"version":"2.0"},"x":[1e999]})");
+    CHECK(errorOf([&] { rt::loadGltfScene(overflow); }) ==
+          overflow.string() + ": byte 33: number overflow parsing '1e999'");
+
     const fs::path extension =
         writeScratch("extension.gltf",
                      R"({"asset":{"version":"2.0"},"extensionsRequired":["EXT_\n\u001b[31m"]})");
     const std::string required = errorOf([&] { rt::loadGltfScene(extension); });
     CHECK(isPrintableLine(required));
     CHECK(contains(required, "requires extension EXT_\\n\\x1B[31m"));
+  }
+}
+
+TEST_SUITE("scene hostile gltf") {
+  TEST_CASE("glTF: tinygltf's complaints about a property gain the object's path") {
+    const std::string head = R"({"asset":{"version":"2.0"},)";
+    const fs::path noLength = writeScratch(
+        "nolength.gltf",
+        head +
+            R"("buffers":[{"byteLength":4,"uri":"data:application/octet-stream;base64,AAAAAA=="}],
+        "bufferViews":[{"buffer":0,"byteLength":4},{"buffer":0}]})");
+    CHECK(errorOf([&] { rt::loadGltfScene(noLength); }) ==
+          noLength.string() + ": bufferViews[1].byteLength: missing (required)");
+    const fs::path negative = writeScratch(
+        "negative.gltf",
+        head +
+            R"("buffers":[{"byteLength":-5,"uri":"data:application/octet-stream;base64,AAAA"}]})");
+    CHECK(errorOf([&] { rt::loadGltfScene(negative); }) ==
+          negative.string() + ": buffers[0].byteLength: must be a non-negative integer, got -5");
+    const fs::path noCount = writeScratch(
+        "nocount.gltf", head + R"("accessors":[{"componentType":5126,"type":"VEC3"}]})");
+    CHECK(errorOf([&] { rt::loadGltfScene(noCount); }) ==
+          noCount.string() + ": accessors[0].count: missing (required)");
+  }
+
+  TEST_CASE("glTF: data URIs quoted by tinygltf are shortened") {
+    const std::string data = "data:application/octet-stream;base64," + std::string(4000, 'Q');
+    const fs::path file = writeScratch(
+        "datauri.gltf",
+        R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":9,"uri":")" + data + R"("}]})");
+    const std::string error = errorOf([&] { rt::loadGltfScene(file); });
+    CHECK(error.size() < 400);
+    CHECK(contains(error, "data:application/octet-stream;base64,QQQQQQQQQQQ..."));
   }
 }
 
