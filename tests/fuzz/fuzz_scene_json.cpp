@@ -1,7 +1,7 @@
-// libFuzzer target: the JSON scene loader, from bytes. The scene seems to sit
-// in a scratch folder where the files the seed scenes reference (PLY meshes,
-// textures) are linked at the same relative places, so inputs derived from
-// the seeds also exercise mesh and texture loading.
+// libFuzzer target: the JSON scene loader, from bytes. The scene is given a
+// path in a scratch folder where the files the seed scenes reference (PLY
+// meshes, textures) are linked at the same relative places, so inputs derived
+// from the seeds also exercise mesh and texture loading.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
