@@ -76,12 +76,69 @@ vec2 jitteredPoint(uint s, uint count, uint key) {
   return min(vec2(x, y), vec2(0.99999994));
 }
 
-// The 2D sample of one dimension pair for (pixel, sample, seed).
+// --- Owen-scrambled Sobol points ---------------------------------------------
+// An invertible hash in which output bit j depends only on input bits 0..j
+// (additions, odd multiplications and x ^= x * even only carry upwards).
+// Run on bit-reversed values it flips every bit by a hash of the bits above
+// it: nested uniform (Owen) scrambling, approximated with a few multiplies.
+uint carryHash(uint x, uint seed) {
+  x += seed;
+  x ^= x * 0x6e2a4c18u;
+  x *= (seed >> 9u) | 1u;
+  x ^= x * 0x3f58d0a2u;
+  x += seed >> 17u;
+  x ^= x * 0xb4c29e06u;
+  x *= 0x2f7a1d93u;
+  x ^= x * 0x91e36b5cu;
+  return x;
+}
+
+uint owenScramble(uint value, uint seed) {
+  return bitfieldReverse(carryHash(bitfieldReverse(value), seed));
+}
+
+// Second dimension of the Sobol sequence (primitive polynomial x + 1): its
+// direction numbers are the rows of Pascal's triangle mod 2, v_k = v_{k-1} ^
+// (v_{k-1} >> 1). The first dimension is the bit-reversed index.
+uint sobolSecond(uint index) {
+  uint result = 0u;
+  for (uint v = 0x80000000u; index != 0u; index >>= 1u, v ^= v >> 1u) {
+    if ((index & 1u) != 0u) result ^= v;
+  }
+  return result;
+}
+
+// Point `index` of a 2D Sobol sequence under three keys: the index is Owen
+// scrambled first (each prefix of 2^k indices lands on one aligned block of
+// 2^k Sobol points, in shuffled order, so every power-of-two prefix is still
+// a (0,k,2)-net), then each coordinate is Owen scrambled.
+vec2 sobolPoint(uint index, uvec3 keys) {
+  uint shuffled = owenScramble(index, keys.x);
+  uint x = bitfieldReverse(carryHash(shuffled, keys.y));  // owenScramble(reverse(shuffled))
+  uint y = owenScramble(sobolSecond(shuffled), keys.z);
+  return vec2(unitFloat(x), unitFloat(y));
+}
+
+// Even and odd sample indices form two independently randomised replicates
+// of the stratified samplers: the error estimate (ErrorEstimate.hpp)
+// compares their means, which is only unbiased if the two share no strata.
+uint replicateOf(uint sampleIndex) { return sampleIndex & 1u; }
+
+// The 2D sample of one dimension pair for (pixel, sample, seed). Each pair of
+// dimensions gets its own keys (a padded sampler), so pairs are decorrelated.
 vec2 samplePair(uint samplerKind, uint pixel, uint sampleIndex, uint samplesTotal, uint dimension,
                 uint seed) {
-  if (samplerKind == RT_SAMPLER_JITTERED && sampleIndex < samplesTotal) {
-    uint key = hashCounter(uvec4(pixel, dimension, seed, 0x6a09e667u)).x;
-    return jitteredPoint(sampleIndex, samplesTotal, key);
+  uint replicate = replicateOf(sampleIndex);
+  uint local = sampleIndex >> 1u;
+  if (samplerKind == RT_SAMPLER_SOBOL) {
+    uvec4 keys = hashCounter(uvec4(pixel, dimension, seed, 0x5b0b01u + replicate));
+    return sobolPoint(local, keys.xyz);
+  }
+  // Replicate 0 holds ceil(total / 2) samples, replicate 1 the rest.
+  uint replicateTotal = (samplesTotal + 1u - replicate) >> 1u;
+  if (samplerKind == RT_SAMPLER_JITTERED && local < replicateTotal) {
+    uint key = hashCounter(uvec4(pixel, dimension, seed, 0x6a09e667u + replicate)).x;
+    return jitteredPoint(local, replicateTotal, key);
   }
   return randomPair(pixel, sampleIndex, dimension, seed);
 }

@@ -97,13 +97,17 @@ void writeExr(const std::filesystem::path& path, const ImageF& image, float expo
 
 }  // namespace
 
+float displayValue(float linear, const ToneMapping& mapping) {
+  float v = applyCurve(linear * mapping.exposure, mapping.curve);
+  return mapping.srgbEncode ? srgbEncode(v) : v;
+}
+
 Image8 toneMap(const ImageF& image, const ToneMapping& mapping) {
   Image8 out{image.width, image.height, {}};
   out.rgb.reserve(size_t(image.width) * image.height * 3);
   for (size_t i = 0; i < size_t(image.width) * image.height; ++i) {
     for (int c = 0; c < 3; ++c) {
-      float v = applyCurve(image.rgba[i * 4 + c] * mapping.exposure, mapping.curve);
-      out.rgb.push_back(quantize(mapping.srgbEncode ? srgbEncode(v) : v));
+      out.rgb.push_back(quantize(displayValue(image.rgba[i * 4 + c], mapping)));
     }
   }
   return out;

@@ -39,6 +39,9 @@ struct ToneMapping {
   bool srgbEncode = false;  // sRGB transfer function after the curve
 };
 
+// One linear channel value as displayed, in [0, 1] before 8-bit quantization.
+float displayValue(float linear, const ToneMapping& mapping);
+
 Image8 toneMap(const ImageF& image, const ToneMapping& mapping);
 
 // Writes by extension: .ppm (binary P6) and .png are tone mapped to 8 bits;
