@@ -58,14 +58,16 @@ uint permuteIndex(uint index, uint n, uint key) {
 }
 
 // Stratified 2D point for sample `s` of `count`: the unit square is cut
-// into columns x rows >= count cells; each sample takes its own cell (in a
-// per-pixel shuffled order) and, inside it, its own sub-column and sub-row
+// into columns x rows >= count cells; each sample takes its own cell (a
+// keyed permutation of all cells, so when there are more cells than samples
+// the cells left out differ from pixel to pixel and no part of the square is
+// always missed) and, inside it, its own sub-column and sub-row
 // (multi-jittered), so both projections are stratified too. Works for any
 // count, not only squares.
 vec2 jitteredPoint(uint s, uint count, uint key) {
   uint columns = uint(ceil(sqrt(float(count))));
   uint rows = (count + columns - 1u) / columns;
-  uint cell = permuteIndex(s % count, count, key);
+  uint cell = permuteIndex(s % count, columns * rows, key);
   uint cx = cell % columns;
   uint cy = cell / columns;
   uint subX = permuteIndex(cy, rows, key * 0x9e3779b9u + 1u);

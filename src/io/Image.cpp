@@ -129,6 +129,13 @@ void writeImage(const std::filesystem::path& path, const ImageF& image,
                           path.string(), ext));
 }
 
+void writeImage8(const std::filesystem::path& path, const Image8& image) {
+  std::string ext = lowerExtension(path);
+  if (ext == ".ppm") return writePpm(path, image);
+  if (ext == ".png") return writePng(path, image);
+  throw Error(fmt::format("{}: 8-bit images are written as .png or .ppm", path.string()));
+}
+
 Image8 readImage8(const std::filesystem::path& path) {
   int width = 0;
   int height = 0;

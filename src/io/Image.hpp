@@ -49,6 +49,9 @@ Image8 toneMap(const ImageF& image, const ToneMapping& mapping);
 // The file appears atomically. Throws rt::Error naming the file.
 void writeImage(const std::filesystem::path& path, const ImageF& image, const ToneMapping& mapping);
 
+// Writes an 8-bit image as .png or .ppm (by extension), atomically.
+void writeImage8(const std::filesystem::path& path, const Image8& image);
+
 // True for the extensions writeImage understands.
 bool isSupportedImageExtension(const std::filesystem::path& path);
 
