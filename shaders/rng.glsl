@@ -99,25 +99,31 @@ uint owenScramble(uint value, uint seed) {
   return bitfieldReverse(carryHash(bitfieldReverse(value), seed));
 }
 
-// Second dimension of the Sobol sequence (primitive polynomial x + 1): its
-// direction numbers are the rows of Pascal's triangle mod 2, v_k = v_{k-1} ^
-// (v_{k-1} >> 1). The first dimension is the bit-reversed index.
-uint sobolSecond(uint index) {
-  uint result = 0u;
-  for (uint v = 0x80000000u; index != 0u; index >>= 1u, v ^= v >> 1u) {
-    if ((index & 1u) != 0u) result ^= v;
-  }
-  return result;
+// Second dimension of the Sobol sequence (primitive polynomial x + 1),
+// bit-reversed: its direction numbers are the rows of Pascal's triangle mod
+// 2, so by Lucas' theorem bit r of the result is the XOR of the index bits k
+// whose positions contain r's bits (r & k == r), a superset transform over
+// the five bits of a position: one shift-and-mask per bit. (The first
+// dimension, bit-reversed, is the index itself.)
+uint sobolSecondReversed(uint index) {
+  uint y = index;
+  y ^= (y >> 1u) & 0x55555555u;
+  y ^= (y >> 2u) & 0x33333333u;
+  y ^= (y >> 4u) & 0x0f0f0f0fu;
+  y ^= (y >> 8u) & 0x00ff00ffu;
+  y ^= (y >> 16u) & 0x0000ffffu;
+  return y;
 }
 
 // Point `index` of a 2D Sobol sequence under three keys: the index is Owen
 // scrambled first (each prefix of 2^k indices lands on one aligned block of
 // 2^k Sobol points, in shuffled order, so every power-of-two prefix is still
-// a (0,k,2)-net), then each coordinate is Owen scrambled.
+// a (0,k,2)-net), then each coordinate is Owen scrambled, which on the
+// bit-reversed values is one carryHash.
 vec2 sobolPoint(uint index, uvec3 keys) {
   uint shuffled = owenScramble(index, keys.x);
-  uint x = bitfieldReverse(carryHash(shuffled, keys.y));  // owenScramble(reverse(shuffled))
-  uint y = owenScramble(sobolSecond(shuffled), keys.z);
+  uint x = bitfieldReverse(carryHash(shuffled, keys.y));
+  uint y = bitfieldReverse(carryHash(sobolSecondReversed(shuffled), keys.z));
   return vec2(unitFloat(x), unitFloat(y));
 }
 

@@ -17,7 +17,7 @@ constexpr Rgb8 kGrid{222, 222, 222};
 constexpr Rgb8 kGuide{120, 120, 120};
 constexpr float kTextScale = 2.0f;  // stb_easy_font glyphs are ~7 units tall
 constexpr int kMarginLeft = 86;
-constexpr int kMarginRight = 24;
+constexpr int kMarginRight = 40;
 constexpr int kMarginTop = 40;
 constexpr int kMarginBottom = 62;
 
