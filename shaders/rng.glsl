@@ -127,28 +127,40 @@ vec2 sobolPoint(uint index, uvec3 keys) {
   return vec2(unitFloat(x), unitFloat(y));
 }
 
-// Even and odd sample indices form two independently randomised replicates
-// of the stratified samplers: the error estimate (ErrorEstimate.hpp)
-// compares their means, which is only unbiased if the two share no strata.
+// Even and odd pixel samples form two independently randomised replicates
+// of the stratified samplers: the error estimate (ImageError.hpp) compares
+// their means, which is only unbiased if the two share no strata.
 uint replicateOf(uint sampleIndex) { return sampleIndex & 1u; }
 
-// The 2D sample of one dimension pair for (pixel, sample, seed). Each pair of
-// dimensions gets its own keys (a padded sampler), so pairs are decorrelated.
-vec2 samplePair(uint samplerKind, uint pixel, uint sampleIndex, uint samplesTotal, uint dimension,
-                uint seed) {
+// Point `sub` of the `subCount` points that pixel sample `sampleIndex` takes
+// from one dimension pair (e.g. several shadow rays per pixel sample): within
+// each replicate the render's samples x subCount points form one stratified
+// set. Each dimension pair gets its own keys (a padded sampler), so pairs are
+// decorrelated. A pure function of (pixel, sample, sub, dimension, seed) and,
+// for jittered, the totals.
+vec2 sampleSubPair(uint samplerKind, uint pixel, uint sampleIndex, uint sub, uint subCount,
+                   uint samplesTotal, uint dimension, uint seed) {
   uint replicate = replicateOf(sampleIndex);
-  uint local = sampleIndex >> 1u;
+  uint local = (sampleIndex >> 1u) * subCount + sub;
   if (samplerKind == RT_SAMPLER_SOBOL) {
     uvec4 keys = hashCounter(uvec4(pixel, dimension, seed, 0x5b0b01u + replicate));
     return sobolPoint(local, keys.xyz);
   }
   // Replicate 0 holds ceil(total / 2) samples, replicate 1 the rest.
-  uint replicateTotal = (samplesTotal + 1u - replicate) >> 1u;
-  if (samplerKind == RT_SAMPLER_JITTERED && local < replicateTotal) {
+  uint replicateSamples = (samplesTotal + 1u - replicate) >> 1u;
+  bool countable = replicateSamples <= 0xffffffffu / max(subCount, 1u);
+  uint replicateTotal = replicateSamples * subCount;
+  if (samplerKind == RT_SAMPLER_JITTERED && countable && local < replicateTotal) {
     uint key = hashCounter(uvec4(pixel, dimension, seed, 0x6a09e667u + replicate)).x;
     return jitteredPoint(local, replicateTotal, key);
   }
-  return randomPair(pixel, sampleIndex, dimension, seed);
+  return randomPair(pixel, sampleIndex * subCount + sub, dimension, seed);
+}
+
+// The 2D sample of one dimension pair for (pixel, sample, seed).
+vec2 samplePair(uint samplerKind, uint pixel, uint sampleIndex, uint samplesTotal, uint dimension,
+                uint seed) {
+  return sampleSubPair(samplerKind, pixel, sampleIndex, 0u, 1u, samplesTotal, dimension, seed);
 }
 
 #endif

@@ -1,6 +1,7 @@
 #version 460
-// Test kernel: writes samplePair() of consecutive sample indices, so the
-// tests can check the samplers of shaders/rng.glsl directly.
+// Test kernel: writes samplePair() of consecutive sample indices (or
+// sampleSubPair() of each pixel sample's sub-points in turn), so the tests
+// can check the samplers of shaders/rng.glsl directly.
 #extension GL_GOOGLE_include_directive : require
 
 #include "gpu_types.h"
@@ -15,7 +16,7 @@ layout(push_constant) uniform ProbeParams {
   uint samplesTotal;
   uint dimension;
   uint seed;
-  uint pad0;
+  uint subCount;  // points per pixel sample (sampleSubPair); 0 or 1: samplePair
 }
 params;
 
@@ -26,6 +27,12 @@ layout(std430, set = 0, binding = 0) buffer Points { vec2 points[]; };
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= params.count) return;
-  points[i] = samplePair(params.samplerKind, params.pixel, params.firstSample + i,
-                         params.samplesTotal, params.dimension, params.seed);
+  if (params.subCount <= 1u) {
+    points[i] = samplePair(params.samplerKind, params.pixel, params.firstSample + i,
+                           params.samplesTotal, params.dimension, params.seed);
+  } else {
+    points[i] = sampleSubPair(params.samplerKind, params.pixel,
+                              params.firstSample + i / params.subCount, i % params.subCount,
+                              params.subCount, params.samplesTotal, params.dimension, params.seed);
+  }
 }

@@ -27,7 +27,7 @@ struct ProbeParams {
   uint32_t samplesTotal = 0;
   uint32_t dimension = 0;
   uint32_t seed = 0;
-  uint32_t pad0 = 0;
+  uint32_t subCount = 1;  // points per pixel sample
 };
 
 // The shaders plus the probe kernel in one scratch folder.
@@ -192,6 +192,42 @@ TEST_SUITE("convergence sampler") {
         CHECK(*std::min_element(counts.begin(), counts.end()) >= 1);
         CHECK(*std::max_element(counts.begin(), counts.end()) <= 2);
       }
+    }
+  }
+
+  TEST_CASE("sub-points of each replicate's pixel samples form one net together") {
+    // 4 shadow-ray points per pixel sample: replicate 0's first 2^k pixel
+    // samples give a (0, k+2, 2)-net, and so does replicate 1's.
+    ProbeParams params;
+    params.pixel = 31;
+    params.dimension = 4096;
+    params.subCount = 4;
+    params.count = 2 * 64 * 4;  // 64 pixel samples per replicate
+    std::vector<glm::vec2> all = probe(params);
+    for (uint32_t replicate : {0u, 1u}) {
+      std::vector<glm::vec2> points;
+      for (uint32_t s = replicate; s < 128; s += 2) {
+        points.insert(points.end(), all.begin() + s * 4, all.begin() + s * 4 + 4);
+      }
+      CAPTURE(replicate);
+      CHECK(isNet(points, 1));
+      CHECK(isNet({points.begin(), points.begin() + 32}, 1));
+    }
+    // Jittered: each replicate's sample x sub-points take distinct cells.
+    params.samplerKind = RT_SAMPLER_JITTERED;
+    params.samplesTotal = 8;
+    params.count = 8 * 4;
+    all = probe(params);
+    CHECK(inUnitSquare(all));
+    for (uint32_t replicate : {0u, 1u}) {
+      std::set<int> cells;
+      for (uint32_t s = replicate; s < 8; s += 2) {
+        for (uint32_t k = 0; k < 4; ++k) {
+          glm::vec2 p = all[s * 4 + k];
+          cells.insert(int(p.x * 4) + 4 * int(p.y * 4));  // 16 points: a 4x4 grid
+        }
+      }
+      CHECK(cells.size() == 16);
     }
   }
 
