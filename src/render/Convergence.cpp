@@ -21,11 +21,17 @@ struct LogPoint {
   double rmse;
 };
 
-std::vector<LogPoint> logPoints(const std::vector<ConvergencePoint>& points) {
+double secondsOf(const ConvergencePoint& point, ConvergenceClock clock) {
+  return clock == ConvergenceClock::Cpu ? point.cpuSeconds : point.seconds;
+}
+
+std::vector<LogPoint> logPoints(const std::vector<ConvergencePoint>& points,
+                                ConvergenceClock clock) {
   std::vector<LogPoint> logs;
   for (const ConvergencePoint& p : points) {
-    if (p.rmse > 0 && p.seconds > 0) {
-      logs.push_back({std::log(double(p.samples)), std::log(p.seconds), std::log(p.rmse)});
+    double seconds = secondsOf(p, clock);
+    if (p.rmse > 0 && seconds > 0) {
+      logs.push_back({std::log(double(p.samples)), std::log(seconds), std::log(p.rmse)});
     }
   }
   return logs;
@@ -89,7 +95,10 @@ std::vector<ConvergencePoint> ConvergenceStudy::measure(const ImageF& reference,
     options.estimateError = true;
     RenderStats stats;
     ImageF image = renderer_.render(scene_, options, {}, &stats);
-    ConvergencePoint point{sampler, samples, stats.renderSeconds,
+    ConvergencePoint point{sampler,
+                           samples,
+                           stats.renderSeconds,
+                           stats.renderCpuSeconds,
                            displayRmse(image, reference, setup_.mapping, setup_.region),
                            stats.rmseEstimate};
     if (onPoint) onPoint(point);
@@ -112,8 +121,8 @@ std::vector<uint32_t> geometricSampleCounts(uint32_t first, uint32_t last, doubl
 }
 
 ConvergenceSummary summarizeConvergence(const std::vector<ConvergencePoint>& points,
-                                        double targetRmse) {
-  std::vector<LogPoint> logs = logPoints(points);
+                                        double targetRmse, ConvergenceClock clock) {
+  std::vector<LogPoint> logs = logPoints(points, clock);
   if (logs.size() < 2) throw Error("convergence summary needs at least two measured points");
   ConvergenceSummary summary;
   summary.sampler = points.front().sampler;
@@ -141,25 +150,32 @@ ConvergenceSummary summarizeConvergence(const std::vector<ConvergencePoint>& poi
 }
 
 std::string convergenceCsv(const std::vector<ConvergencePoint>& points) {
-  std::string csv = "sampler,samples,seconds,rmse,estimated_rmse\n";
+  std::string csv = "sampler,samples,seconds,cpu_seconds,rmse,estimated_rmse\n";
   for (const ConvergencePoint& p : points) {
-    csv += fmt::format("{},{},{:.6f},{:.8f},{}\n", samplerKindName(p.sampler), p.samples, p.seconds,
-                       p.rmse, p.estimatedRmse ? fmt::format("{:.8f}", *p.estimatedRmse) : "");
+    csv += fmt::format("{},{},{:.6f},{:.6f},{:.8f},{}\n", samplerKindName(p.sampler), p.samples,
+                       p.seconds, p.cpuSeconds, p.rmse,
+                       p.estimatedRmse ? fmt::format("{:.8f}", *p.estimatedRmse) : "");
   }
   return csv;
 }
 
 std::vector<PlotPanel> convergencePlotPanels(const std::vector<ConvergencePoint>& points,
-                                             double targetRmse, const std::string& title) {
+                                             double targetRmse, const std::string& title,
+                                             ConvergenceClock clock) {
   PlotPanel bySamples{title + ": error vs samples", "samples per pixel", "RMSE", {}, targetRmse};
-  PlotPanel bySeconds{title + ": error vs time", "render seconds", "RMSE", {}, targetRmse};
+  PlotPanel bySeconds{title + ": error vs time",
+                      clock == ConvergenceClock::Cpu ? "render CPU seconds (all threads)"
+                                                     : "render seconds (wall clock)",
+                      "RMSE",
+                      {},
+                      targetRmse};
   for (SamplerKind kind : {SamplerKind::Random, SamplerKind::Jittered, SamplerKind::Sobol}) {
     PlotSeries samples{samplerKindName(kind), samplerColor(kind), {}};
     PlotSeries seconds = samples;
     for (const ConvergencePoint& p : points) {
       if (p.sampler != kind) continue;
       samples.points.push_back({double(p.samples), p.rmse});
-      seconds.points.push_back({p.seconds, p.rmse});
+      seconds.points.push_back({secondsOf(p, clock), p.rmse});
     }
     if (samples.points.empty()) continue;
     bySamples.series.push_back(samples);

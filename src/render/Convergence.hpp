@@ -29,7 +29,8 @@ struct ConvergenceSetup {
 struct ConvergencePoint {
   SamplerKind sampler = SamplerKind::Random;
   uint32_t samples = 0;
-  double seconds = 0;                   // render time (dispatches), without setup
+  double seconds = 0;                   // render wall time (dispatches), without setup
+  double cpuSeconds = 0;                // process CPU time over the same span (lavapipe's work)
   double rmse = 0;                      // against the reference
   std::optional<double> estimatedRmse;  // the renderer's own estimate
 };
@@ -72,16 +73,22 @@ class ConvergenceStudy {
 // first, first * ratio, ... rounded, strictly increasing, ending at last.
 std::vector<uint32_t> geometricSampleCounts(uint32_t first, uint32_t last, double ratio);
 
+// Which time the summary and the plot use.
+enum class ConvergenceClock { Wall, Cpu };
+
 // Points of one sampler, by increasing sample count (at least two).
 ConvergenceSummary summarizeConvergence(const std::vector<ConvergencePoint>& points,
-                                        double targetRmse);
+                                        double targetRmse,
+                                        ConvergenceClock clock = ConvergenceClock::Wall);
 
-// "sampler,samples,seconds,rmse,estimated_rmse" and one row per point.
+// "sampler,samples,seconds,cpu_seconds,rmse,estimated_rmse" and one row per
+// point.
 std::string convergenceCsv(const std::vector<ConvergencePoint>& points);
 
 // Two panels: RMSE against samples and against seconds, a line per sampler,
 // the target as a dashed line.
 std::vector<PlotPanel> convergencePlotPanels(const std::vector<ConvergencePoint>& points,
-                                             double targetRmse, const std::string& title);
+                                             double targetRmse, const std::string& title,
+                                             ConvergenceClock clock = ConvergenceClock::Wall);
 
 }  // namespace rt

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <optional>
 
 #include "gpu/ShaderCompiler.hpp"
@@ -20,6 +21,12 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double processCpuSeconds() {
+  timespec now{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return double(now.tv_sec) + double(now.tv_nsec) * 1e-9;
 }
 
 // Sizes dispatches from the measured cost of one pixel-sample so that each
@@ -202,11 +209,13 @@ ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
   clamped.samplesPerPixel = total;
   clamped.endSample = end;
   auto renderStart = Clock::now();
+  double cpuStart = processCpuSeconds();
   RenderLoop(context_, job, clamped, options.displayMapping.value_or(toneMappingFor(scene)),
              onProgress, s)
       .run();
   s.samplesDone = job.samplesDone() - options.firstSample;
   s.renderSeconds = secondsSince(renderStart);
+  s.renderCpuSeconds = processCpuSeconds() - cpuStart;
   return job.resolve();
 }
 

@@ -65,6 +65,9 @@ constexpr uint32_t kMinSamplesForTarget = 8;
 struct RenderStats {
   double setupSeconds = 0;   // flatten, BVH build, upload, shader compile
   double renderSeconds = 0;  // dispatches only
+  // CPU time of this process over the same span (all threads): the work a
+  // CPU Vulkan device (lavapipe) did, unaffected by other processes.
+  double renderCpuSeconds = 0;
   uint32_t dispatches = 0;
   uint64_t raysTraced = 0;             // only with RenderOptions::countRays
   uint32_t samplesDone = 0;            // full passes completed (per pixel)

@@ -20,20 +20,20 @@ COMMON=(--size 64x48 --region 8,28,24,16)
 
 # --- a study over two samplers and three counts --------------------------
 if "$RAYTRACER" converge "$SCENE" "${COMMON[@]}" --samplers random,sobol --spp-list 4,8,16 \
-    --reference-spp 128 --out "$SCRATCH/study" >"$SCRATCH/stdout" 2>"$SCRATCH/stderr"; then
+    --reference-spp 128 --clock cpu --out "$SCRATCH/study" >"$SCRATCH/stdout" 2>"$SCRATCH/stderr"; then
   pass
 else
   fail "converge run: $(cat "$SCRATCH/stderr")"
 fi
-[[ "$(head -1 "$SCRATCH/study.csv")" == "sampler,samples,seconds,rmse,estimated_rmse" ]] && pass ||
+[[ "$(head -1 "$SCRATCH/study.csv")" == "sampler,samples,seconds,cpu_seconds,rmse,estimated_rmse" ]] && pass ||
   fail "CSV header: $(head -1 "$SCRATCH/study.csv")"
 rows=$(tail -n +2 "$SCRATCH/study.csv" | cut -d, -f1,2 | tr '\n' ' ')
 [[ "$rows" == "random,4 random,8 random,16 sobol,4 sobol,8 sobol,16 " ]] && pass ||
   fail "CSV rows: $rows"
 # Every error is a positive number, and the error falls from 4 to 16 samples.
-awk -F, 'NR > 1 && !($4 > 0 && $4 < 1 && $5 > 0) { bad = 1 } END { exit bad }' "$SCRATCH/study.csv" &&
+awk -F, 'NR > 1 && !($3 > 0 && $4 > 0 && $5 > 0 && $5 < 1 && $6 > 0) { bad = 1 } END { exit bad }' "$SCRATCH/study.csv" &&
   pass || fail "CSV values: $(cat "$SCRATCH/study.csv")"
-awk -F, '$2 == 4 { first[$1] = $4 } $2 == 16 { last[$1] = $4 }
+awk -F, '$2 == 4 { first[$1] = $5 } $2 == 16 { last[$1] = $5 }
   END { for (s in first) if (!(last[s] < first[s])) exit 1 }' "$SCRATCH/study.csv" &&
   pass || fail "error does not fall: $(cat "$SCRATCH/study.csv")"
 [[ "$(head -c 8 "$SCRATCH/study.png" | od -An -tx1 | tr -d ' \n')" == "89504e470d0a1a0a" ]] && pass ||
@@ -45,8 +45,8 @@ grep -Eq '^sobol +-?[0-9.]+ ' "$SCRATCH/stdout" && grep -Eq '^sampler +slope' "$
 # --- the saved reference gives the same errors ---------------------------
 if "$RAYTRACER" converge "$SCENE" "${COMMON[@]}" --samplers sobol --spp-list 4,8 \
     --reference "$SCRATCH/study-reference.exr" --out "$SCRATCH/again" -q >/dev/null 2>&1; then
-  [[ "$(grep '^sobol,8,' "$SCRATCH/again.csv" | cut -d, -f4)" == \
-     "$(grep '^sobol,8,' "$SCRATCH/study.csv" | cut -d, -f4)" ]] && pass ||
+  [[ "$(grep '^sobol,8,' "$SCRATCH/again.csv" | cut -d, -f5)" == \
+     "$(grep '^sobol,8,' "$SCRATCH/study.csv" | cut -d, -f5)" ]] && pass ||
     fail "errors against the saved reference differ"
 else
   fail "converge with --reference"

@@ -173,28 +173,35 @@ TEST_SUITE("convergence") {
     // rmse = 0.1 * n^-0.5 (reaches 0.01 at n = 100), 1 ms per sample.
     std::vector<ConvergencePoint> points;
     for (uint32_t n : {9u, 16u, 64u, 256u, 1024u}) {
-      points.push_back({SamplerKind::Random, n, n * 1e-3, 0.1 / std::sqrt(double(n)), {}});
+      points.push_back(
+          {SamplerKind::Random, n, n * 1e-3, n * 2e-3, 0.1 / std::sqrt(double(n)), {}});
     }
     ConvergenceSummary summary = summarizeConvergence(points, 0.01);
     CHECK(summary.slope == doctest::Approx(-0.5));
     CHECK(summary.samplesToTarget == doctest::Approx(100));
     CHECK(summary.secondsToTarget == doctest::Approx(0.1));
     CHECK_FALSE(summary.extrapolated);
+    CHECK(summarizeConvergence(points, 0.01, ConvergenceClock::Cpu).secondsToTarget ==
+          doctest::Approx(0.2));
     // A target beyond the data follows the fitted law.
     summary = summarizeConvergence(points, 0.001);
     CHECK(summary.extrapolated);
     CHECK(summary.samplesToTarget == doctest::Approx(10000));
     CHECK(summary.secondsToTarget == doctest::Approx(10));
     std::string csv = convergenceCsv(points);
-    CHECK(csv.rfind("sampler,samples,seconds,rmse,estimated_rmse\nrandom,9,0.009000,", 0) == 0);
+    CHECK(
+        csv.rfind(
+            "sampler,samples,seconds,cpu_seconds,rmse,estimated_rmse\nrandom,9,0.009000,0.018000,",
+            0) == 0);
     CHECK(std::count(csv.begin(), csv.end(), '\n') == 6);
   }
 
   TEST_CASE("the log-log plot draws every series in its colour, with decade labels") {
     std::vector<ConvergencePoint> points;
     for (uint32_t n : {9u, 64u, 512u}) {
-      points.push_back({SamplerKind::Random, n, n * 1e-3, 0.1 / std::sqrt(double(n)), {}});
-      points.push_back({SamplerKind::Sobol, n, n * 2e-3, 0.1 / double(n), {}});
+      points.push_back(
+          {SamplerKind::Random, n, n * 1e-3, n * 2e-3, 0.1 / std::sqrt(double(n)), {}});
+      points.push_back({SamplerKind::Sobol, n, n * 2e-3, n * 2e-3, 0.1 / double(n), {}});
     }
     Image8 plot = drawLogLogPlot(convergencePlotPanels(points, 0.01, "test"));
     CHECK(plot.width == 2 * PlotSize{}.panelWidth);
