@@ -73,6 +73,9 @@ using uint = uint32_t;
 #define RT_SAMPLER_RANDOM 0u
 #define RT_SAMPLER_JITTERED 1u
 #define RT_SAMPLER_SOBOL 2u  // Owen-scrambled Sobol (rng.glsl)
+// Flag on samplerKind: even and odd pixel samples are two independent
+// replicates (for the error estimate; see rng.glsl).
+#define RT_SAMPLER_REPLICATES 0x100u
 
 // One surface primitive (64 bytes). Quads are split into two triangles on the
 // host; mesh triangles use the same record.

@@ -127,30 +127,42 @@ vec2 sobolPoint(uint index, uvec3 keys) {
   return vec2(unitFloat(x), unitFloat(y));
 }
 
-// Even and odd pixel samples form two independently randomised replicates
-// of the stratified samplers: the error estimate (ImageError.hpp) compares
-// their means, which is only unbiased if the two share no strata.
-uint replicateOf(uint sampleIndex) { return sampleIndex & 1u; }
+// With RT_SAMPLER_REPLICATES, even and odd pixel samples are two
+// independently randomised replicates of the stratified samplers: the error
+// estimate (ImageError.hpp) compares their means, which is only unbiased if
+// the two share no strata. It costs accuracy (two stratified sets of n/2
+// are worse than one of n: README "Speed vs accuracy"), so it is only on
+// while the error is estimated.
+uvec2 replicateAndIndex(uint samplerKind, uint sampleIndex) {
+  if ((samplerKind & RT_SAMPLER_REPLICATES) == 0u) return uvec2(0u, sampleIndex);
+  return uvec2(sampleIndex & 1u, sampleIndex >> 1u);
+}
+
+uint replicateSamples(uint samplerKind, uint samplesTotal, uint replicate) {
+  if ((samplerKind & RT_SAMPLER_REPLICATES) == 0u) return samplesTotal;
+  return (samplesTotal + 1u - replicate) >> 1u;  // replicate 0 holds the odd one out
+}
 
 // Point `sub` of the `subCount` points that pixel sample `sampleIndex` takes
-// from one dimension pair (e.g. several shadow rays per pixel sample): within
-// each replicate the render's samples x subCount points form one stratified
-// set. Each dimension pair gets its own keys (a padded sampler), so pairs are
-// decorrelated. A pure function of (pixel, sample, sub, dimension, seed) and,
-// for jittered, the totals.
+// from one dimension pair (e.g. several shadow rays per pixel sample): the
+// render's samples x subCount points form one stratified set (per
+// replicate). Each dimension pair gets its own keys (a padded sampler), so
+// pairs are decorrelated. A pure function of (pixel, sample, sub, dimension,
+// seed, sampler) and, for jittered, the totals.
 vec2 sampleSubPair(uint samplerKind, uint pixel, uint sampleIndex, uint sub, uint subCount,
                    uint samplesTotal, uint dimension, uint seed) {
-  uint replicate = replicateOf(sampleIndex);
-  uint local = (sampleIndex >> 1u) * subCount + sub;
-  if (samplerKind == RT_SAMPLER_SOBOL) {
+  uint kind = samplerKind & ~RT_SAMPLER_REPLICATES;
+  uvec2 replicated = replicateAndIndex(samplerKind, sampleIndex);
+  uint replicate = replicated.x;
+  uint local = replicated.y * subCount + sub;
+  if (kind == RT_SAMPLER_SOBOL) {
     uvec4 keys = hashCounter(uvec4(pixel, dimension, seed, 0x5b0b01u + replicate));
     return sobolPoint(local, keys.xyz);
   }
-  // Replicate 0 holds ceil(total / 2) samples, replicate 1 the rest.
-  uint replicateSamples = (samplesTotal + 1u - replicate) >> 1u;
-  bool countable = replicateSamples <= 0xffffffffu / max(subCount, 1u);
-  uint replicateTotal = replicateSamples * subCount;
-  if (samplerKind == RT_SAMPLER_JITTERED && countable && local < replicateTotal) {
+  uint samples = replicateSamples(samplerKind, samplesTotal, replicate);
+  bool countable = samples <= 0xffffffffu / max(subCount, 1u);
+  uint replicateTotal = samples * subCount;
+  if (kind == RT_SAMPLER_JITTERED && countable && local < replicateTotal) {
     uint key = hashCounter(uvec4(pixel, dimension, seed, 0x6a09e667u + replicate)).x;
     return jitteredPoint(local, replicateTotal, key);
   }

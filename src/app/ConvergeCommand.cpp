@@ -46,6 +46,7 @@ struct CommandLine {
   uint32_t seed = 0;
   double targetRmse = 0.01;
   std::string clock = "wall";
+  bool estimate = false;
   std::string shading;
   std::string device;
   std::string shaderDir;
@@ -83,6 +84,7 @@ rt::ConvergenceSetup convergenceSetup(const CommandLine& cli, const rt::Scene& s
   setup.seed = cli.seed;
   setup.shading = rt::cli::shadingNamed(cli.shading);
   setup.mapping = rt::toneMappingFor(scene);
+  setup.estimateError = cli.estimate;
   return setup;
 }
 
@@ -214,6 +216,9 @@ void addOptions(CLI::App& app, CommandLine& cli) {
                  "Time of the table and plot: wall (default) or cpu (process CPU time, all "
                  "threads: lavapipe's work, robust on a busy machine); the CSV has both")
       ->check(CLI::IsMember({"wall", "cpu"}));
+  app.add_flag("--estimate", cli.estimate,
+               "Render as for --estimate-rmse (independent even/odd halves) and record the "
+               "renderer's own RMSE estimate beside the true one");
   app.add_option("--shading", cli.shading, "Shading model (default: the scene family's)")
       ->check(CLI::IsMember({"standard", "coursework"}));
   app.add_option("--device", cli.device, "The number of the Vulkan device to use");

@@ -41,6 +41,7 @@ struct CommandLine {
   std::string sampleRange;
   std::optional<double> timeBudget;
   std::optional<double> targetRmse;
+  bool estimateRmse = false;
   bool offscreen = true;
   bool validation = false;
   bool quiet = false;
@@ -107,7 +108,7 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
     if (!cli.samples) options.samplesPerPixel = kMaxSamples;
     options.targetRmse = *cli.targetRmse;
   }
-  options.estimateError = !cli.quiet || cli.targetRmse;
+  options.estimateError = cli.estimateRmse || cli.targetRmse;
   options.seed = cli.seed;
   options.sampler = rt::cli::samplerNamed(cli.sampler, scene.settings.sampler);
   options.shading = rt::cli::shadingNamed(cli.shading);
@@ -219,6 +220,9 @@ int runRenderCommand(int argc, char** argv) {
                  "'Speed vs accuracy') is at most this; --spp (default: no limit) and --time "
                  "still stop it first")
       ->check(CLI::PositiveNumber);
+  app.add_flag("--estimate-rmse", cli.estimateRmse,
+               "Estimate the displayed image's RMSE while rendering (even and odd samples become "
+               "independent halves, which costs jittered and sobol some accuracy)");
   app.add_flag("-q,--quiet", cli.quiet, "No progress bar or summary");
   if (std::optional<int> status = rt::cli::parse(app, argc, argv)) return *status;
   try {

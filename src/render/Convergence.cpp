@@ -92,7 +92,7 @@ std::vector<ConvergencePoint> ConvergenceStudy::measure(const ImageF& reference,
   std::vector<ConvergencePoint> points;
   for (uint32_t samples : counts) {
     RenderOptions options = optionsFor(sampler, samples, setup_.seed);
-    options.estimateError = true;
+    options.estimateError = setup_.estimateError;
     RenderStats stats;
     ImageF image = renderer_.render(scene_, options, {}, &stats);
     ConvergencePoint point{sampler,

@@ -24,6 +24,9 @@ struct ConvergenceSetup {
   uint32_t seed = 0;
   std::optional<ShadingModel> shading;
   ToneMapping mapping;  // display space of the error (toneMappingFor(scene))
+  // Also record the renderer's own estimate (RenderOptions::estimateError:
+  // independent halves, so the measured errors are those of such renders).
+  bool estimateError = false;
 };
 
 struct ConvergencePoint {
@@ -32,7 +35,7 @@ struct ConvergencePoint {
   double seconds = 0;                   // render wall time (dispatches), without setup
   double cpuSeconds = 0;                // process CPU time over the same span (lavapipe's work)
   double rmse = 0;                      // against the reference
-  std::optional<double> estimatedRmse;  // the renderer's own estimate
+  std::optional<double> estimatedRmse;  // the renderer's own (ConvergenceSetup::estimateError)
 };
 
 // One sampler's points reduced to numbers: the least-squares slope of

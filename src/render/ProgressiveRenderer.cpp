@@ -88,6 +88,7 @@ void ProgressiveRenderer::recordSamples(VkCommandBuffer commands, uint32_t row, 
   frame.samplesTotal = std::max(options_.samplesTotal, samplesDone_ + count);
   frame.seed = options_.seed;
   frame.samplerKind = gpuSamplerKind(options_.sampler);
+  if (options_.independentHalves) frame.samplerKind |= RT_SAMPLER_REPLICATES;
   kernel_->recordDispatch(commands, &frame, divideRoundUp(region_.width, RT_WORKGROUP_SIZE_X),
                           divideRoundUp(rows, RT_WORKGROUP_SIZE_Y));
 }
@@ -150,7 +151,12 @@ SampleSums ProgressiveRenderer::sampleSums() {
   return sums;
 }
 
+bool ProgressiveRenderer::halvesIndependent() const {
+  return options_.independentHalves || options_.sampler == SamplerKind::Random;
+}
+
 std::optional<double> ProgressiveRenderer::estimateRmse(const ToneMapping& mapping) {
+  if (!halvesIndependent()) return std::nullopt;
   return estimateDisplayRmse(sampleSums(), mapping, region_);
 }
 

@@ -36,6 +36,9 @@ struct ProgressiveOptions {
   std::optional<ShadingModel> shading;
   bool countRays = false;
   uint32_t firstSample = 0;  // index of the first sample added (split renders)
+  // Even and odd samples as two independent replicates (RT_SAMPLER_REPLICATES),
+  // which the error estimate needs; it costs stratified samplers accuracy.
+  bool independentHalves = false;
 };
 
 class ProgressiveRenderer {
@@ -78,8 +81,11 @@ class ProgressiveRenderer {
   ImageF resolve();
   // The accumulation sums of all and of the odd-indexed samples.
   SampleSums sampleSums();
-  // estimateDisplayRmse over the region, from the samples so far.
+  // estimateDisplayRmse over the region, from the samples so far; nullopt
+  // unless the halves are independent (independentHalves, or the random
+  // sampler, whose samples always are).
   std::optional<double> estimateRmse(const ToneMapping& mapping);
+  bool halvesIndependent() const;
   // Rays traced so far (only with ProgressiveOptions::countRays).
   uint64_t raysTraced();
 

@@ -32,11 +32,13 @@ struct RenderOptions {
   PixelRegion region;                   // pixels to render (empty: all); others get no samples
   std::optional<ShadingModel> shading;  // default: the scene family's
   // Error estimate (ImageError.hpp): computed at checkpoints of the sample
-  // count (kRmseCheckpoints) and at the end, in the display space of
-  // `displayMapping` (default: toneMappingFor(scene)). A positive target also
-  // ends the render at the first checkpoint whose estimate is <= the target
-  // (but never before kMinSamplesForTarget samples); the sample budget and
-  // shouldStop still apply, whichever comes first.
+  // count (nextRmseCheckpoint) and at the end, in the display space of
+  // `displayMapping` (default: toneMappingFor(scene)). It renders even and
+  // odd samples as independent replicates (RT_SAMPLER_REPLICATES), which
+  // makes jittered and Sobol images noisier than without. A positive target
+  // also ends the render at the first checkpoint whose estimate is <= the
+  // target (never before kMinSamplesForTarget samples); the sample budget
+  // and shouldStop still apply, whichever comes first.
   bool estimateError = false;
   double targetRmse = 0;
   std::optional<ToneMapping> displayMapping;

@@ -20,7 +20,7 @@ COMMON=(--size 64x48 --region 8,28,24,16)
 
 # --- a study over two samplers and three counts --------------------------
 if "$RAYTRACER" converge "$SCENE" "${COMMON[@]}" --samplers random,sobol --spp-list 4,8,16 \
-    --reference-spp 128 --clock cpu --out "$SCRATCH/study" >"$SCRATCH/stdout" 2>"$SCRATCH/stderr"; then
+    --reference-spp 128 --clock cpu --estimate --out "$SCRATCH/study" >"$SCRATCH/stdout" 2>"$SCRATCH/stderr"; then
   pass
 else
   fail "converge run: $(cat "$SCRATCH/stderr")"
@@ -44,7 +44,7 @@ grep -Eq '^sobol +-?[0-9.]+ ' "$SCRATCH/stdout" && grep -Eq '^sampler +slope' "$
 
 # --- the saved reference gives the same errors ---------------------------
 if "$RAYTRACER" converge "$SCENE" "${COMMON[@]}" --samplers sobol --spp-list 4,8 \
-    --reference "$SCRATCH/study-reference.exr" --out "$SCRATCH/again" -q >/dev/null 2>&1; then
+    --reference "$SCRATCH/study-reference.exr" --estimate --out "$SCRATCH/again" -q >/dev/null 2>&1; then
   [[ "$(grep '^sobol,8,' "$SCRATCH/again.csv" | cut -d, -f5)" == \
      "$(grep '^sobol,8,' "$SCRATCH/study.csv" | cut -d, -f5)" ]] && pass ||
     fail "errors against the saved reference differ"

@@ -65,6 +65,7 @@ std::vector<glm::vec2> probe(const ProbeParams& params) {
 std::vector<glm::vec2> sobolReplicate(uint32_t pixel, uint32_t dimension, uint32_t count,
                                       uint32_t replicate = 0, uint32_t seed = 7) {
   ProbeParams params;
+  params.samplerKind = RT_SAMPLER_SOBOL | RT_SAMPLER_REPLICATES;
   params.pixel = pixel;
   params.dimension = dimension;
   params.seed = seed;
@@ -166,14 +167,29 @@ TEST_SUITE("convergence sampler") {
     }
   }
 
-  TEST_CASE("the first 2^k samples of a pixel hold two points in every elementary interval") {
+  TEST_CASE("a pixel's first 2^k Sobol samples form a (0,k,2)-net") {
     ProbeParams params;
+    params.pixel = 77;
+    params.dimension = 4;
+    params.count = 2048;
+    std::vector<glm::vec2> points = probe(params);
+    for (uint32_t n = 1; n <= 2048; n *= 2) {
+      CAPTURE(n);
+      CHECK(isNet({points.begin(), points.begin() + n}, 1));
+    }
+  }
+
+  TEST_CASE("with replicates, the first 2^k samples hold two points per elementary interval") {
+    ProbeParams params;
+    params.samplerKind = RT_SAMPLER_SOBOL | RT_SAMPLER_REPLICATES;
     params.pixel = 77;
     params.dimension = 4;
     for (uint32_t n = 2; n <= 2048; n *= 2) {
       params.count = n;
       CAPTURE(n);
-      CHECK(isNet(probe(params), 2));
+      std::vector<glm::vec2> points = probe(params);
+      CHECK(isNet(points, 2));
+      if (n >= 64) CHECK_FALSE(isNet(points, 1));  // the halves do not share strata
     }
   }
 
@@ -199,6 +215,7 @@ TEST_SUITE("convergence sampler") {
     // 4 shadow-ray points per pixel sample: replicate 0's first 2^k pixel
     // samples give a (0, k+2, 2)-net, and so does replicate 1's.
     ProbeParams params;
+    params.samplerKind = RT_SAMPLER_SOBOL | RT_SAMPLER_REPLICATES;
     params.pixel = 31;
     params.dimension = 4096;
     params.subCount = 4;
@@ -214,7 +231,7 @@ TEST_SUITE("convergence sampler") {
       CHECK(isNet({points.begin(), points.begin() + 32}, 1));
     }
     // Jittered: each replicate's sample x sub-points take distinct cells.
-    params.samplerKind = RT_SAMPLER_JITTERED;
+    params.samplerKind = RT_SAMPLER_JITTERED | RT_SAMPLER_REPLICATES;
     params.samplesTotal = 8;
     params.count = 8 * 4;
     all = probe(params);
@@ -243,7 +260,7 @@ TEST_SUITE("convergence sampler") {
 
   TEST_CASE("jittered replicates each take their own strata of their own count") {
     ProbeParams params;
-    params.samplerKind = RT_SAMPLER_JITTERED;
+    params.samplerKind = RT_SAMPLER_JITTERED | RT_SAMPLER_REPLICATES;
     params.pixel = 3;
     params.count = 18;
     params.samplesTotal = 18;  // two replicates of 9: a 3x3 grid each
