@@ -38,6 +38,8 @@ using uint = uint32_t;
 #define RT_BINDING_VERTICES 9
 #define RT_BINDING_TEXTURE_INFO 10
 #define RT_BINDING_TEXELS 11
+// Sums of the odd-indexed samples alone (the error estimate's second half).
+#define RT_BINDING_ACCUMULATION_ODD 12
 
 #define RT_WORKGROUP_SIZE_X 8
 #define RT_WORKGROUP_SIZE_Y 8
@@ -70,6 +72,10 @@ using uint = uint32_t;
 // GpuFrameParams::samplerKind
 #define RT_SAMPLER_RANDOM 0u
 #define RT_SAMPLER_JITTERED 1u
+#define RT_SAMPLER_SOBOL 2u  // Owen-scrambled Sobol (rng.glsl)
+// Flag on samplerKind: even and odd pixel samples are two independent
+// replicates (for the error estimate; see rng.glsl).
+#define RT_SAMPLER_REPLICATES 0x100u
 
 // One surface primitive (64 bytes). Quads are split into two triangles on the
 // host; mesh triangles use the same record.

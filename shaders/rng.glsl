@@ -58,14 +58,16 @@ uint permuteIndex(uint index, uint n, uint key) {
 }
 
 // Stratified 2D point for sample `s` of `count`: the unit square is cut
-// into columns x rows >= count cells; each sample takes its own cell (in a
-// per-pixel shuffled order) and, inside it, its own sub-column and sub-row
+// into columns x rows >= count cells; each sample takes its own cell (a
+// keyed permutation of all cells, so when there are more cells than samples
+// the cells left out differ from pixel to pixel and no part of the square is
+// always missed) and, inside it, its own sub-column and sub-row
 // (multi-jittered), so both projections are stratified too. Works for any
 // count, not only squares.
 vec2 jitteredPoint(uint s, uint count, uint key) {
   uint columns = uint(ceil(sqrt(float(count))));
   uint rows = (count + columns - 1u) / columns;
-  uint cell = permuteIndex(s % count, count, key);
+  uint cell = permuteIndex(s % count, columns * rows, key);
   uint cx = cell % columns;
   uint cy = cell / columns;
   uint subX = permuteIndex(cy, rows, key * 0x9e3779b9u + 1u);
@@ -76,14 +78,101 @@ vec2 jitteredPoint(uint s, uint count, uint key) {
   return min(vec2(x, y), vec2(0.99999994));
 }
 
+// --- Owen-scrambled Sobol points ---------------------------------------------
+// An invertible hash in which output bit j depends only on input bits 0..j
+// (additions, odd multiplications and x ^= x * even only carry upwards).
+// Run on bit-reversed values it flips every bit by a hash of the bits above
+// it: nested uniform (Owen) scrambling, approximated with a few multiplies.
+uint carryHash(uint x, uint seed) {
+  x += seed;
+  x ^= x * 0x6e2a4c18u;
+  x *= (seed >> 9u) | 1u;
+  x ^= x * 0x3f58d0a2u;
+  x += seed >> 17u;
+  x ^= x * 0xb4c29e06u;
+  x *= 0x2f7a1d93u;
+  x ^= x * 0x91e36b5cu;
+  return x;
+}
+
+uint owenScramble(uint value, uint seed) {
+  return bitfieldReverse(carryHash(bitfieldReverse(value), seed));
+}
+
+// Second dimension of the Sobol sequence (primitive polynomial x + 1),
+// bit-reversed: its direction numbers are the rows of Pascal's triangle mod
+// 2, so by Lucas' theorem bit r of the result is the XOR of the index bits k
+// whose positions contain r's bits (r & k == r), a superset transform over
+// the five bits of a position: one shift-and-mask per bit. (The first
+// dimension, bit-reversed, is the index itself.)
+uint sobolSecondReversed(uint index) {
+  uint y = index;
+  y ^= (y >> 1u) & 0x55555555u;
+  y ^= (y >> 2u) & 0x33333333u;
+  y ^= (y >> 4u) & 0x0f0f0f0fu;
+  y ^= (y >> 8u) & 0x00ff00ffu;
+  y ^= (y >> 16u) & 0x0000ffffu;
+  return y;
+}
+
+// Point `index` of a 2D Sobol sequence under three keys: the index is Owen
+// scrambled first (each prefix of 2^k indices lands on one aligned block of
+// 2^k Sobol points, in shuffled order, so every power-of-two prefix is still
+// a (0,k,2)-net), then each coordinate is Owen scrambled, which on the
+// bit-reversed values is one carryHash.
+vec2 sobolPoint(uint index, uvec3 keys) {
+  uint shuffled = owenScramble(index, keys.x);
+  uint x = bitfieldReverse(carryHash(shuffled, keys.y));
+  uint y = bitfieldReverse(carryHash(sobolSecondReversed(shuffled), keys.z));
+  return vec2(unitFloat(x), unitFloat(y));
+}
+
+// With RT_SAMPLER_REPLICATES, even and odd pixel samples are two
+// independently randomised replicates of the stratified samplers: the error
+// estimate (ImageError.hpp) compares their means, which is only unbiased if
+// the two share no strata. It costs accuracy (two stratified sets of n/2
+// are worse than one of n: README "Speed vs accuracy"), so it is only on
+// while the error is estimated.
+uvec2 replicateAndIndex(uint samplerKind, uint sampleIndex) {
+  if ((samplerKind & RT_SAMPLER_REPLICATES) == 0u) return uvec2(0u, sampleIndex);
+  return uvec2(sampleIndex & 1u, sampleIndex >> 1u);
+}
+
+uint replicateSamples(uint samplerKind, uint samplesTotal, uint replicate) {
+  if ((samplerKind & RT_SAMPLER_REPLICATES) == 0u) return samplesTotal;
+  return (samplesTotal + 1u - replicate) >> 1u;  // replicate 0 holds the odd one out
+}
+
+// Point `sub` of the `subCount` points that pixel sample `sampleIndex` takes
+// from one dimension pair (e.g. several shadow rays per pixel sample): the
+// render's samples x subCount points form one stratified set (per
+// replicate). Each dimension pair gets its own keys (a padded sampler), so
+// pairs are decorrelated. A pure function of (pixel, sample, sub, dimension,
+// seed, sampler) and, for jittered, the totals.
+vec2 sampleSubPair(uint samplerKind, uint pixel, uint sampleIndex, uint sub, uint subCount,
+                   uint samplesTotal, uint dimension, uint seed) {
+  uint kind = samplerKind & ~RT_SAMPLER_REPLICATES;
+  uvec2 replicated = replicateAndIndex(samplerKind, sampleIndex);
+  uint replicate = replicated.x;
+  uint local = replicated.y * subCount + sub;
+  if (kind == RT_SAMPLER_SOBOL) {
+    uvec4 keys = hashCounter(uvec4(pixel, dimension, seed, 0x5b0b01u + replicate));
+    return sobolPoint(local, keys.xyz);
+  }
+  uint samples = replicateSamples(samplerKind, samplesTotal, replicate);
+  bool countable = samples <= 0xffffffffu / max(subCount, 1u);
+  uint replicateTotal = samples * subCount;
+  if (kind == RT_SAMPLER_JITTERED && countable && local < replicateTotal) {
+    uint key = hashCounter(uvec4(pixel, dimension, seed, 0x6a09e667u + replicate)).x;
+    return jitteredPoint(local, replicateTotal, key);
+  }
+  return randomPair(pixel, sampleIndex * subCount + sub, dimension, seed);
+}
+
 // The 2D sample of one dimension pair for (pixel, sample, seed).
 vec2 samplePair(uint samplerKind, uint pixel, uint sampleIndex, uint samplesTotal, uint dimension,
                 uint seed) {
-  if (samplerKind == RT_SAMPLER_JITTERED && sampleIndex < samplesTotal) {
-    uint key = hashCounter(uvec4(pixel, dimension, seed, 0x6a09e667u)).x;
-    return jitteredPoint(sampleIndex, samplesTotal, key);
-  }
-  return randomPair(pixel, sampleIndex, dimension, seed);
+  return sampleSubPair(samplerKind, pixel, sampleIndex, 0u, 1u, samplesTotal, dimension, seed);
 }
 
 #endif

@@ -14,6 +14,10 @@ layout(std430, set = 0, binding = RT_BINDING_ACCUMULATION) buffer AccumulationBu
   vec4 accumulation[];  // rgb: sum of sample radiance, a: number of samples
 };
 
+layout(std430, set = 0, binding = RT_BINDING_ACCUMULATION_ODD) buffer OddAccumulationBuffer {
+  vec4 oddAccumulation[];  // the same over odd sample indices only
+};
+
 #ifdef RT_COUNT_RAYS
 layout(std430, set = 0, binding = RT_BINDING_RAY_COUNTER) buffer RayCounterBuffer {
   uint rayCounter[];
@@ -40,6 +44,7 @@ void main() {
   // Samples are added one by one in index order, so the sum is the same
   // however the sample range is split over dispatches.
   vec4 sum = accumulation[pixelIndex];
+  vec4 oddSum = oddAccumulation[pixelIndex];
   for (uint s = frame.sampleBegin; s < frame.sampleBegin + frame.sampleCount; ++s) {
     vec2 jitter = samplePair(frame.samplerKind, pixelIndex, s, frame.samplesTotal, RT_DIM_PIXEL,
                              frame.seed);
@@ -47,9 +52,12 @@ void main() {
                            frame.seed);
     Ray ray = cameraRay(vec2(pixel) + jitter, lens);
     vec3 radiance = traceRadiance(ray, uvec3(pixelIndex, s, frame.seed));
-    sum += vec4(finiteOrZero(radiance), 1.0);
+    vec4 contribution = vec4(finiteOrZero(radiance), 1.0);
+    sum += contribution;
+    if ((s & 1u) == 1u) oddSum += contribution;
   }
   accumulation[pixelIndex] = sum;
+  oddAccumulation[pixelIndex] = oddSum;
 #ifdef RT_COUNT_RAYS
   atomicAdd(rayCounter[0], raysTraced);
 #endif

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <regex>
 
+#include "scene/SceneLoader.hpp"
 #include "util/Error.hpp"
 
 namespace rt::cli {
@@ -62,9 +63,17 @@ uint32_t parseDeviceIndex(const std::string& text) {
 }
 
 SamplerKind samplerNamed(const std::string& name, SamplerKind fallback) {
-  if (name == "random") return SamplerKind::Random;
-  if (name == "jittered") return SamplerKind::Jittered;
-  return fallback;
+  if (name.empty()) return fallback;
+  if (std::optional<SamplerKind> kind = samplerKindNamed(name)) return *kind;
+  throw Error(fmt::format("--sampler {}: expected random, jittered or sobol", name));
+}
+
+CLI::Validator samplerValidator() {
+  return CLI::Validator(
+      [](std::string& name) -> std::string {
+        return samplerKindNamed(name) ? "" : "expected random, jittered or sobol";
+      },
+      "SAMPLER");
 }
 
 std::optional<ShadingModel> shadingNamed(const std::string& name) {

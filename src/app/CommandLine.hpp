@@ -35,8 +35,11 @@ Size parseSize(const std::string& text);
 // A device number for --device; throws rt::Error naming the text.
 uint32_t parseDeviceIndex(const std::string& text);
 
-// "random" / "jittered" / "" (keep `fallback`).
+// A sampler name (see samplerKindNamed) or "" (keep `fallback`); throws
+// rt::Error naming --sampler for anything else.
 SamplerKind samplerNamed(const std::string& name, SamplerKind fallback);
+// Accepts the names samplerNamed knows (a usage error otherwise).
+CLI::Validator samplerValidator();
 
 // "standard" / "coursework" / "" (the scene family's default).
 std::optional<ShadingModel> shadingNamed(const std::string& name);

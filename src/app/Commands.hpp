@@ -9,3 +9,6 @@ int runMergeCommand(int argc, char** argv);
 
 // raytracer view SCENE [options] (argv[0] is "view")
 int runViewCommand(int argc, char** argv);
+
+// raytracer converge SCENE [options] (argv[0] is "converge")
+int runConvergeCommand(int argc, char** argv);

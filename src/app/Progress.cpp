@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -14,10 +15,16 @@ ProgressBar::ProgressBar(uint64_t pixels, bool enabled)
 void ProgressBar::update(const RenderProgress& p) {
   if (!enabled_ || p.samplesTotal == 0) return;
   double fraction = p.samplesDone / p.samplesTotal;
+  if (p.targetRmse > 0 && p.rmseEstimate && *p.rmseEstimate > 0) {
+    // Noise falls as 1/sqrt(samples): the share of the samples the target needs.
+    double ratio = p.targetRmse / *p.rmseEstimate;
+    fraction = std::max(fraction, std::min(1.0, ratio * ratio));
+  }
   double rate = p.elapsedSeconds > 0 ? p.samplesDone * double(pixels_) / p.elapsedSeconds : 0;
   double eta = fraction > 0 ? p.elapsedSeconds * (1.0 - fraction) / fraction : 0;
   std::string stats = fmt::format("{:5.1f}/{} spp  {:7.2f} Msamples/s  ETA {:5.1f} s",
                                   p.samplesDone, p.samplesTotal, rate * 1e-6, eta);
+  if (p.rmseEstimate) stats += fmt::format("  RMSE ~{:.4f}", *p.rmseEstimate);
   if (interactive_) {
     if (p.elapsedSeconds - lastDraw_ < 0.1 && fraction < 1.0) return;
     lastDraw_ = p.elapsedSeconds;

@@ -40,6 +40,8 @@ struct CommandLine {
   std::optional<float> exposure;
   std::string sampleRange;
   std::optional<double> timeBudget;
+  std::optional<double> targetRmse;
+  bool estimateRmse = false;
   bool offscreen = true;
   bool validation = false;
   bool quiet = false;
@@ -101,6 +103,12 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
   }
   uint32_t fromScene = scene.settings.samplesPerPixel;
   options.samplesPerPixel = cli.samples ? *cli.samples : (fromScene ? fromScene : kDefaultSamples);
+  if (cli.targetRmse) {
+    // Without --spp the target alone decides when to stop.
+    if (!cli.samples) options.samplesPerPixel = kMaxSamples;
+    options.targetRmse = *cli.targetRmse;
+  }
+  options.estimateError = cli.estimateRmse || cli.targetRmse;
   options.seed = cli.seed;
   options.sampler = rt::cli::samplerNamed(cli.sampler, scene.settings.sampler);
   options.shading = rt::cli::shadingNamed(cli.shading);
@@ -108,16 +116,23 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
   return options;
 }
 
+std::string rmseText(const rt::RenderStats& stats) {
+  if (!stats.rmseEstimate) return "";
+  return fmt::format("; estimated RMSE {:.5f}{}", *stats.rmseEstimate,
+                     stats.reachedTarget ? " (target reached)" : "");
+}
+
 void printSummary(const rt::ImageF& image, const rt::RenderStats& stats,
                   const rt::VulkanContext& context) {
   double samples = double(image.width) * image.height * stats.samplesDone;
   std::fprintf(stderr,
                "rendered %ux%u at %u spp in %.3f s (%.2f Msamples/s) on %s; "
-               "%u primitives, features: %s; setup %.3f s, %u dispatches\n",
+               "%u primitives, features: %s; setup %.3f s, %u dispatches%s\n",
                image.width, image.height, stats.samplesDone, stats.renderSeconds,
                samples / std::max(stats.renderSeconds, 1e-9) * 1e-6,
                context.description().name.c_str(), stats.primitives,
-               stats.features.summary().c_str(), stats.setupSeconds, stats.dispatches);
+               stats.features.summary().c_str(), stats.setupSeconds, stats.dispatches,
+               rmseText(stats).c_str());
 }
 
 int run(const CommandLine& cli) {
@@ -129,6 +144,8 @@ int run(const CommandLine& cli) {
   for (const std::string& warning : scene.warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
   rt::RenderOptions options = renderOptions(cli, scene);
+  options.displayMapping = rt::toneMappingFor(scene);
+  if (cli.exposure) options.displayMapping->exposure *= *cli.exposure;
 
   rt::VulkanContext context(contextOptions(cli));
   rt::ShaderCompiler compiler(cli.shaderDir.empty() ? rt::ShaderCompiler::defaultShaderDir()
@@ -152,9 +169,7 @@ int run(const CommandLine& cli) {
   for (const std::string& warning : stats.warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
 
-  rt::ToneMapping mapping = rt::toneMappingFor(scene);
-  if (cli.exposure) mapping.exposure *= *cli.exposure;
-  rt::writeImage(cli.outputPath, image, mapping);
+  rt::writeImage(cli.outputPath, image, *options.displayMapping);
   if (stats.stoppedEarly) {
     std::fprintf(stderr, "%s after %u full sample(s) per pixel; wrote %s\n",
                  interrupted.load() ? "interrupted" : "time budget reached", stats.samplesDone,
@@ -180,8 +195,10 @@ int runRenderCommand(int argc, char** argv) {
       ->check(CLI::Range(1u, kMaxSamples));
   app.add_option("--size", cli.size, "Image size WIDTHxHEIGHT (overrides the scene)");
   app.add_option("--seed", cli.seed, "Random seed (renders are reproducible per seed)");
-  app.add_option("--sampler", cli.sampler, "Pixel sampler (default: the scene's, else jittered)")
-      ->check(CLI::IsMember({"random", "jittered"}));
+  app.add_option("--sampler", cli.sampler,
+                 "Sampler of every random dimension: random, jittered or sobol (Owen-scrambled "
+                 "Sobol); default: the scene's, else jittered")
+      ->check(rt::cli::samplerValidator());
   app.add_option("--shading", cli.shading,
                  "Shading model (default: coursework for Path-of-Light files, standard otherwise)")
       ->check(CLI::IsMember({"standard", "coursework"}));
@@ -198,6 +215,14 @@ int runRenderCommand(int argc, char** argv) {
                  "with `raytracer merge`; write .exr, whose alpha holds the sample count)");
   app.add_option("--time", cli.timeBudget, "Stop after this many seconds (whole passes kept)")
       ->check(rt::cli::positiveFiniteNumber());
+  app.add_option("--target-rmse", cli.targetRmse,
+                 "Stop once the estimated RMSE of the displayed image (0..1 values, see README "
+                 "'Speed vs accuracy') is at most this; --spp (default: no limit) and --time "
+                 "still stop it first")
+      ->check(rt::cli::positiveFiniteNumber());
+  app.add_flag("--estimate-rmse", cli.estimateRmse,
+               "Estimate the displayed image's RMSE while rendering (even and odd samples become "
+               "independent halves, which costs jittered and sobol some accuracy)");
   app.add_flag("-q,--quiet", cli.quiet, "No progress bar or summary");
   if (std::optional<int> status = rt::cli::parse(app, argc, argv)) return *status;
   try {

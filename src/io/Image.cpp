@@ -97,13 +97,17 @@ void writeExr(const std::filesystem::path& path, const ImageF& image, float expo
 
 }  // namespace
 
+float displayValue(float linear, const ToneMapping& mapping) {
+  float v = applyCurve(linear * mapping.exposure, mapping.curve);
+  return mapping.srgbEncode ? srgbEncode(v) : v;
+}
+
 Image8 toneMap(const ImageF& image, const ToneMapping& mapping) {
   Image8 out{image.width, image.height, {}};
   out.rgb.reserve(size_t(image.width) * image.height * 3);
   for (size_t i = 0; i < size_t(image.width) * image.height; ++i) {
     for (int c = 0; c < 3; ++c) {
-      float v = applyCurve(image.rgba[i * 4 + c] * mapping.exposure, mapping.curve);
-      out.rgb.push_back(quantize(mapping.srgbEncode ? srgbEncode(v) : v));
+      out.rgb.push_back(quantize(displayValue(image.rgba[i * 4 + c], mapping)));
     }
   }
   return out;
@@ -123,6 +127,13 @@ void writeImage(const std::filesystem::path& path, const ImageF& image,
   if (ext == ".hdr") return writeHdr(path, image, mapping.exposure);
   throw Error(fmt::format("{}: unsupported output format '{}' (use .png, .ppm, .exr or .hdr)",
                           path.string(), ext));
+}
+
+void writeImage8(const std::filesystem::path& path, const Image8& image) {
+  std::string ext = lowerExtension(path);
+  if (ext == ".ppm") return writePpm(path, image);
+  if (ext == ".png") return writePng(path, image);
+  throw Error(fmt::format("{}: 8-bit images are written as .png or .ppm", path.string()));
 }
 
 Image8 readImage8(const std::filesystem::path& path) {

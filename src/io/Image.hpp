@@ -39,12 +39,18 @@ struct ToneMapping {
   bool srgbEncode = false;  // sRGB transfer function after the curve
 };
 
+// One linear channel value as displayed, in [0, 1] before 8-bit quantization.
+float displayValue(float linear, const ToneMapping& mapping);
+
 Image8 toneMap(const ImageF& image, const ToneMapping& mapping);
 
 // Writes by extension: .ppm (binary P6) and .png are tone mapped to 8 bits;
 // .exr (float32 RGBA) and .hdr (RGBE) keep linear radiance, exposure applied.
 // The file appears atomically. Throws rt::Error naming the file.
 void writeImage(const std::filesystem::path& path, const ImageF& image, const ToneMapping& mapping);
+
+// Writes an 8-bit image as .png or .ppm (by extension), atomically.
+void writeImage8(const std::filesystem::path& path, const Image8& image);
 
 // True for the extensions writeImage understands.
 bool isSupportedImageExtension(const std::filesystem::path& path);

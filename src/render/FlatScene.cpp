@@ -115,7 +115,8 @@ struct PrimitiveSink {
     for (size_t i = 0; i < world.size(); ++i) {
       gpu::GpuVertex vertex{};
       if (!mesh.normals.empty()) vertex.normal = glm::normalize(normalMatrix * mesh.normals[i]);
-      glm::vec2 uv = mesh.uvs.empty() ? projectedUv(world[i], bounds.center(), uvPole) : mesh.uvs[i];
+      glm::vec2 uv =
+          mesh.uvs.empty() ? projectedUv(world[i], bounds.center(), uvPole) : mesh.uvs[i];
       vertex.u = uv.x;
       vertex.v = uv.y;
       flat.vertices.push_back(vertex);
@@ -228,7 +229,6 @@ void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuS
   info.width = width;
   info.height = height;
 }
-
 
 FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   FlatScene flat;

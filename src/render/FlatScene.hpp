@@ -18,9 +18,9 @@ struct FlatScene {
   std::vector<gpu::GpuBvhNode> bvhNodes;
   std::vector<gpu::GpuMaterial> materials;
   std::vector<gpu::GpuPointLight> pointLights;
-  std::vector<gpu::GpuVertex> vertices;          // shading data of some triangles
+  std::vector<gpu::GpuVertex> vertices;  // shading data of some triangles
   std::vector<gpu::GpuTextureInfo> textureInfos;
-  std::vector<uint32_t> texels;                  // RGBA8 of every texture, packed
+  std::vector<uint32_t> texels;  // RGBA8 of every texture, packed
   uint32_t bvhDepth = 0;
   std::vector<std::string> warnings;  // scene features the GPU scene leaves out
 };

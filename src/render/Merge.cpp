@@ -12,8 +12,8 @@ ImageF mergeRenders(const std::vector<ImageF>& parts) {
   const uint32_t height = parts[0].height;
   for (size_t i = 0; i < parts.size(); ++i) {
     if (parts[i].width != width || parts[i].height != height) {
-      throw Error(fmt::format("merge: image {} is {}x{}, the first is {}x{}", i + 1,
-                              parts[i].width, parts[i].height, width, height));
+      throw Error(fmt::format("merge: image {} is {}x{}, the first is {}x{}", i + 1, parts[i].width,
+                              parts[i].height, width, height));
     }
   }
   ImageF merged{width, height, std::vector<float>(size_t(width) * height * 4, 0.0f)};

@@ -27,6 +27,15 @@ VkDeviceSize largestHeap(const VulkanContext& context) {
 // One vec4 per pixel in one storage buffer; an image beyond what the device
 // can bind or allocate is refused up front with the numbers, not left to a
 // failing vkAllocateMemory.
+uint32_t gpuSamplerKind(SamplerKind kind) {
+  switch (kind) {
+    case SamplerKind::Random: return RT_SAMPLER_RANDOM;
+    case SamplerKind::Jittered: return RT_SAMPLER_JITTERED;
+    case SamplerKind::Sobol: return RT_SAMPLER_SOBOL;
+  }
+  return RT_SAMPLER_RANDOM;
+}
+
 VkDeviceSize accumulationBytes(VulkanContext& context, const FlatScene& flat) {
   const VkDeviceSize bytes = VkDeviceSize(flat.info.width) * flat.info.height * sizeof(glm::vec4);
   const VkDeviceSize limit =
@@ -60,9 +69,11 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
       width_(flat_.info.width),
       height_(flat_.info.height),
       sceneBuffers_(context, flat_),
-      accumulation_(context, accumulationBytes(context, flat_),
-                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
+      region_(resolveRegion(options.region, width_, height_)),
+      accumulation_(context, accumulationBytes(context, flat_), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
+      oddAccumulation_(context, accumulation_.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
   accumulation_.fillZero();
+  oddAccumulation_.fillZero();
   samplesDone_ = options.firstSample;
   if (options.countRays) {
     rayCounter_.emplace(context, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -74,12 +85,14 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
 std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
   std::vector<KernelBinding> bindings = SceneBuffers::bindings();
   bindings.push_back({RT_BINDING_ACCUMULATION});
+  bindings.push_back({RT_BINDING_ACCUMULATION_ODD});
   if (rayCounter_) bindings.push_back({RT_BINDING_RAY_COUNTER});
   auto kernel = std::make_unique<ComputeKernel>(
       context_, compiler_.compile("trace.comp", features_.defines()), bindings,
       static_cast<uint32_t>(sizeof(gpu::GpuFrameParams)));
   sceneBuffers_.bindTo(*kernel);
   kernel->bind(RT_BINDING_ACCUMULATION, accumulation_);
+  kernel->bind(RT_BINDING_ACCUMULATION_ODD, oddAccumulation_);
   if (rayCounter_) kernel->bind(RT_BINDING_RAY_COUNTER, *rayCounter_);
   return kernel;
 }
@@ -87,26 +100,27 @@ std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
 void ProgressiveRenderer::recordSamples(VkCommandBuffer commands, uint32_t row, uint32_t rows,
                                         uint32_t count) const {
   gpu::GpuFrameParams frame{};
-  frame.tileOrigin = {0, row};
-  frame.tileSize = {width_, rows};
+  frame.tileOrigin = {region_.x, region_.y + row};
+  frame.tileSize = {region_.width, rows};
   frame.sampleBegin = samplesDone_;
   frame.sampleCount = count;
   frame.samplesTotal = std::max(options_.samplesTotal, samplesDone_ + count);
   frame.seed = options_.seed;
-  frame.samplerKind =
-      options_.sampler == SamplerKind::Random ? RT_SAMPLER_RANDOM : RT_SAMPLER_JITTERED;
-  kernel_->recordDispatch(commands, &frame, divideRoundUp(width_, RT_WORKGROUP_SIZE_X),
+  frame.samplerKind = gpuSamplerKind(options_.sampler);
+  if (options_.independentHalves) frame.samplerKind |= RT_SAMPLER_REPLICATES;
+  kernel_->recordDispatch(commands, &frame, divideRoundUp(region_.width, RT_WORKGROUP_SIZE_X),
                           divideRoundUp(rows, RT_WORKGROUP_SIZE_Y));
 }
 
 void ProgressiveRenderer::addSamples(uint32_t count) {
   context_.submitAndWait(
-      [&](VkCommandBuffer commands) { recordSamples(commands, 0, height_, count); });
+      [&](VkCommandBuffer commands) { recordSamples(commands, 0, region_.height, count); });
   finishPass(count);
 }
 
 void ProgressiveRenderer::recordReset(VkCommandBuffer commands) {
   vkCmdFillBuffer(commands, accumulation_.handle(), 0, VK_WHOLE_SIZE, 0);
+  vkCmdFillBuffer(commands, oddAccumulation_.handle(), 0, VK_WHOLE_SIZE, 0);
   VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
   barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
@@ -145,6 +159,24 @@ ImageF ProgressiveRenderer::resolve() {
     image.rgba[i * 4 + 3] = sums[i].w;  // samples behind the mean, for merging
   }
   return image;
+}
+
+SampleSums ProgressiveRenderer::sampleSums() {
+  SampleSums sums{width_, height_, {}, {}};
+  sums.all.resize(size_t(width_) * height_);
+  sums.odd.resize(sums.all.size());
+  accumulation_.download(sums.all.data(), sums.all.size() * sizeof(glm::vec4));
+  oddAccumulation_.download(sums.odd.data(), sums.odd.size() * sizeof(glm::vec4));
+  return sums;
+}
+
+bool ProgressiveRenderer::halvesIndependent() const {
+  return options_.independentHalves || options_.sampler == SamplerKind::Random;
+}
+
+std::optional<double> ProgressiveRenderer::estimateRmse(const ToneMapping& mapping) {
+  if (!halvesIndependent()) return std::nullopt;
+  return estimateDisplayRmse(sampleSums(), mapping, region_);
 }
 
 uint64_t ProgressiveRenderer::raysTraced() {

@@ -16,6 +16,8 @@
 #include "io/Image.hpp"
 #include "render/Features.hpp"
 #include "render/FlatScene.hpp"
+#include "render/ImageError.hpp"
+#include "render/PixelRegion.hpp"
 #include "render/SceneBuffers.hpp"
 #include "scene/Scene.hpp"
 
@@ -28,11 +30,15 @@ struct ProgressiveOptions {
   uint32_t width = 0;  // 0: the scene camera's size
   uint32_t height = 0;
   uint32_t samplesTotal = 0;  // samples the render aims for: strata of the jittered sampler
+  PixelRegion region;         // pixels rendered (empty: all); the others keep no samples
   uint32_t seed = 0;
   SamplerKind sampler = SamplerKind::Jittered;
   std::optional<ShadingModel> shading;
   bool countRays = false;
   uint32_t firstSample = 0;  // index of the first sample added (split renders)
+  // Even and odd samples as two independent replicates (RT_SAMPLER_REPLICATES),
+  // which the error estimate needs; it costs stratified samplers accuracy.
+  bool independentHalves = false;
 };
 
 class ProgressiveRenderer {
@@ -46,9 +52,12 @@ class ProgressiveRenderer {
   const FlatScene& flatScene() const { return flat_; }
   const ShaderFeatures& features() const { return features_; }
 
-  // Records a dispatch adding `count` samples per pixel to rows [row, row + rows),
-  // starting at sample index samplesDone(). Call finishPass(count) once every
-  // row got them.
+  // The rendered pixels (the whole image unless ProgressiveOptions::region).
+  const PixelRegion& region() const { return region_; }
+
+  // Records a dispatch adding `count` samples per pixel to rows [row, row + rows)
+  // of the region (row 0: its top row), starting at sample index samplesDone().
+  // Call finishPass(count) once every row got them.
   void recordSamples(VkCommandBuffer commands, uint32_t row, uint32_t rows, uint32_t count) const;
   void finishPass(uint32_t count) { samplesDone_ += count; }
   // recordSamples over the whole image, submitted and waited for.
@@ -70,6 +79,13 @@ class ProgressiveRenderer {
   const Buffer& accumulation() const { return accumulation_; }
   // Mean radiance per pixel; alpha = the pixel's sample count.
   ImageF resolve();
+  // The accumulation sums of all and of the odd-indexed samples.
+  SampleSums sampleSums();
+  // estimateDisplayRmse over the region, from the samples so far; nullopt
+  // unless the halves are independent (independentHalves, or the random
+  // sampler, whose samples always are).
+  std::optional<double> estimateRmse(const ToneMapping& mapping);
+  bool halvesIndependent() const;
   // Rays traced so far (only with ProgressiveOptions::countRays).
   uint64_t raysTraced();
 
@@ -84,7 +100,9 @@ class ProgressiveRenderer {
   uint32_t width_;
   uint32_t height_;
   SceneBuffers sceneBuffers_;
+  PixelRegion region_;
   Buffer accumulation_;
+  Buffer oddAccumulation_;  // sums of odd sample indices: the error estimate
   std::optional<Buffer> rayCounter_;
   std::unique_ptr<ComputeKernel> kernel_;
   std::vector<std::unique_ptr<ComputeKernel>> retired_;

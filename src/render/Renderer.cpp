@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <optional>
 
 #include "gpu/ShaderCompiler.hpp"
@@ -20,6 +21,12 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double processCpuSeconds() {
+  timespec now{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return double(now.tv_sec) + double(now.tv_nsec) * 1e-9;
 }
 
 // Sizes dispatches from the measured cost of one pixel-sample so that each
@@ -59,35 +66,113 @@ class DispatchPlanner {
 
 }  // namespace
 
+uint32_t nextRmseCheckpoint(uint32_t samplesDone) {
+  if (samplesDone < 2) return 2;
+  if (samplesDone < 4) return 4;
+  for (int k = 0;; ++k) {
+    double checkpoint = std::round(8.0 * std::exp2(k / 4.0));
+    if (checkpoint > samplesDone) return static_cast<uint32_t>(std::min(checkpoint, 4294967295.0));
+  }
+}
+
 Renderer::Renderer(VulkanContext& context, const ShaderCompiler& compiler)
     : context_(context), compiler_(compiler) {}
 
 namespace {
 
-// Adds one pass of `samples` over every row, in dispatches the planner sizes.
-// Returns false if stopped part way.
-bool renderPass(VulkanContext& context, ProgressiveRenderer& job, DispatchPlanner& planner,
-                uint32_t samples, const RenderOptions& options, const ProgressCallback& onProgress,
-                Clock::time_point start, RenderStats& stats) {
-  const uint32_t height = job.height();
-  const uint32_t end = options.endSample ? options.endSample : options.samplesPerPixel;
-  for (uint32_t row = 0; row < height;) {
-    if (options.shouldStop && options.shouldStop()) return false;
-    uint32_t rows = std::min(planner.rowsPerDispatch(samples), height - row);
-    auto dispatchStart = Clock::now();
-    context.submitAndWait(
-        [&](VkCommandBuffer commands) { job.recordSamples(commands, row, rows, samples); });
-    planner.record(rows, samples, secondsSince(dispatchStart));
-    ++stats.dispatches;
-    row += rows;
-    if (options.countRays) stats.raysTraced = job.raysTraced();
-    if (onProgress) {
-      double done = job.samplesDone() - options.firstSample + samples * double(row) / height;
-      onProgress({done, end - options.firstSample, secondsSince(start)});
+// One render's sample loop: passes of a few samples over every row of the
+// region, in dispatches the planner sizes, with progress reports and the
+// error estimate at checkpoints.
+class RenderLoop {
+ public:
+  RenderLoop(VulkanContext& context, ProgressiveRenderer& job, const RenderOptions& options,
+             const ToneMapping& mapping, const ProgressCallback& onProgress, RenderStats& stats)
+      : context_(context),
+        job_(job),
+        options_(options),
+        mapping_(mapping),
+        onProgress_(onProgress),
+        stats_(stats),
+        planner_(job.region().width, job.region().height, options.secondsPerDispatch),
+        end_(options.endSample ? options.endSample : options.samplesPerPixel),
+        estimating_(options.estimateError || options.targetRmse > 0) {}
+
+  void run() {
+    while (job_.samplesDone() < end_) {
+      uint32_t samples = planner_.samplesPerPass(samplesToNextStop());
+      if (!renderPass(samples)) {
+        stats_.stoppedEarly = true;
+        break;
+      }
+      job_.finishPass(samples);
+      if (estimating_ && isCheckpoint(samplesDone()) && updateEstimate()) break;
     }
+    if (estimating_ && estimatedAt_ != samplesDone()) updateEstimate();
+    stats_.rmseEstimate = estimate_;
   }
-  return true;
-}
+
+ private:
+  uint32_t samplesDone() const { return job_.samplesDone() - options_.firstSample; }
+
+  static bool isCheckpoint(uint32_t done) {
+    return done > 0 && nextRmseCheckpoint(done - 1) == done;
+  }
+
+  uint32_t samplesToNextStop() const {
+    uint32_t remaining = end_ - job_.samplesDone();
+    if (!estimating_) return remaining;
+    return std::min(remaining, nextRmseCheckpoint(samplesDone()) - samplesDone());
+  }
+
+  // Returns true when the estimate reached the target.
+  bool updateEstimate() {
+    estimate_ = job_.estimateRmse(mapping_);
+    estimatedAt_ = samplesDone();
+    report(samplesDone());
+    stats_.reachedTarget = options_.targetRmse > 0 && estimate_ &&
+                           *estimate_ <= options_.targetRmse &&
+                           samplesDone() >= kMinSamplesForTarget;
+    return stats_.reachedTarget;
+  }
+
+  void report(double done) const {
+    if (!onProgress_) return;
+    RenderProgress progress{done, end_ - options_.firstSample, secondsSince(start_), estimate_,
+                            options_.targetRmse};
+    onProgress_(progress);
+  }
+
+  // Adds `samples` to every row of the region; false if stopped part way.
+  bool renderPass(uint32_t samples) {
+    const uint32_t height = job_.region().height;
+    for (uint32_t row = 0; row < height;) {
+      if (options_.shouldStop && options_.shouldStop()) return false;
+      uint32_t rows = std::min(planner_.rowsPerDispatch(samples), height - row);
+      auto dispatchStart = Clock::now();
+      context_.submitAndWait(
+          [&](VkCommandBuffer commands) { job_.recordSamples(commands, row, rows, samples); });
+      planner_.record(rows, samples, secondsSince(dispatchStart));
+      ++stats_.dispatches;
+      row += rows;
+      if (options_.countRays) stats_.raysTraced = job_.raysTraced();
+      report(samplesDone() + samples * double(row) / height);
+    }
+    return true;
+  }
+
+  VulkanContext& context_;
+  ProgressiveRenderer& job_;
+  const RenderOptions& options_;
+  ToneMapping mapping_;
+  const ProgressCallback& onProgress_;
+  RenderStats& stats_;
+  DispatchPlanner planner_;
+  const uint32_t end_;
+  const bool estimating_;
+  const Clock::time_point start_ = Clock::now();
+  std::optional<double> estimate_;
+  uint32_t estimatedAt_ = 0;
+};
 
 }  // namespace
 
@@ -99,12 +184,20 @@ ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
   const uint32_t total = std::max(options.samplesPerPixel, 1u);
   const uint32_t end = options.endSample ? std::min(options.endSample, total) : total;
   if (options.firstSample >= end) {
-    throw Error(fmt::format("empty sample range {}:{} (of {} samples)", options.firstSample, end,
-                            total));
+    throw Error(
+        fmt::format("empty sample range {}:{} (of {} samples)", options.firstSample, end, total));
   }
-  ProgressiveOptions progressive{options.width,   options.height,  total,
-                                 options.seed,    options.sampler, options.shading,
-                                 options.countRays, options.firstSample};
+  ProgressiveOptions progressive;
+  progressive.width = options.width;
+  progressive.height = options.height;
+  progressive.samplesTotal = total;
+  progressive.region = options.region;
+  progressive.seed = options.seed;
+  progressive.sampler = options.sampler;
+  progressive.shading = options.shading;
+  progressive.countRays = options.countRays;
+  progressive.firstSample = options.firstSample;
+  progressive.independentHalves = options.estimateError || options.targetRmse > 0;
   ProgressiveRenderer job(context_, compiler_, scene, progressive);
   s.primitives = job.flatScene().info.primitiveCount;
   s.bvhNodes = job.flatScene().info.bvhNodeCount;
@@ -113,18 +206,17 @@ ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
   s.features = job.features();
   s.setupSeconds = secondsSince(start);
 
-  DispatchPlanner planner(job.width(), job.height(), options.secondsPerDispatch);
+  RenderOptions clamped = options;
+  clamped.samplesPerPixel = total;
+  clamped.endSample = end;
   auto renderStart = Clock::now();
-  while (job.samplesDone() < end) {
-    uint32_t samples = planner.samplesPerPass(end - job.samplesDone());
-    if (!renderPass(context_, job, planner, samples, options, onProgress, renderStart, s)) {
-      s.stoppedEarly = true;
-      break;
-    }
-    job.finishPass(samples);
-  }
+  double cpuStart = processCpuSeconds();
+  RenderLoop(context_, job, clamped, options.displayMapping.value_or(toneMappingFor(scene)),
+             onProgress, s)
+      .run();
   s.samplesDone = job.samplesDone() - options.firstSample;
   s.renderSeconds = secondsSince(renderStart);
+  s.renderCpuSeconds = processCpuSeconds() - cpuStart;
   return job.resolve();
 }
 

@@ -11,6 +11,7 @@
 #include "io/Image.hpp"
 #include "render/Conventions.hpp"
 #include "render/Features.hpp"
+#include "render/PixelRegion.hpp"
 #include "scene/Scene.hpp"
 
 namespace rt {
@@ -28,9 +29,21 @@ struct RenderOptions {
   uint32_t endSample = 0;  // 0: samplesPerPixel
   uint32_t seed = 0;
   SamplerKind sampler = SamplerKind::Jittered;
+  PixelRegion region;                   // pixels to render (empty: all); others get no samples
   std::optional<ShadingModel> shading;  // default: the scene family's
-  double secondsPerDispatch = 0.1;      // target duration of one dispatch
-  bool countRays = false;               // compile in a ray counter (benchmarks)
+  // Error estimate (ImageError.hpp): computed at checkpoints of the sample
+  // count (nextRmseCheckpoint) and at the end, in the display space of
+  // `displayMapping` (default: toneMappingFor(scene)). It renders even and
+  // odd samples as independent replicates (RT_SAMPLER_REPLICATES), which
+  // makes jittered and Sobol images noisier than without. A positive target
+  // also ends the render at the first checkpoint whose estimate is <= the
+  // target (never before kMinSamplesForTarget samples); the sample budget
+  // and shouldStop still apply, whichever comes first.
+  bool estimateError = false;
+  double targetRmse = 0;
+  std::optional<ToneMapping> displayMapping;
+  double secondsPerDispatch = 0.1;  // target duration of one dispatch
+  bool countRays = false;           // compile in a ray counter (benchmarks)
   // Polled between dispatches; returning true ends the render early with
   // the samples accumulated so far (SIGINT, time budgets).
   std::function<bool()> shouldStop;
@@ -40,15 +53,29 @@ struct RenderProgress {
   double samplesDone = 0;  // per pixel, fractional while a pass is under way
   uint32_t samplesTotal = 0;
   double elapsedSeconds = 0;
+  std::optional<double> rmseEstimate;  // the latest, with RenderOptions::estimateError
+  double targetRmse = 0;               // RenderOptions::targetRmse
 };
+
+// The sample counts (counted from RenderOptions::firstSample) at which the
+// error is estimated: 8 * 2^(k/4) rounded, so a render stopped by
+// --target-rmse has at most ~19% more samples than it needed, the stopping
+// point does not depend on timing, and estimates cost little.
+uint32_t nextRmseCheckpoint(uint32_t samplesDone);
+constexpr uint32_t kMinSamplesForTarget = 8;
 
 struct RenderStats {
   double setupSeconds = 0;   // flatten, BVH build, upload, shader compile
   double renderSeconds = 0;  // dispatches only
+  // CPU time of this process over the same span (all threads): the work a
+  // CPU Vulkan device (lavapipe) did, unaffected by other processes.
+  double renderCpuSeconds = 0;
   uint32_t dispatches = 0;
-  uint64_t raysTraced = 0;  // only with RenderOptions::countRays
-  uint32_t samplesDone = 0;  // full passes completed (per pixel)
-  bool stoppedEarly = false;
+  uint64_t raysTraced = 0;             // only with RenderOptions::countRays
+  uint32_t samplesDone = 0;            // full passes completed (per pixel)
+  bool stoppedEarly = false;           // by shouldStop
+  bool reachedTarget = false;          // ended by RenderOptions::targetRmse
+  std::optional<double> rmseEstimate;  // at the end, with RenderOptions::estimateError
   uint32_t primitives = 0;
   uint32_t bvhNodes = 0;
   uint32_t bvhDepth = 0;

@@ -62,10 +62,10 @@ void SceneBuffers::bindTo(ComputeKernel& kernel) const {
 
 std::vector<KernelBinding> SceneBuffers::bindings() {
   constexpr VkDescriptorType kTexels = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-  return {{RT_BINDING_SCENE_INFO},   {RT_BINDING_PRIMITIVES, kTexels},
+  return {{RT_BINDING_SCENE_INFO},         {RT_BINDING_PRIMITIVES, kTexels},
           {RT_BINDING_BVH_NODES, kTexels}, {RT_BINDING_MATERIALS},
-          {RT_BINDING_POINT_LIGHTS}, {RT_BINDING_VERTICES},
-          {RT_BINDING_TEXTURE_INFO}, {RT_BINDING_TEXELS}};
+          {RT_BINDING_POINT_LIGHTS},       {RT_BINDING_VERTICES},
+          {RT_BINDING_TEXTURE_INFO},       {RT_BINDING_TEXELS}};
 }
 
 void SceneBuffers::updateInfo(const gpu::GpuSceneInfo& info) { info_.upload(&info, sizeof(info)); }

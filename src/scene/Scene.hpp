@@ -106,7 +106,7 @@ struct Camera {
 
 enum class RenderMode { Binary, Phong };
 
-enum class SamplerKind { Random, Jittered };
+enum class SamplerKind { Random, Jittered, Sobol };  // Sobol: Owen-scrambled (rng.glsl)
 
 // Which file family a scene came from; decides the lighting conventions
 // documented in README (falloff and intensity scale).

@@ -169,9 +169,8 @@ uint32_t readBounces(JsonObject& top) {
 
 SamplerKind parseSampler(const JsonNode& node) {
   const std::string name = node.string();
-  if (name == "random") return SamplerKind::Random;
-  if (name == "jittered" || name == "jittering") return SamplerKind::Jittered;
-  node.fail("unknown sampler '" + name + "' (expected \"random\" or \"jittered\")");
+  if (std::optional<SamplerKind> kind = samplerKindNamed(name)) return *kind;
+  node.fail("unknown sampler '" + name + "' (expected \"random\", \"jittered\" or \"sobol\")");
 }
 
 uint32_t parseSampleCount(const JsonNode& node) {
@@ -725,5 +724,25 @@ Scene parseScene(std::string_view jsonText, const fs::path& file) {
 Scene loadScene(const fs::path& file) {
   return withPrintableErrors([&] { return readScene(readFileText(file), file); });
 }
+
+std::optional<SamplerKind> samplerKindNamed(const std::string& name) {
+  if (name == "random") return SamplerKind::Random;
+  if (name == "jittered" || name == "jittering") return SamplerKind::Jittered;
+  if (name == "sobol" || name == "owen-sobol" || name == "ld" || name == "lowdiscrepancy" ||
+      name == "low-discrepancy") {
+    return SamplerKind::Sobol;
+  }
+  return std::nullopt;
+}
+
+const char* samplerKindName(SamplerKind kind) {
+  switch (kind) {
+    case SamplerKind::Random: return "random";
+    case SamplerKind::Jittered: return "jittered";
+    case SamplerKind::Sobol: return "sobol";
+  }
+  return "unknown";
+}
+
 
 }  // namespace rt

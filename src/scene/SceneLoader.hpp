@@ -3,6 +3,8 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
+#include <string>
 #include <string_view>
 
 #include "scene/Scene.hpp"
@@ -20,5 +22,12 @@ Scene loadScene(const std::filesystem::path& file);
 // Same from an in-memory string; `file` is only used in messages and to
 // resolve relative texture paths.
 Scene parseScene(std::string_view jsonText, const std::filesystem::path& file);
+
+// Sampler names of the `sampler` key and --sampler: "random", "jittered"
+// (also "jittering"), "sobol" (also "owen-sobol", "ld", "lowdiscrepancy",
+// "low-discrepancy"); nullopt for anything else.
+std::optional<SamplerKind> samplerKindNamed(const std::string& name);
+// The canonical name ("random", "jittered", "sobol").
+const char* samplerKindName(SamplerKind kind);
 
 }  // namespace rt

@@ -60,6 +60,7 @@ TEST_SUITE("shader-compiler") {
     };
     std::vector<KernelBinding> render = SceneBuffers::bindings();
     render.push_back({RT_BINDING_ACCUMULATION});
+    render.push_back({RT_BINDING_ACCUMULATION_ODD});
     std::vector<KernelBinding> batch = SceneBuffers::bindings();
     batch.push_back({RT_BINDING_RAYS});
     batch.push_back({RT_BINDING_HITS});
