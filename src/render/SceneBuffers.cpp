@@ -43,6 +43,7 @@ SceneBuffers::SceneBuffers(VulkanContext& context, const FlatScene& scene)
     : info_(makeStorage(context, std::vector<gpu::GpuSceneInfo>{scene.info}, "scene info")),
       primitives_(makeTexels(context, scene.primitives, "primitives")),
       bvhNodes_(makeTexels(context, scene.bvhNodes, "BVH nodes")),
+      items_(makeTexels(context, scene.items, "BVH leaf items")),
       materials_(makeStorage(context, scene.materials, "materials")),
       pointLights_(makeStorage(context, scene.pointLights, "point lights")),
       vertices_(makeStorage(context, scene.vertices, "vertices")),
@@ -53,6 +54,7 @@ void SceneBuffers::bindTo(ComputeKernel& kernel) const {
   kernel.bind(RT_BINDING_SCENE_INFO, info_);
   kernel.bindTexels(RT_BINDING_PRIMITIVES, primitives_, VK_FORMAT_R32G32B32A32_SFLOAT);
   kernel.bindTexels(RT_BINDING_BVH_NODES, bvhNodes_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  kernel.bindTexels(RT_BINDING_ITEMS, items_, VK_FORMAT_R32G32B32A32_SFLOAT);
   kernel.bind(RT_BINDING_MATERIALS, materials_);
   kernel.bind(RT_BINDING_POINT_LIGHTS, pointLights_);
   kernel.bind(RT_BINDING_VERTICES, vertices_);
@@ -62,16 +64,21 @@ void SceneBuffers::bindTo(ComputeKernel& kernel) const {
 
 std::vector<KernelBinding> SceneBuffers::bindings() {
   constexpr VkDescriptorType kTexels = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-  return {{RT_BINDING_SCENE_INFO},   {RT_BINDING_PRIMITIVES, kTexels},
-          {RT_BINDING_BVH_NODES, kTexels}, {RT_BINDING_MATERIALS},
-          {RT_BINDING_POINT_LIGHTS}, {RT_BINDING_VERTICES},
-          {RT_BINDING_TEXTURE_INFO}, {RT_BINDING_TEXELS}};
+  return {{RT_BINDING_SCENE_INFO},
+          {RT_BINDING_PRIMITIVES, kTexels},
+          {RT_BINDING_BVH_NODES, kTexels},
+          {RT_BINDING_ITEMS, kTexels},
+          {RT_BINDING_MATERIALS},
+          {RT_BINDING_POINT_LIGHTS},
+          {RT_BINDING_VERTICES},
+          {RT_BINDING_TEXTURE_INFO},
+          {RT_BINDING_TEXELS}};
 }
 
 void SceneBuffers::updateInfo(const gpu::GpuSceneInfo& info) { info_.upload(&info, sizeof(info)); }
 
 size_t SceneBuffers::bytes() const {
-  return info_.size() + primitives_.size() + bvhNodes_.size() + materials_.size() +
+  return info_.size() + primitives_.size() + bvhNodes_.size() + items_.size() + materials_.size() +
          pointLights_.size() + vertices_.size() + textureInfos_.size() + texels_.size();
 }
 

@@ -26,6 +26,7 @@ class SceneBuffers {
   Buffer info_;
   Buffer primitives_;
   Buffer bvhNodes_;
+  Buffer items_;
   Buffer materials_;
   Buffer pointLights_;
   Buffer vertices_;
