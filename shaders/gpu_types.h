@@ -121,9 +121,6 @@ RT_ASSERT_STD430_SIZE(GpuBvhNode, 64);
 #define RT_REF_COUNT_SHIFT 27u
 #define RT_REF_MAX_LEAF_SIZE 15u
 #define RT_REF_FIRST_MASK 0x07ffffffu
-// Stack entry that returns traversal from a mesh to the top level (a leaf
-// reference no real leaf can have: items stay below RT_REF_FIRST_MASK - 15).
-#define RT_REF_LEAVE_INSTANCE 0xffffffffu
 
 // What a leaf points at (48 bytes, three texels), by kind:
 //   triangle: v0, v1 - v0, v2 - v0; w: GpuVertex indices of the corners (bits)
@@ -144,8 +141,8 @@ RT_ASSERT_STD430_SIZE(GpuItem, 48);
 // RT_PRIM_HAS_VERTICES / RT_PRIM_SMOOTH of its mesh.
 #define RT_PRIM_INSTANCE 3u
 
-// Traversal stack: both levels, plus the entries a lane parks while its leaf
-// cursor is busy and the return marker pushed when a ray enters a mesh.
+// Traversal stack: both levels, plus the leaves a lane parks while its leaf
+// cursor is busy.
 #define RT_BVH_STACK_SIZE (2 * RT_BVH_MAX_DEPTH + 8)
 // ---- end of acceleration structure ----
 

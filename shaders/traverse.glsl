@@ -112,23 +112,26 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
   uint stackSize = 0u;
 #ifdef RT_FEATURE_MESHES
   uint instance = RT_NONE;  // top-level item of the mesh the ray is in
-  uint instanceBase = 0u;   // stack size when the ray entered it
+  uint stackFloor = 0u;     // stack size when the ray entered it
   uint instanceRoots = floatBitsToUint(nodeRow(0u, 2u).w);
 #else
   const uint instance = RT_NONE;
+  const uint stackFloor = 0u;
 #endif
   while (node != RT_NONE || cursor.item != cursor.end || stackSize > 0u) {
     bool idle = node == RT_NONE && cursor.item == cursor.end;
 #ifdef RT_FEATURE_MESHES
     // A mesh is done when its nodes and leaves are: back to world space.
-    if (instance != RT_NONE && idle && stackSize == instanceBase) {
+    if (instance != RT_NONE && idle && stackSize == stackFloor) {
       ray = worldRay;
       invDir = worldInvDir;
       instance = RT_NONE;
+      stackFloor = 0u;
     }
 #endif
-    // Refill: a node from the stack, or a leaf once the cursor is free.
-    if (node == RT_NONE && stackSize > 0u) {
+    // Refill: a node from the stack, or a leaf once the cursor is free; a
+    // ray inside a mesh takes only the mesh's entries.
+    if (node == RT_NONE && stackSize > stackFloor) {
       uint top = stack[stackSize - 1u];
       bool topIsLeaf = isLeafRef(top);
       if (!topIsLeaf || cursor.item == cursor.end) --stackSize;
@@ -182,7 +185,7 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
         if (advance) {
           node = instanceRoots + item;
           instance = item;
-          instanceBase = stackSize;
+          stackFloor = stackSize;
           ray = rayToObject(worldRay, row0, row1, row2);
           invDir = safeReciprocal(ray.direction);
         }

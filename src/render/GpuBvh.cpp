@@ -20,8 +20,7 @@ void setChild(gpu::GpuBvhNode& node, bool right, const Aabb& box, uint32_t refer
 }
 
 uint32_t leafField(uint32_t first, uint32_t field) {
-  // The last few indices stay free so that no leaf equals RT_REF_LEAVE_INSTANCE.
-  if (field > RT_REF_MAX_LEAF_SIZE || first > RT_REF_FIRST_MASK - RT_REF_MAX_LEAF_SIZE) {
+  if (field > RT_REF_MAX_LEAF_SIZE || first > RT_REF_FIRST_MASK) {
     throw Error(
         fmt::format("scene too large: BVH leaf at item {} does not fit a node reference", first));
   }

@@ -33,6 +33,7 @@ struct ProgressiveOptions {
   std::optional<ShadingModel> shading;
   bool countRays = false;
   uint32_t firstSample = 0;  // index of the first sample added (split renders)
+  AccelKind accel = AccelKind::Bvh;
 };
 
 class ProgressiveRenderer {

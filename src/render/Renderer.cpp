@@ -104,7 +104,7 @@ ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
   }
   ProgressiveOptions progressive{options.width,   options.height,  total,
                                  options.seed,    options.sampler, options.shading,
-                                 options.countRays, options.firstSample};
+                                 options.countRays, options.firstSample, options.accel};
   ProgressiveRenderer job(context_, compiler_, scene, progressive);
   s.primitives = job.flatScene().info.primitiveCount;
   s.bvhNodes = job.flatScene().info.bvhNodeCount;
