@@ -10,7 +10,7 @@ layout(std430, set = 0, binding = RT_BINDING_SCENE_INFO) readonly buffer SceneIn
 // loads but read storage buffers at divergent indices one lane at a time,
 // which made traversal several times slower.
 layout(set = 0, binding = RT_BINDING_PRIMITIVES) uniform samplerBuffer primitiveTexels;
-layout(set = 0, binding = RT_BINDING_BVH_NODES) uniform samplerBuffer bvhNodeTexels;
+layout(set = 0, binding = RT_BINDING_BVH_NODES) uniform usamplerBuffer bvhNodeTexels;
 
 // Shading data of top-level primitive `index` (GpuPrimitive), texel `row`
 // (0..3): a, b, c, then kind/material/shape/flags.
@@ -26,8 +26,8 @@ GpuPrimitive loadPrimitive(uint index) {
                       info.x, info.y, info.z, info.w);
 }
 
-// Texel `row` (0..3) of BVH node `index` (see GpuBvhNode).
-vec4 nodeRow(uint index, uint row) {
+// Texel `row` (0..1) of BVH node `index` (see GpuBvhNode).
+uvec4 nodeRow(uint index, uint row) {
   return texelFetch(bvhNodeTexels, int(index * RT_TEXELS_PER_BVH_NODE + row));
 }
 

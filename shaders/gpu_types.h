@@ -98,25 +98,28 @@ RT_ASSERT_STD430_SIZE(GpuPrimitive, 64);
 // share one array (the top-level root is node 0); all leaf items share one
 // GpuItem array (top-level items first, numbered like GpuPrimitive).
 //
-// Node (64 bytes, four RGBA32F texels) holding the boxes of both children,
-// so one fetch decides which children a ray enters. A child reference is a
-// node index or, with RT_REF_LEAF set, a leaf:
-//   top level:  RT_REF_LEAF | kind << RT_REF_COUNT_SHIFT | item   (RT_PRIM_*)
+// Node (32 bytes, two RGBA32UI texels) holding the boxes of both children,
+// so one fetch decides which children a ray enters. Boxes are half floats
+// (packHalf2x16 pairs), rounded outwards: looser by at most one half ulp,
+// never missing anything. A child reference is a node index or, with
+// RT_REF_LEAF set, a leaf:
+//   top level:  RT_REF_LEAF | (kind + 1) << RT_REF_COUNT_SHIFT | item   (RT_PRIM_*)
 //   mesh level: RT_REF_LEAF | count << RT_REF_COUNT_SHIFT | first triangle item
-// Node 0's `aux` holds the index of the first instance root node: node
-// (that + item) is a copy of the mesh root of top-level instance `item`.
+// (RT_REF_LEAF alone is the empty leaf at both levels). Node 1 + i is a copy
+// of the mesh root of top-level item i, for each mesh instance i (instances
+// are the first items).
 struct GpuBvhNode {
-  vec3 leftMin;
   uint leftRef;
-  vec3 leftMax;
   uint rightRef;
-  vec3 rightMin;
-  uint aux;
-  vec3 rightMax;
-  uint pad0;
+  uint leftMinXY;
+  uint leftMinZMaxX;
+  uint leftMaxYZ;
+  uint rightMinXY;
+  uint rightMinZMaxX;
+  uint rightMaxYZ;
 };
-RT_ASSERT_STD430_SIZE(GpuBvhNode, 64);
-#define RT_TEXELS_PER_BVH_NODE 4u
+RT_ASSERT_STD430_SIZE(GpuBvhNode, 32);
+#define RT_TEXELS_PER_BVH_NODE 2u
 #define RT_REF_LEAF 0x80000000u
 #define RT_REF_COUNT_SHIFT 27u
 #define RT_REF_MAX_LEAF_SIZE 15u

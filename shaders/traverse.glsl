@@ -113,7 +113,6 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
 #ifdef RT_FEATURE_MESHES
   uint instance = RT_NONE;  // top-level item of the mesh the ray is in
   uint stackFloor = 0u;     // stack size when the ray entered it
-  uint instanceRoots = floatBitsToUint(nodeRow(0u, 2u).w);
 #else
   const uint instance = RT_NONE;
   const uint stackFloor = 0u;
@@ -183,7 +182,7 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
       if (cursor.kind == RT_PRIM_INSTANCE) {
         advance = node == RT_NONE;
         if (advance) {
-          node = instanceRoots + item;
+          node = 1u + item;  // the copy of its mesh's root
           instance = item;
           stackFloor = stackSize;
           ray = rayToObject(worldRay, row0, row1, row2);
@@ -197,15 +196,19 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
     // Node step: both children's boxes. The nearer child takes the free slot
     // (node for interior nodes, cursor for leaves); the rest waits.
     if (node != RT_NONE) {
-      vec4 leftMin = nodeRow(node, 0u);
-      vec4 leftMax = nodeRow(node, 1u);
-      vec4 rightMin = nodeRow(node, 2u);
-      vec4 rightMax = nodeRow(node, 3u);
-      float tLeft = boxEntry(leftMin.xyz, leftMax.xyz, ray.origin, invDir, tMin, tMax);
-      float tRight = boxEntry(rightMin.xyz, rightMax.xyz, ray.origin, invDir, tMin, tMax);
+      uvec4 low = nodeRow(node, 0u);
+      uvec4 high = nodeRow(node, 1u);
+      vec2 lminZmaxX = unpackHalf2x16(low.w);
+      vec2 rminZmaxX = unpackHalf2x16(high.z);
+      vec3 leftMin = vec3(unpackHalf2x16(low.z), lminZmaxX.x);
+      vec3 leftMax = vec3(lminZmaxX.y, unpackHalf2x16(high.x));
+      vec3 rightMin = vec3(unpackHalf2x16(high.y), rminZmaxX.x);
+      vec3 rightMax = vec3(rminZmaxX.y, unpackHalf2x16(high.w));
+      float tLeft = boxEntry(leftMin, leftMax, ray.origin, invDir, tMin, tMax);
+      float tRight = boxEntry(rightMin, rightMax, ray.origin, invDir, tMin, tMax);
       bool leftFirst = tLeft <= tRight;
-      uint near = floatBitsToUint(leftFirst ? leftMin.w : leftMax.w);
-      uint far = floatBitsToUint(leftFirst ? leftMax.w : leftMin.w);
+      uint near = leftFirst ? low.x : low.y;
+      uint far = leftFirst ? low.y : low.x;
       bool hitNear = min(tLeft, tRight) != RT_FAR;
       bool hitFar = max(tLeft, tRight) != RT_FAR;
       node = RT_NONE;

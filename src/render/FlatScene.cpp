@@ -305,9 +305,9 @@ Aabb instanceBounds(const gpu::GpuPrimitive& prim, const MeshBlas& blas) {
   return transformedBounds(blas.bounds, glm::inverse(worldToObject));
 }
 
-// Nodes: the top level first (its root is node 0), then one copy of the mesh
-// root per instance (node 0's aux says where they start), then each mesh's
-// tree. Items: every top-level primitive's rows, then each mesh's triangles.
+// Nodes: the top-level root (node 0), one copy of the mesh root per instance,
+// the rest of the top level, then each mesh's tree. Items: every top-level primitive's rows, then
+// each mesh's triangles.
 void addBvh(const std::vector<PendingInstance>& instances,
             std::vector<std::optional<MeshBlas>>& meshes, const FlattenOptions& options,
             FlatScene& flat) {
@@ -331,9 +331,15 @@ void addBvh(const std::vector<PendingInstance>& instances,
         return topLevelLeaf(item, flat.primitives[item].kind);
       },
       flat.bvhNodes);
-  uint32_t instanceRoots = static_cast<uint32_t>(flat.bvhNodes.size());
-  flat.bvhNodes[0].aux = instanceRoots;
-  flat.bvhNodes.resize(instanceRoots + instances.size());
+  // Room for the instance root copies at nodes 1..I (see GpuBvhNode): the
+  // top level's own nodes move up by I.
+  uint32_t shift = static_cast<uint32_t>(instances.size());
+  for (gpu::GpuBvhNode& node : flat.bvhNodes) {
+    for (uint32_t* ref : {&node.leftRef, &node.rightRef}) {
+      if ((*ref & RT_REF_LEAF) == 0) *ref += shift;
+    }
+  }
+  flat.bvhNodes.insert(flat.bvhNodes.begin() + 1, shift, gpu::GpuBvhNode{});
   uint32_t meshDepth = 0;
   for (std::optional<MeshBlas>& blas : meshes) {
     if (!blas) continue;
@@ -346,7 +352,7 @@ void addBvh(const std::vector<PendingInstance>& instances,
     meshDepth = std::max(meshDepth, blas->bvh.depth);
   }
   for (const PendingInstance& instance : instances) {
-    flat.bvhNodes[instanceRoots + instance.primitive] = flat.bvhNodes[meshes[instance.mesh]->root];
+    flat.bvhNodes[1 + instance.primitive] = flat.bvhNodes[meshes[instance.mesh]->root];
   }
   flat.bvhDepth = top.depth + meshDepth;
 }

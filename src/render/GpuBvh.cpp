@@ -2,20 +2,50 @@
 
 #include <fmt/format.h>
 
+#include <glm/gtc/packing.hpp>
+
 #include "util/Error.hpp"
 
 namespace rt {
 namespace {
 
+// Half-float bits of v rounded down (or up): a box stored this way still
+// holds everything the float box held.
+uint16_t halfTowards(float v, bool up) {
+  uint16_t h = static_cast<uint16_t>(glm::packHalf1x16(v));
+  float back = glm::unpackHalf1x16(h);
+  bool negative = (h & 0x8000u) != 0;
+  if (up && back < v) {
+    if (h == 0x8000u) return 0x0001u;  // -0 -> smallest positive
+    return static_cast<uint16_t>(negative ? h - 1 : h + 1);
+  }
+  if (!up && back > v) {
+    if (h == 0x0000u) return 0x8001u;  // +0 -> smallest negative
+    return static_cast<uint16_t>(negative ? h + 1 : h - 1);
+  }
+  return h;
+}
+
+uint32_t halfPair(float low, bool lowUp, float high, bool highUp) {
+  return uint32_t(halfTowards(low, lowUp)) | uint32_t(halfTowards(high, highUp)) << 16;
+}
+
 void setChild(gpu::GpuBvhNode& node, bool right, const Aabb& box, uint32_t reference) {
+  const glm::vec3& lo = box.min;
+  const glm::vec3& hi = box.max;
+  uint32_t minXY = halfPair(lo.x, false, lo.y, false);
+  uint32_t minZMaxX = halfPair(lo.z, false, hi.x, true);
+  uint32_t maxYZ = halfPair(hi.y, true, hi.z, true);
   if (right) {
-    node.rightMin = box.min;
-    node.rightMax = box.max;
     node.rightRef = reference;
+    node.rightMinXY = minXY;
+    node.rightMinZMaxX = minZMaxX;
+    node.rightMaxYZ = maxYZ;
   } else {
-    node.leftMin = box.min;
-    node.leftMax = box.max;
     node.leftRef = reference;
+    node.leftMinXY = minXY;
+    node.leftMinZMaxX = minZMaxX;
+    node.leftMaxYZ = maxYZ;
   }
 }
 

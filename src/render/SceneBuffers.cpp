@@ -23,7 +23,7 @@ Buffer makeStorage(VulkanContext& context, const std::vector<T>& items, const ch
   return buffer;
 }
 
-// Records read as RGBA32F texels (see shaders/bindings.glsl).
+// Records read as RGBA32 texels (see shaders/bindings.glsl).
 template <typename T>
 Buffer makeTexels(VulkanContext& context, const std::vector<T>& items, const char* what) {
   static_assert(sizeof(T) % 16 == 0, "texel records are whole RGBA32F texels");
@@ -53,7 +53,7 @@ SceneBuffers::SceneBuffers(VulkanContext& context, const FlatScene& scene)
 void SceneBuffers::bindTo(ComputeKernel& kernel) const {
   kernel.bind(RT_BINDING_SCENE_INFO, info_);
   kernel.bindTexels(RT_BINDING_PRIMITIVES, primitives_, VK_FORMAT_R32G32B32A32_SFLOAT);
-  kernel.bindTexels(RT_BINDING_BVH_NODES, bvhNodes_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  kernel.bindTexels(RT_BINDING_BVH_NODES, bvhNodes_, VK_FORMAT_R32G32B32A32_UINT);
   kernel.bindTexels(RT_BINDING_ITEMS, items_, VK_FORMAT_R32G32B32A32_SFLOAT);
   kernel.bind(RT_BINDING_MATERIALS, materials_);
   kernel.bind(RT_BINDING_POINT_LIGHTS, pointLights_);
