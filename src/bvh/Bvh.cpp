@@ -35,6 +35,7 @@ struct RangeBounds {
 
 struct Bin {
   Aabb bounds;
+  Aabb centroids;
   uint32_t count = 0;
 };
 
@@ -44,6 +45,8 @@ struct Split {
   int axis = -1;
   uint32_t bin = 0;  // first bin of the right side
   float cost = std::numeric_limits<float>::max();
+  RangeBounds left;  // of the two sides, from the bins
+  RangeBounds right;
 };
 
 // Maps a centroid coordinate to its bin along one axis.
@@ -100,7 +103,8 @@ class Builder {
   Bvh build() {
     Bvh bvh;
     if (!refs_.empty()) {
-      Subtree tree = buildRange(0, static_cast<uint32_t>(refs_.size()), 0);
+      uint32_t count = static_cast<uint32_t>(refs_.size());
+      Subtree tree = buildRange(0, count, 0, rangeBounds(0, count));
       bvh.nodes = std::move(tree.nodes);
       bvh.depth = tree.depth;
     }
@@ -114,20 +118,21 @@ class Builder {
 
   // Splits a large range, building its halves on two threads when one is
   // free, then stitches them under a root. Small ranges go sequential.
-  Subtree buildRange(uint32_t begin, uint32_t end, uint32_t depth) {
-    if (end - begin < kParallelSubtree) return buildSequential(begin, end, depth);
+  Subtree buildRange(uint32_t begin, uint32_t end, uint32_t depth, const RangeBounds& bounds) {
+    if (end - begin < kParallelSubtree) return buildSequential(begin, end, depth, bounds);
     BvhNode root;
-    uint32_t middle = splitRange(begin, end, depth, root);
+    Split split;
+    uint32_t middle = splitRange(begin, end, depth, bounds, root, split);
     if (middle == end) return {{root}, depth};
     Subtree left;
     std::thread worker;
     if (spareThreads_.fetch_sub(1) > 0) {
-      worker = std::thread([&] { left = buildRange(begin, middle, depth + 1); });
+      worker = std::thread([&] { left = buildRange(begin, middle, depth + 1, split.left); });
     } else {
       spareThreads_.fetch_add(1);
-      left = buildRange(begin, middle, depth + 1);
+      left = buildRange(begin, middle, depth + 1, split.left);
     }
-    Subtree right = buildRange(middle, end, depth + 1);
+    Subtree right = buildRange(middle, end, depth + 1, split.right);
     if (worker.joinable()) {
       worker.join();
       spareThreads_.fetch_add(1);
@@ -152,35 +157,38 @@ class Builder {
     uint32_t rightOffset = leftOffset + static_cast<uint32_t>(left.nodes.size()) - 1;
     out.nodes.push_back(moved(left.nodes[0], leftOffset));
     out.nodes.push_back(moved(right.nodes[0], rightOffset));
-    for (size_t i = 1; i < left.nodes.size(); ++i)
+    for (size_t i = 1; i < left.nodes.size(); ++i) {
       out.nodes.push_back(moved(left.nodes[i], leftOffset));
+    }
     for (size_t i = 1; i < right.nodes.size(); ++i) {
       out.nodes.push_back(moved(right.nodes[i], rightOffset));
     }
     return out;
   }
 
-  Subtree buildSequential(uint32_t begin, uint32_t end, uint32_t depth) {
+  Subtree buildSequential(uint32_t begin, uint32_t end, uint32_t depth, const RangeBounds& bounds) {
     struct Task {
       uint32_t node, begin, end, depth;
+      RangeBounds bounds;
     };
     Subtree out;
     out.nodes.reserve(2 * (end - begin) / options_.maxLeafSize + 1);
     out.nodes.emplace_back();
-    std::vector<Task> tasks{{0, begin, end, depth}};
+    std::vector<Task> tasks{{0, begin, end, depth, bounds}};
     while (!tasks.empty()) {
       Task task = tasks.back();
       tasks.pop_back();
       out.depth = std::max(out.depth, task.depth);
       BvhNode node;
-      uint32_t middle = splitRange(task.begin, task.end, task.depth, node);
+      Split split;
+      uint32_t middle = splitRange(task.begin, task.end, task.depth, task.bounds, node, split);
       if (middle != task.end) {
         node.firstIndex = static_cast<uint32_t>(out.nodes.size());
         node.count = 0;
         out.nodes.emplace_back();
         out.nodes.emplace_back();
-        tasks.push_back({node.firstIndex + 1, middle, task.end, task.depth + 1});
-        tasks.push_back({node.firstIndex, task.begin, middle, task.depth + 1});
+        tasks.push_back({node.firstIndex + 1, middle, task.end, task.depth + 1, split.right});
+        tasks.push_back({node.firstIndex, task.begin, middle, task.depth + 1, split.left});
       }
       out.nodes[task.node] = node;
     }
@@ -188,19 +196,26 @@ class Builder {
   }
 
   // Fills `node` with the range's bounds; either makes it a leaf (returns
-  // end) or partitions the range and returns where the right half starts.
-  uint32_t splitRange(uint32_t begin, uint32_t end, uint32_t depth, BvhNode& node) {
+  // end) or partitions the range and returns where the right half starts,
+  // with both halves' bounds in `split`.
+  uint32_t splitRange(uint32_t begin, uint32_t end, uint32_t depth, const RangeBounds& bounds,
+                      BvhNode& node, Split& split) {
     uint32_t count = end - begin;
-    RangeBounds bounds = rangeBounds(begin, end);
     node.bounds = bounds.boxes;
     node.firstIndex = begin;
     node.count = count;
     if (count == 1 || depth >= options_.maxDepth) return end;
-    Split split = findSplit(begin, end, bounds);
+    split = findSplit(begin, end, bounds);
     bool leafIsCheaper = split.axis < 0 || split.cost >= static_cast<float>(count);
     if (count <= options_.maxLeafSize && leafIsCheaper) return end;
-    if (split.axis < 0) return begin + count / 2;  // all centroids equal: any halving will do
-    BinMapping mapping = mappingFor(bounds);
+    if (split.axis < 0) {
+      // All centroids equal: any halving will do.
+      uint32_t middle = begin + count / 2;
+      split.left = rangeBounds(begin, middle);
+      split.right = rangeBounds(middle, end);
+      return middle;
+    }
+    BinMapping mapping = mappingFor(bounds, count);
     auto first = refs_.begin() + begin;
     auto middle = std::partition(first, refs_.begin() + end, [&](const PrimRef& ref) {
       return mapping(ref, split.axis) < split.bin;
@@ -224,54 +239,74 @@ class Builder {
     return total;
   }
 
-  BinMapping mappingFor(const RangeBounds& bounds) const {
+  // Small ranges use fewer bins (no more than they have primitives, at
+  // least 4): cheaper, and as good.
+  BinMapping mappingFor(const RangeBounds& bounds, uint32_t count) const {
+    uint32_t bins = std::min(std::max(count, 4u), options_.binCount);
     glm::vec3 extent = bounds.centroids.max - bounds.centroids.min;
     glm::vec3 scale(0.0f);
     for (int axis = 0; axis < 3; ++axis) {
-      if (extent[axis] > 0.0f) scale[axis] = static_cast<float>(options_.binCount) / extent[axis];
+      if (extent[axis] > 0.0f) scale[axis] = static_cast<float>(bins) / extent[axis];
     }
-    return {bounds.centroids.min, scale, options_.binCount};
+    return {bounds.centroids.min, scale, bins};
+  }
+
+  void binRange(uint32_t from, uint32_t to, const BinMapping& mapping, AxisBins& bins) const {
+    for (uint32_t i = from; i < to; ++i) {
+      const PrimRef& ref = refs_[i];
+      glm::vec3 c = centroid(ref);
+      for (int axis = 0; axis < 3; ++axis) {
+        Bin& bin = bins[axis][mapping(ref, axis)];
+        bin.bounds.grow(ref.box);
+        bin.centroids.grow(c);
+        bin.count++;
+      }
+    }
   }
 
   // Best SAH split over binned centroid positions on all three axes, all
-  // binned in one pass over the range.
+  // binned in one pass over the range (in chunks on several threads when
+  // the range is large; bins merge exactly, so the result is the same).
   Split findSplit(uint32_t begin, uint32_t end, const RangeBounds& bounds) const {
-    BinMapping mapping = mappingFor(bounds);
+    BinMapping mapping = mappingFor(bounds, end - begin);
+    // Most nodes are small: reuse one set of bins per thread and clear only
+    // the bins in use, instead of building thousands of bytes per node.
+    thread_local AxisBins bins;
+    for (auto& axisBins : bins) std::fill_n(axisBins.begin(), mapping.bins, Bin{});
     uint32_t parts = chunksFor(end - begin);
-    std::vector<AxisBins> partial(parts);
-    forChunks(begin, end, parts, [&](uint32_t part, uint32_t from, uint32_t to) {
-      AxisBins local{};
-      for (uint32_t i = from; i < to; ++i) {
+    if (parts == 1) {
+      binRange(begin, end, mapping, bins);
+    } else {
+      std::vector<AxisBins> partial(parts);
+      forChunks(begin, end, parts, [&](uint32_t part, uint32_t from, uint32_t to) {
+        binRange(from, to, mapping, partial[part]);
+      });
+      for (const AxisBins& part : partial) {
         for (int axis = 0; axis < 3; ++axis) {
-          Bin& bin = local[axis][mapping(refs_[i], axis)];
-          bin.bounds.grow(refs_[i].box);
-          bin.count++;
-        }
-      }
-      partial[part] = local;
-    });
-    AxisBins bins = partial[0];
-    for (uint32_t part = 1; part < parts; ++part) {
-      for (int axis = 0; axis < 3; ++axis) {
-        for (uint32_t b = 0; b < options_.binCount; ++b) {
-          bins[axis][b].bounds.grow(partial[part][axis][b].bounds);
-          bins[axis][b].count += partial[part][axis][b].count;
+          for (uint32_t b = 0; b < mapping.bins; ++b) {
+            bins[axis][b].bounds.grow(part[axis][b].bounds);
+            bins[axis][b].centroids.grow(part[axis][b].centroids);
+            bins[axis][b].count += part[axis][b].count;
+          }
         }
       }
     }
     Split best;
     float parentArea = std::max(bounds.boxes.surfaceArea(), 1e-30f);
     for (int axis = 0; axis < 3; ++axis) {
-      if (mapping.scale[axis] > 0.0f) evaluateBins(bins[axis], axis, parentArea, best);
+      if (mapping.scale[axis] > 0.0f) {
+        evaluateBins(bins[axis], mapping.bins, axis, parentArea, best);
+      }
     }
     return best;
   }
 
-  void evaluateBins(const std::array<Bin, kMaxBins>& binned, int axis, float parentArea,
-                    Split& best) const {
-    uint32_t bins = options_.binCount;
-    std::array<float, kMaxBins> rightCost{};
-    std::array<uint32_t, kMaxBins> rightCount{};
+  // SAH sweep over one axis's bins; the winner's two sides get their
+  // bounds merged from the bins once, after the sweep.
+  void evaluateBins(const std::array<Bin, kMaxBins>& binned, uint32_t bins, int axis,
+                    float parentArea, Split& best) const {
+    thread_local std::array<float, kMaxBins> rightCost;
+    thread_local std::array<uint32_t, kMaxBins> rightCount;
     Aabb right;
     uint32_t rightTotal = 0;
     for (uint32_t b = bins - 1; b > 0; --b) {
@@ -282,6 +317,7 @@ class Builder {
     }
     Aabb left;
     uint32_t leftCount = 0;
+    int bestBin = -1;
     for (uint32_t b = 0; b + 1 < bins; ++b) {
       left.grow(binned[b].bounds);
       leftCount += binned[b].count;
@@ -289,7 +325,20 @@ class Builder {
       float cost =
           kTraversalCost +
           (left.surfaceArea() * static_cast<float>(leftCount) + rightCost[b + 1]) / parentArea;
-      if (cost < best.cost) best = {axis, b + 1, cost};
+      if (cost < best.cost) {
+        best.cost = cost;
+        bestBin = static_cast<int>(b + 1);
+      }
+    }
+    if (bestBin < 0) return;
+    best.axis = axis;
+    best.bin = static_cast<uint32_t>(bestBin);
+    best.left = {};
+    best.right = {};
+    for (uint32_t b = 0; b < bins; ++b) {
+      RangeBounds& side = b < best.bin ? best.left : best.right;
+      side.boxes.grow(binned[b].bounds);
+      side.centroids.grow(binned[b].centroids);
     }
   }
 
