@@ -12,11 +12,14 @@ namespace {
 // A storage buffer holding `items`; never empty (Vulkan forbids zero-sized
 // buffers), and checked against the device's storage buffer range.
 template <typename T>
-Buffer makeStorage(VulkanContext& context, const std::vector<T>& items, const char* what) {
+Buffer makeStorage(VulkanContext& context, const SceneBufferLimits& limits,
+                   const std::vector<T>& items, const char* what) {
   VkDeviceSize bytes = std::max<VkDeviceSize>(sizeof(T), items.size() * sizeof(T));
-  if (bytes > context.limits().maxStorageBufferRange) {
+  VkDeviceSize limit =
+      limits.storageBytes ? limits.storageBytes : context.limits().maxStorageBufferRange;
+  if (bytes > limit) {
     throw Error(fmt::format("scene too large: {} need {} MiB, the device allows {} MiB per buffer",
-                            what, bytes >> 20, context.limits().maxStorageBufferRange >> 20));
+                            what, bytes >> 20, limit >> 20));
   }
   Buffer buffer(context, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   if (!items.empty()) buffer.upload(items.data(), items.size() * sizeof(T));
@@ -25,12 +28,14 @@ Buffer makeStorage(VulkanContext& context, const std::vector<T>& items, const ch
 
 // Records read as RGBA32 texels (see shaders/bindings.glsl).
 template <typename T>
-Buffer makeTexels(VulkanContext& context, const std::vector<T>& items, const char* what) {
-  static_assert(sizeof(T) % 16 == 0, "texel records are whole RGBA32F texels");
+Buffer makeTexels(VulkanContext& context, const SceneBufferLimits& limits,
+                  const std::vector<T>& items, const char* what) {
+  static_assert(sizeof(T) % 16 == 0, "texel records are whole RGBA32 texels");
   VkDeviceSize texels = std::max<VkDeviceSize>(1, items.size()) * (sizeof(T) / 16);
-  if (texels > context.limits().maxTexelBufferElements) {
+  VkDeviceSize limit = limits.texels ? limits.texels : context.limits().maxTexelBufferElements;
+  if (texels > limit) {
     throw Error(fmt::format("scene too large: {} need {} texels, the device allows {}", what,
-                            texels, context.limits().maxTexelBufferElements));
+                            texels, limit));
   }
   Buffer buffer(context, texels * 16, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
   if (!items.empty()) buffer.upload(items.data(), items.size() * sizeof(T));
@@ -39,16 +44,17 @@ Buffer makeTexels(VulkanContext& context, const std::vector<T>& items, const cha
 
 }  // namespace
 
-SceneBuffers::SceneBuffers(VulkanContext& context, const FlatScene& scene)
-    : info_(makeStorage(context, std::vector<gpu::GpuSceneInfo>{scene.info}, "scene info")),
-      primitives_(makeTexels(context, scene.primitives, "primitives")),
-      bvhNodes_(makeTexels(context, scene.bvhNodes, "BVH nodes")),
-      items_(makeTexels(context, scene.items, "BVH leaf items")),
-      materials_(makeStorage(context, scene.materials, "materials")),
-      pointLights_(makeStorage(context, scene.pointLights, "point lights")),
-      vertices_(makeStorage(context, scene.vertices, "vertices")),
-      textureInfos_(makeStorage(context, scene.textureInfos, "texture table")),
-      texels_(makeStorage(context, scene.texels, "texture texels")) {}
+SceneBuffers::SceneBuffers(VulkanContext& context, const FlatScene& scene,
+                           const SceneBufferLimits& limits)
+    : info_(makeStorage(context, limits, std::vector<gpu::GpuSceneInfo>{scene.info}, "scene info")),
+      primitives_(makeTexels(context, limits, scene.primitives, "primitives")),
+      bvhNodes_(makeTexels(context, limits, scene.bvhNodes, "BVH nodes")),
+      items_(makeTexels(context, limits, scene.items, "BVH leaf items")),
+      materials_(makeStorage(context, limits, scene.materials, "materials")),
+      pointLights_(makeStorage(context, limits, scene.pointLights, "point lights")),
+      vertices_(makeStorage(context, limits, scene.vertices, "vertices")),
+      textureInfos_(makeStorage(context, limits, scene.textureInfos, "texture table")),
+      texels_(makeStorage(context, limits, scene.texels, "texture texels")) {}
 
 void SceneBuffers::bindTo(ComputeKernel& kernel) const {
   kernel.bind(RT_BINDING_SCENE_INFO, info_);

@@ -10,9 +10,11 @@
 #include "render/BatchIntersector.hpp"
 #include "render/FlatScene.hpp"
 #include "render/Renderer.hpp"
+#include "render/SceneBuffers.hpp"
 #include "scene/GltfLoader.hpp"
 #include "scene/SceneLoader.hpp"
 #include "support/TestSupport.hpp"
+#include "util/Error.hpp"
 
 using namespace rt;
 
@@ -246,5 +248,26 @@ TEST_SUITE("bvh") {
       }
       CHECK(different == 0);
     }
+  }
+}
+
+TEST_SUITE("bvh-gpu") {
+  TEST_CASE("a scene beyond the buffer limits is a one-line error, not a crash") {
+    FlatScene flat = flattenScene(meshScene(false));
+    SceneBufferLimits limits;
+    limits.texels = flat.items.size() * RT_TEXELS_PER_ITEM - 1;
+    try {
+      SceneBuffers buffers(test::gpu(), flat, limits);
+      FAIL("no error");
+    } catch (const Error& e) {
+      std::string message = e.what();
+      CHECK(message.find("scene too large: BVH leaf items need") == 0);
+      CHECK(message.find('\n') == std::string::npos);
+    }
+    limits = {};
+    limits.storageBytes = flat.vertices.size() * sizeof(gpu::GpuVertex) - 1;
+    CHECK_THROWS_WITH_AS(SceneBuffers(test::gpu(), flat, limits),
+                         doctest::Contains("scene too large: vertices need"), Error);
+    test::checkNoValidationMessages();
   }
 }
