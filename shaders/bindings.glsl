@@ -10,9 +10,10 @@ layout(std430, set = 0, binding = RT_BINDING_SCENE_INFO) readonly buffer SceneIn
 // loads but read storage buffers at divergent indices one lane at a time,
 // which made traversal several times slower.
 layout(set = 0, binding = RT_BINDING_PRIMITIVES) uniform samplerBuffer primitiveTexels;
-layout(set = 0, binding = RT_BINDING_BVH_NODES) uniform samplerBuffer bvhNodeTexels;
+layout(set = 0, binding = RT_BINDING_BVH_NODES) uniform usamplerBuffer bvhNodeTexels;
 
-// Texel `row` (0..3) of primitive `index`: a, b, c, then kind/material/shape/flags.
+// Shading data of top-level primitive `index` (GpuPrimitive), texel `row`
+// (0..3): a, b, c, then kind/material/shape/flags.
 vec4 primitiveRow(uint index, uint row) {
   return texelFetch(primitiveTexels, int(index * RT_TEXELS_PER_PRIMITIVE + row));
 }
@@ -25,11 +26,18 @@ GpuPrimitive loadPrimitive(uint index) {
                       info.x, info.y, info.z, info.w);
 }
 
-GpuBvhNode loadNode(uint index) {
-  vec4 low = texelFetch(bvhNodeTexels, int(index * RT_TEXELS_PER_BVH_NODE));
-  vec4 high = texelFetch(bvhNodeTexels, int(index * RT_TEXELS_PER_BVH_NODE + 1u));
-  return GpuBvhNode(low.xyz, floatBitsToUint(low.w), high.xyz, floatBitsToUint(high.w));
+// Texel `row` (0..1) of BVH node `index` (see GpuBvhNode).
+uvec4 nodeRow(uint index, uint row) {
+  return texelFetch(bvhNodeTexels, int(index * RT_TEXELS_PER_BVH_NODE + row));
 }
+
+layout(set = 0, binding = RT_BINDING_ITEMS) uniform samplerBuffer itemTexels;
+
+// Texel `row` (0..2) of leaf item `index` (see GpuItem).
+vec4 itemRow(uint index, uint row) {
+  return texelFetch(itemTexels, int(index * RT_TEXELS_PER_ITEM + row));
+}
+
 layout(std430, set = 0, binding = RT_BINDING_MATERIALS) readonly buffer MaterialBuffer {
   GpuMaterial materials[];
 };

@@ -17,10 +17,11 @@ using glm::uvec4;
 using glm::vec3;
 using glm::vec4;
 using uint = uint32_t;
-#define RT_ASSERT_STD430_SIZE(T, bytes)                                                           \
-  static_assert(sizeof(T) == (bytes), #T ": size differs from std430");                           \
-  static_assert(sizeof(T) % 16 == 0 || sizeof(T) < 16, #T ": array stride must be a multiple of " \
-                                                          "16")
+#define RT_ASSERT_STD430_SIZE(T, bytes)                                 \
+  static_assert(sizeof(T) == (bytes), #T ": size differs from std430"); \
+  static_assert(sizeof(T) % 16 == 0 || sizeof(T) < 16, #T               \
+                ": array stride must be a multiple of "                 \
+                "16")
 #else
 #define RT_ASSERT_STD430_SIZE(T, bytes)
 #endif
@@ -39,7 +40,8 @@ using uint = uint32_t;
 #define RT_BINDING_TEXTURE_INFO 10
 #define RT_BINDING_TEXELS 11
 // Sums of the odd-indexed samples alone (the error estimate's second half).
-#define RT_BINDING_ACCUMULATION_ODD 12
+#define RT_BINDING_ACCUMULATION_ODD 13
+#define RT_BINDING_ITEMS 12
 
 #define RT_WORKGROUP_SIZE_X 8
 #define RT_WORKGROUP_SIZE_Y 8
@@ -95,17 +97,63 @@ struct GpuPrimitive {
 RT_ASSERT_STD430_SIZE(GpuPrimitive, 64);
 #define RT_TEXELS_PER_PRIMITIVE 4u  // read as RGBA32F texels (bindings.glsl)
 
-// Binary BVH node (32 bytes). count == 0: interior node whose children are
-// firstIndex and firstIndex + 1; count > 0: leaf over primitives
-// [firstIndex, firstIndex + count) of the (reordered) primitive buffer.
+// ---- Acceleration structure (src/render/FlatScene, shaders/traverse.glsl) ----
+// Two levels: a top-level BVH whose leaves are single items (a shape's
+// sphere, cylinder or triangle, or a mesh instance), and one object-space
+// BVH per mesh over its triangles, shared by all its instances. All nodes
+// share one array (the top-level root is node 0); all leaf items share one
+// GpuItem array (top-level items first, numbered like GpuPrimitive).
+//
+// Node (32 bytes, two RGBA32UI texels) holding the boxes of both children,
+// so one fetch decides which children a ray enters. Boxes are half floats
+// (packHalf2x16 pairs), rounded outwards: looser by at most one half ulp,
+// never missing anything. A child reference is a node index or, with
+// RT_REF_LEAF set, a leaf:
+//   top level:  RT_REF_LEAF | (kind + 1) << RT_REF_COUNT_SHIFT | item   (RT_PRIM_*)
+//   mesh level: RT_REF_LEAF | count << RT_REF_COUNT_SHIFT | first triangle item
+// (RT_REF_LEAF alone is the empty leaf at both levels). Node 1 + i is a copy
+// of the mesh root of top-level item i, for each mesh instance i (instances
+// are the first items).
 struct GpuBvhNode {
-  vec3 boundsMin;
-  uint firstIndex;
-  vec3 boundsMax;
-  uint count;
+  uint leftRef;
+  uint rightRef;
+  uint leftMinXY;
+  uint leftMinZMaxX;
+  uint leftMaxYZ;
+  uint rightMinXY;
+  uint rightMinZMaxX;
+  uint rightMaxYZ;
 };
 RT_ASSERT_STD430_SIZE(GpuBvhNode, 32);
 #define RT_TEXELS_PER_BVH_NODE 2u
+#define RT_REF_LEAF 0x80000000u
+#define RT_REF_COUNT_SHIFT 27u
+#define RT_REF_MAX_LEAF_SIZE 15u
+#define RT_REF_FIRST_MASK 0x07ffffffu
+
+// What a leaf points at (48 bytes, three texels), by kind:
+//   triangle: v0, v1 - v0, v2 - v0; w: GpuVertex indices of the corners (bits)
+//   sphere:   (center, radius), unused, unused
+//   cylinder: (center, radius), (unit axis, half height), unused
+//   instance: rows of the world-to-object matrix (3x4)
+// Mesh triangles are in their mesh's object space.
+struct GpuItem {
+  vec4 row0;
+  vec4 row1;
+  vec4 row2;
+};
+RT_ASSERT_STD430_SIZE(GpuItem, 48);
+#define RT_TEXELS_PER_ITEM 3u
+
+// GpuPrimitive of kind RT_PRIM_INSTANCE (shading data of a mesh instance):
+// a, b, c are the rows of the world-to-object matrix; flags holds
+// RT_PRIM_HAS_VERTICES / RT_PRIM_SMOOTH of its mesh.
+#define RT_PRIM_INSTANCE 3u
+
+// Traversal stack: both levels, plus the leaves a lane parks while its leaf
+// cursor is busy.
+#define RT_BVH_STACK_SIZE (2 * RT_BVH_MAX_DEPTH + 8)
+// ---- end of acceleration structure ----
 
 struct GpuMaterial {
   vec3 diffuseColor;

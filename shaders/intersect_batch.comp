@@ -27,7 +27,7 @@ void main() {
   result.t = found ? hit.t : -1.0;
   result.normal = hit.normal;
   result.primitiveIndex = hit.primitiveIndex;
-  result.shapeIndex = found ? primitiveInfo(hit.primitiveIndex).z : 0xffffffffu;
+  result.shapeIndex = found ? hitShape(hit) : 0xffffffffu;
   result.occluded = occluded(ray, query.tMin, query.tMax) ? 1u : 0u;
   result.pad0 = 0u;
   hits[index] = result;

@@ -23,7 +23,7 @@ float shadowTransmittance(Ray ray, vec3 lightPosition) {
   for (int crossing = 0; crossing < RT_MAX_SHADOW_CROSSINGS; ++crossing) {
     SurfaceHit hit;
     if (!closestHit(ray, 0.0, length(lightPosition - ray.origin), hit)) return transmittance;
-    GpuMaterial blocker = materials[primitiveInfo(hit.primitiveIndex).y];
+    GpuMaterial blocker = materials[hitMaterial(hit)];
     float cosine = dot(ray.direction, hit.normal);
     float eta = cosine < 0.0 ? 1.0 / blocker.ior : blocker.ior;
     float cosTransmitted;

@@ -47,15 +47,19 @@ vec2 cylinderUv(vec3 p, vec4 centerRadius, vec4 axisHalfHeight) {
 #endif
 
 #ifdef RT_FEATURE_VERTICES
-void interpolateVertices(GpuPrimitive prim, vec2 barycentric, inout SurfacePoint surface) {
-  GpuVertex v0 = vertices[floatBitsToUint(prim.a.w)];
-  GpuVertex v1 = vertices[floatBitsToUint(prim.b.w)];
-  GpuVertex v2 = vertices[floatBitsToUint(prim.c.w)];
+// UVs and, if `smoothNormals`, the shading normal from the corners' vertex records.
+// `normalMatrix` takes vertex normals to world space.
+void interpolateVertices(uvec3 indices, bool smoothNormals, mat3 normalMatrix, vec2 barycentric,
+                         inout SurfacePoint surface) {
+  GpuVertex v0 = vertices[indices.x];
+  GpuVertex v1 = vertices[indices.y];
+  GpuVertex v2 = vertices[indices.z];
   vec3 weights = vec3(1.0 - barycentric.x - barycentric.y, barycentric);
   surface.uv = weights.x * vec2(v0.u, v0.v) + weights.y * vec2(v1.u, v1.v) +
                weights.z * vec2(v2.u, v2.v);
-  if ((prim.flags & RT_PRIM_SMOOTH) == 0u) return;
-  vec3 interpolated = weights.x * v0.normal + weights.y * v1.normal + weights.z * v2.normal;
+  if (!smoothNormals) return;
+  vec3 interpolated = normalMatrix * (weights.x * v0.normal + weights.y * v1.normal +
+                                    weights.z * v2.normal);
   if (dot(interpolated, interpolated) > 0.0) {
     interpolated = normalize(interpolated);
     // Interpolated normals may face away on silhouettes: keep them on the
@@ -80,9 +84,21 @@ SurfacePoint surfaceAt(Ray ray, SurfaceHit hit) {
   if (prim.kind == RT_PRIM_CYLINDER) surface.uv = cylinderUv(surface.position, prim.a, prim.b);
 #endif
 #ifdef RT_FEATURE_VERTICES
+  bool smoothNormals = (prim.flags & RT_PRIM_SMOOTH) != 0u;
   if (prim.kind == RT_PRIM_TRIANGLE && (prim.flags & RT_PRIM_HAS_VERTICES) != 0u) {
-    interpolateVertices(prim, hit.barycentric, surface);
+    uvec3 corners = floatBitsToUint(vec3(prim.a.w, prim.b.w, prim.c.w));
+    interpolateVertices(corners, smoothNormals, mat3(1.0), hit.barycentric, surface);
   }
+#ifdef RT_FEATURE_MESHES
+  if (prim.kind == RT_PRIM_INSTANCE && (prim.flags & RT_PRIM_HAS_VERTICES) != 0u) {
+    uvec3 corners = floatBitsToUint(vec3(itemRow(hit.triangleIndex, 0u).w,
+                                         itemRow(hit.triangleIndex, 1u).w,
+                                         itemRow(hit.triangleIndex, 2u).w));
+    // Columns a, b, c: the transpose of world-to-object, the normal matrix.
+    mat3 normalMatrix = mat3(prim.a.xyz, prim.b.xyz, prim.c.xyz);
+    interpolateVertices(corners, smoothNormals, normalMatrix, hit.barycentric, surface);
+  }
+#endif
 #endif
   return surface;
 }

@@ -1,4 +1,12 @@
-// Scene queries over the flattened BVH: closest hit and any hit (shadows).
+// Scene queries over the two-level BVH (see GpuBvhNode in gpu_types.h):
+// closest hit and any hit (shadows).
+//
+// Shaped for SIMD drivers that run every branch of a loop body for all
+// lanes (masked), as lavapipe does: an iteration costs the whole body, so
+// each one does useful work in both halves. Every lane keeps a node to
+// visit and a cursor over the items of one leaf; each iteration visits one
+// node (both child boxes) and tests one item. Leaves found while the cursor
+// is busy, and farther children, wait on the stack.
 #ifndef RT_TRAVERSE_GLSL
 #define RT_TRAVERSE_GLSL
 
@@ -6,12 +14,20 @@
 // assume no infinities in arithmetic (fast-math).
 const float RT_FAR = 3.0e38;
 
+const uint RT_NONE = 0xffffffffu;
+
 struct SurfaceHit {
   float t;
-  uint primitiveIndex;
-  vec3 normal;       // outward geometric normal
-  vec2 barycentric;  // triangles: weights of v1 and v2
+  uint primitiveIndex;  // top-level primitive hit: a shape's primitive or a mesh instance
+  uint triangleIndex;   // instances: the mesh triangle's item; RT_NONE otherwise
+  vec3 normal;          // outward geometric normal, world space
+  vec2 barycentric;     // triangles: weights of v1 and v2
 };
+
+// Material and scene shape of a hit: mesh triangles take them from their
+// instance, every other primitive carries its own.
+uint hitMaterial(SurfaceHit hit) { return primitiveInfo(hit.primitiveIndex).y; }
+uint hitShape(SurfaceHit hit) { return primitiveInfo(hit.primitiveIndex).z; }
 
 // Reciprocal direction with zero components replaced by a tiny signed value,
 // so the slab test never computes 0 * inf = NaN.
@@ -21,10 +37,10 @@ vec3 safeReciprocal(vec3 d) {
   return vec3(d.x < 0.0 ? -1.0 : 1.0, d.y < 0.0 ? -1.0 : 1.0, d.z < 0.0 ? -1.0 : 1.0) / magnitude;
 }
 
-// Entry distance of the ray into the box, or +inf when it misses (tMin, tMax).
-float boxEntry(vec3 boundsMin, vec3 boundsMax, Ray ray, vec3 invDir, float tMin, float tMax) {
-  vec3 t0 = (boundsMin - ray.origin) * invDir;
-  vec3 t1 = (boundsMax - ray.origin) * invDir;
+// Entry distance of the ray into the box, or RT_FAR when it misses (tMin, tMax).
+float boxEntry(vec3 boundsMin, vec3 boundsMax, vec3 origin, vec3 invDir, float tMin, float tMax) {
+  vec3 t0 = (boundsMin - origin) * invDir;
+  vec3 t1 = (boundsMax - origin) * invDir;
   vec3 near = min(t0, t1);
   vec3 far = max(t0, t1);
   float enter = max(max(near.x, near.y), max(near.z, tMin));
@@ -34,70 +50,198 @@ float boxEntry(vec3 boundsMin, vec3 boundsMax, Ray ray, vec3 invDir, float tMin,
   return enter <= exit * 1.0000004 ? enter : RT_FAR;
 }
 
+bool isLeafRef(uint ref) { return (ref & RT_REF_LEAF) != 0u; }
+
+#ifdef RT_FEATURE_MESHES
+// Point and direction through the world-to-object rows of an instance. The
+// direction is not renormalised, so distances t mean the same in both spaces.
+Ray rayToObject(Ray ray, vec4 row0, vec4 row1, vec4 row2) {
+  vec4 p = vec4(ray.origin, 1.0);
+  return Ray(vec3(dot(row0, p), dot(row1, p), dot(row2, p)),
+             vec3(dot(row0.xyz, ray.direction), dot(row1.xyz, ray.direction),
+                  dot(row2.xyz, ray.direction)));
+}
+
+// Object normal to world: the transpose of the world-to-object matrix is the
+// inverse transpose of object-to-world, which keeps outward normals outward.
+vec3 normalToWorld(uint instance, vec3 objectNormal) {
+  return normalize(itemRow(instance, 0u).xyz * objectNormal.x +
+                   itemRow(instance, 1u).xyz * objectNormal.y +
+                   itemRow(instance, 2u).xyz * objectNormal.z);
+}
+#endif
+
 #ifdef RT_COUNT_RAYS
 uint raysTraced = 0u;  // rays this invocation traced, for benchmarks
 #endif
 
+// A lane's leaf cursor: the items of one leaf still to test.
+struct Cursor {
+  uint item;  // next item to test ...
+  uint end;   // ... up to here (free when item == end)
+  uint kind;  // RT_PRIM_* of its items
+};
+
+// A top-level leaf holds one item of the kind its reference names (stored
+// plus one: 0 is the empty leaf), a mesh leaf `count` triangles.
+Cursor openLeaf(uint ref, bool topLevel) {
+  uint first = ref & RT_REF_FIRST_MASK;
+  uint field = (ref >> RT_REF_COUNT_SHIFT) & RT_REF_MAX_LEAF_SIZE;
+  uint count = topLevel ? min(field, 1u) : field;
+  return Cursor(first, first + count, topLevel ? field - 1u : RT_PRIM_TRIANGLE);
+}
+
 // Walks the BVH; with anyHit it stops at the first intersection found.
-bool traverse(Ray ray, float tMin, inout float tMax, bool anyHit, out SurfaceHit hit) {
+bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out SurfaceHit hit) {
   hit.t = -1.0;
   hit.primitiveIndex = 0u;
+  hit.triangleIndex = RT_NONE;
   hit.normal = vec3(0.0, 0.0, 1.0);
   hit.barycentric = vec2(0.0);
 #ifdef RT_COUNT_RAYS
   ++raysTraced;
 #endif
   if (sceneInfo.bvhNodeCount == 0u) return false;
+  Ray ray = worldRay;
   vec3 invDir = safeReciprocal(ray.direction);
-  uint stack[RT_BVH_MAX_DEPTH];
+  vec3 worldInvDir = invDir;
+  uint node = 0u;  // to visit next; RT_NONE: take one from the stack
+  Cursor cursor = Cursor(0u, 0u, RT_PRIM_TRIANGLE);
+  uint hitKind = RT_PRIM_TRIANGLE;
+  uint stack[RT_BVH_STACK_SIZE];
   uint stackSize = 0u;
-  uint node = 0u;
-  GpuBvhNode root = loadNode(0u);
-  if (boxEntry(root.boundsMin, root.boundsMax, ray, invDir, tMin, tMax) ==
-      RT_FAR) {
-    return false;
-  }
-  while (true) {
-    GpuBvhNode current = loadNode(node);
-    if (current.count > 0u) {
-      for (uint i = current.firstIndex; i < current.firstIndex + current.count; ++i) {
-        vec3 normal;
-        vec2 barycentric;
-        if (intersectPrimitive(i, ray, tMin, tMax, normal, barycentric)) {
-          hit.t = tMax;
-          hit.primitiveIndex = i;
-          hit.normal = normal;
-          hit.barycentric = barycentric;
-          if (anyHit) return true;
+#ifdef RT_FEATURE_MESHES
+  uint instance = RT_NONE;  // top-level item of the mesh the ray is in
+  uint stackFloor = 0u;     // stack size when the ray entered it
+#else
+  const uint instance = RT_NONE;
+  const uint stackFloor = 0u;
+#endif
+  while (node != RT_NONE || cursor.item != cursor.end || stackSize > 0u) {
+    bool idle = node == RT_NONE && cursor.item == cursor.end;
+#ifdef RT_FEATURE_MESHES
+    // A mesh is done when its nodes and leaves are: back to world space.
+    if (instance != RT_NONE && idle && stackSize == stackFloor) {
+      ray = worldRay;
+      invDir = worldInvDir;
+      instance = RT_NONE;
+      stackFloor = 0u;
+    }
+#endif
+    // Refill: a node from the stack, or a leaf once the cursor is free; a
+    // ray inside a mesh takes only the mesh's entries.
+    if (node == RT_NONE && stackSize > stackFloor) {
+      uint top = stack[stackSize - 1u];
+      bool topIsLeaf = isLeafRef(top);
+      if (!topIsLeaf || cursor.item == cursor.end) --stackSize;
+      if (!topIsLeaf) node = top;
+      if (topIsLeaf && cursor.item == cursor.end) cursor = openLeaf(top, instance == RT_NONE);
+    }
+
+    // Item step: one primitive test, or (once its turn comes with no node
+    // pending) entering a mesh instance.
+    if (cursor.item != cursor.end) {
+      uint item = cursor.item;
+      vec4 row0 = itemRow(item, 0u);
+      vec4 row1 = itemRow(item, 1u);
+      vec4 row2 = itemRow(item, 2u);
+      // Triangle and sphere normals are found once, after the walk: the
+      // loop body runs for every lane, so it carries as little as it can.
+      vec3 unusedNormal;
+      vec2 barycentric = vec2(0.0);
+      bool found = false;
+#ifdef RT_FEATURE_TRIANGLES
+      if (cursor.kind == RT_PRIM_TRIANGLE) {
+        found = intersectTriangle(row0.xyz, row1.xyz, row2.xyz, ray, tMin, tMax, unusedNormal,
+                                  barycentric);
+      }
+#endif
+#ifdef RT_FEATURE_SPHERES
+      if (cursor.kind == RT_PRIM_SPHERE) {
+        found = intersectSphere(row0.xyz, row0.w, ray, tMin, tMax, unusedNormal);
+      }
+#endif
+#ifdef RT_FEATURE_CYLINDERS
+      vec3 cylinderNormal = vec3(0.0, 0.0, 1.0);
+      if (cursor.kind == RT_PRIM_CYLINDER) {
+        found = intersectCylinder(row0.xyz, row1.xyz, row0.w, row1.w, ray, tMin, tMax,
+                                  cylinderNormal);
+      }
+      if (found) hit.normal = cylinderNormal;
+#endif
+      if (found) {
+        hit.t = tMax;
+        hit.primitiveIndex = instance == RT_NONE ? item : instance;
+        hit.triangleIndex = instance == RT_NONE ? RT_NONE : item;
+        hit.barycentric = barycentric;
+        hitKind = cursor.kind;
+        if (anyHit) return true;
+      }
+      bool advance = true;
+#ifdef RT_FEATURE_MESHES
+      if (cursor.kind == RT_PRIM_INSTANCE) {
+        advance = node == RT_NONE;
+        if (advance) {
+          node = 1u + item;  // the copy of its mesh's root
+          instance = item;
+          stackFloor = stackSize;
+          ray = rayToObject(worldRay, row0, row1, row2);
+          invDir = safeReciprocal(ray.direction);
         }
       }
-    } else {
-      uint left = current.firstIndex;
-      uint right = left + 1u;
-      GpuBvhNode leftNode = loadNode(left);
-      GpuBvhNode rightNode = loadNode(right);
-      float tLeft = boxEntry(leftNode.boundsMin, leftNode.boundsMax, ray, invDir,
-                             tMin, tMax);
-      float tRight = boxEntry(rightNode.boundsMin, rightNode.boundsMax, ray, invDir,
-                              tMin, tMax);
-      bool hitLeft = tLeft != RT_FAR;
-      bool hitRight = tRight != RT_FAR;
-      if (hitLeft && hitRight) {
-        // Visit the nearer child first; the farther one waits on the stack.
-        bool leftFirst = tLeft <= tRight;
-        node = leftFirst ? left : right;
-        stack[stackSize++] = leftFirst ? right : left;
-        continue;
-      }
-      if (hitLeft || hitRight) {
-        node = hitLeft ? left : right;
-        continue;
+#endif
+      if (advance) ++cursor.item;
+    }
+
+    // Node step: both children's boxes. The nearer child takes the free slot
+    // (node for interior nodes, cursor for leaves); the rest waits.
+    if (node != RT_NONE) {
+      uvec4 low = nodeRow(node, 0u);
+      uvec4 high = nodeRow(node, 1u);
+      vec2 lminZmaxX = unpackHalf2x16(low.w);
+      vec2 rminZmaxX = unpackHalf2x16(high.z);
+      vec3 leftMin = vec3(unpackHalf2x16(low.z), lminZmaxX.x);
+      vec3 leftMax = vec3(lminZmaxX.y, unpackHalf2x16(high.x));
+      vec3 rightMin = vec3(unpackHalf2x16(high.y), rminZmaxX.x);
+      vec3 rightMax = vec3(rminZmaxX.y, unpackHalf2x16(high.w));
+      float tLeft = boxEntry(leftMin, leftMax, ray.origin, invDir, tMin, tMax);
+      float tRight = boxEntry(rightMin, rightMax, ray.origin, invDir, tMin, tMax);
+      bool leftFirst = tLeft <= tRight;
+      uint near = leftFirst ? low.x : low.y;
+      uint far = leftFirst ? low.y : low.x;
+      bool hitNear = min(tLeft, tRight) != RT_FAR;
+      bool hitFar = max(tLeft, tRight) != RT_FAR;
+      node = RT_NONE;
+      for (int child = 0; child < 2; ++child) {
+        uint ref = child == 0 ? near : far;
+        if (!(child == 0 ? hitNear : hitFar)) continue;
+        if (!isLeafRef(ref) && node == RT_NONE) {
+          node = ref;
+        } else if (isLeafRef(ref) && cursor.item == cursor.end) {
+          cursor = openLeaf(ref, instance == RT_NONE);
+        } else if (stackSize < RT_BVH_STACK_SIZE) {
+          stack[stackSize++] = ref;
+        }
       }
     }
-    if (stackSize == 0u) break;
-    node = stack[--stackSize];
   }
-  return hit.t >= 0.0;
+  if (hit.t < 0.0) return false;
+  uint hitItem = hit.triangleIndex != RT_NONE ? hit.triangleIndex : hit.primitiveIndex;
+  vec4 row0 = itemRow(hitItem, 0u);
+#ifdef RT_FEATURE_SPHERES
+  if (hitKind == RT_PRIM_SPHERE) {
+    hit.normal = normalize(worldRay.origin + hit.t * worldRay.direction - row0.xyz);
+  }
+#endif
+#ifdef RT_FEATURE_TRIANGLES
+  if (hitKind == RT_PRIM_TRIANGLE) {
+    hit.normal = normalize(cross(itemRow(hitItem, 1u).xyz, itemRow(hitItem, 2u).xyz));
+#ifdef RT_FEATURE_MESHES
+    if (hit.triangleIndex != RT_NONE) hit.normal = normalToWorld(hit.primitiveIndex, hit.normal);
+#endif
+  }
+#endif
+  return true;
 }
 
 bool closestHit(Ray ray, float tMin, float tMax, out SurfaceHit hit) {

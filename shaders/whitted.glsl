@@ -98,7 +98,7 @@ vec3 traceRadiance(Ray primary, uvec3 branchKey) {
       radiance += job.weight * sceneInfo.binaryHitColor;
       continue;
     }
-    GpuMaterial material = materials[primitiveInfo(hit.primitiveIndex).y];
+    GpuMaterial material = materials[hitMaterial(hit)];
     SurfacePoint surface = surfaceAt(job.ray, hit);
     bool entering = dot(job.ray.direction, surface.geometricNormal) < 0.0;
     faceViewer(surface, -job.ray.direction);

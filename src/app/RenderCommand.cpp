@@ -35,6 +35,7 @@ struct CommandLine {
   uint32_t seed = 0;
   std::string sampler;
   std::string shading;
+  std::string accel;
   std::string device;
   std::string shaderDir;
   std::optional<float> exposure;
@@ -112,6 +113,7 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
   options.seed = cli.seed;
   options.sampler = rt::cli::samplerNamed(cli.sampler, scene.settings.sampler);
   options.shading = rt::cli::shadingNamed(cli.shading);
+  options.accel = cli.accel == "none" ? rt::AccelKind::None : rt::AccelKind::Bvh;
   if (!cli.sampleRange.empty()) parseSampleRange(cli.sampleRange, options);
   return options;
 }
@@ -202,6 +204,9 @@ int runRenderCommand(int argc, char** argv) {
   app.add_option("--shading", cli.shading,
                  "Shading model (default: coursework for Path-of-Light files, standard otherwise)")
       ->check(CLI::IsMember({"standard", "coursework"}));
+  app.add_option("--accel", cli.accel,
+                 "Acceleration: bvh (the default) or none (every ray tests every primitive)")
+      ->check(CLI::IsMember({"bvh", "none"}));
   app.add_flag("--offscreen", cli.offscreen, "Render without a window (the default)");
   app.add_option("--device", cli.device, "'list' to list Vulkan devices, or the number to use");
   app.add_flag("--validation", cli.validation,

@@ -2,169 +2,350 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <thread>
 
 namespace rt {
 namespace {
 
 constexpr float kTraversalCost = 1.0f;  // relative to one primitive test
 constexpr uint32_t kMaxBins = 32;
+// Ranges at least this large are split with several threads binning them,
+// and their two halves may be built on two threads.
+constexpr uint32_t kParallelBinning = 1u << 17;
+constexpr uint32_t kParallelSubtree = 1u << 12;
 
-struct BuildTask {
-  uint32_t node;
-  uint32_t begin;
-  uint32_t end;
-  uint32_t depth;
+// A primitive's box with its caller index: partitioned in place, so the
+// build streams through one array instead of gathering boxes by index.
+struct PrimRef {
+  Aabb box;
+  uint32_t index;
 };
 
-struct Split {
-  int axis = -1;
-  float position = 0.0f;  // centroid coordinate: left side is < position
-  float cost = std::numeric_limits<float>::max();
+glm::vec3 centroid(const PrimRef& ref) { return ref.box.min + ref.box.max; }  // x2, cheaper
+
+struct RangeBounds {
+  Aabb boxes;
+  Aabb centroids;  // of centroid(), i.e. doubled
+  void grow(const RangeBounds& other) {
+    boxes.grow(other.boxes);
+    centroids.grow(other.centroids);
+  }
 };
 
 struct Bin {
   Aabb bounds;
+  Aabb centroids;
   uint32_t count = 0;
+};
+
+using AxisBins = std::array<std::array<Bin, kMaxBins>, 3>;
+
+struct Split {
+  int axis = -1;
+  uint32_t bin = 0;  // first bin of the right side
+  float cost = std::numeric_limits<float>::max();
+  RangeBounds left;  // of the two sides, from the bins
+  RangeBounds right;
+};
+
+// Maps a centroid coordinate to its bin along one axis.
+struct BinMapping {
+  glm::vec3 origin;
+  glm::vec3 scale;
+  uint32_t bins;
+  uint32_t operator()(const PrimRef& ref, int axis) const {
+    float position = (centroid(ref)[axis] - origin[axis]) * scale[axis];
+    return std::min(bins - 1, static_cast<uint32_t>(std::max(position, 0.0f)));
+  }
+};
+
+// Runs body(begin, end) over [begin, end) cut into `parts` consecutive chunks,
+// the first on this thread; results go to per-chunk slots, so merging them in
+// chunk order keeps the outcome independent of timing.
+template <typename Body>
+void forChunks(uint32_t begin, uint32_t end, uint32_t parts, const Body& body) {
+  std::vector<std::thread> workers;
+  uint32_t size = (end - begin + parts - 1) / parts;
+  for (uint32_t part = 1; part < parts; ++part) {
+    uint32_t from = std::min(end, begin + part * size);
+    uint32_t to = std::min(end, from + size);
+    workers.emplace_back([&body, part, from, to] { body(part, from, to); });
+  }
+  body(0u, begin, std::min(end, begin + size));
+  for (std::thread& worker : workers) worker.join();
+}
+
+// Nodes of one subtree in the builder's layout (root first; each interior
+// node's children are a pair, followed by the left then the right subtree's
+// descendants), so subtrees built apart concatenate into the same tree a
+// single thread builds.
+struct Subtree {
+  std::vector<BvhNode> nodes;
+  uint32_t depth = 0;
 };
 
 class Builder {
  public:
-  Builder(const std::vector<Aabb>& boxes, const BvhBuildOptions& options)
-      : boxes_(boxes), options_(options) {
+  Builder(const std::vector<Aabb>& boxes, const BvhBuildOptions& options) : options_(options) {
     options_.binCount = std::clamp(options_.binCount, 2u, kMaxBins);
+    options_.maxLeafSize = std::max(options_.maxLeafSize, 1u);
+    uint32_t threads = options_.threads ? options_.threads : std::thread::hardware_concurrency();
+    threads_ = std::max(threads, 1u);
+    spareThreads_ = static_cast<int>(threads_) - 1;
+    refs_.resize(boxes.size());
+    forChunks(0, static_cast<uint32_t>(boxes.size()), chunksFor(uint32_t(boxes.size())),
+              [&](uint32_t, uint32_t from, uint32_t to) {
+                for (uint32_t i = from; i < to; ++i) refs_[i] = {boxes[i], i};
+              });
   }
 
   Bvh build() {
     Bvh bvh;
-    bvh.primitiveOrder.resize(boxes_.size());
-    for (uint32_t i = 0; i < boxes_.size(); ++i) bvh.primitiveOrder[i] = i;
-    if (boxes_.empty()) return bvh;
-    bvh.nodes.reserve(2 * boxes_.size());
-    bvh.nodes.emplace_back();
-    std::vector<BuildTask> tasks{{0, 0, static_cast<uint32_t>(boxes_.size()), 0}};
-    while (!tasks.empty()) {
-      BuildTask task = tasks.back();
-      tasks.pop_back();
-      bvh.depth = std::max(bvh.depth, task.depth);
-      process(bvh, task, tasks);
+    if (!refs_.empty()) {
+      uint32_t count = static_cast<uint32_t>(refs_.size());
+      Subtree tree = buildRange(0, count, 0, rangeBounds(0, count));
+      bvh.nodes = std::move(tree.nodes);
+      bvh.depth = tree.depth;
     }
+    bvh.primitiveOrder.resize(refs_.size());
+    for (size_t i = 0; i < refs_.size(); ++i) bvh.primitiveOrder[i] = refs_[i].index;
     return bvh;
   }
 
  private:
-  void process(Bvh& bvh, const BuildTask& task, std::vector<BuildTask>& tasks) {
-    auto& order = bvh.primitiveOrder;
-    Aabb bounds;
-    Aabb centroids;
-    for (uint32_t i = task.begin; i < task.end; ++i) {
-      bounds.grow(boxes_[order[i]]);
-      centroids.grow(boxes_[order[i]].center());
+  uint32_t chunksFor(uint32_t count) const { return count >= kParallelBinning ? threads_ : 1u; }
+
+  // Splits a large range, building its halves on two threads when one is
+  // free, then stitches them under a root. Small ranges go sequential.
+  Subtree buildRange(uint32_t begin, uint32_t end, uint32_t depth, const RangeBounds& bounds) {
+    if (end - begin < kParallelSubtree) return buildSequential(begin, end, depth, bounds);
+    BvhNode root;
+    Split split;
+    uint32_t middle = splitRange(begin, end, depth, bounds, root, split);
+    if (middle == end) return {{root}, depth};
+    Subtree left;
+    std::thread worker;
+    if (spareThreads_.fetch_sub(1) > 0) {
+      worker = std::thread([&] { left = buildRange(begin, middle, depth + 1, split.left); });
+    } else {
+      spareThreads_.fetch_add(1);
+      left = buildRange(begin, middle, depth + 1, split.left);
     }
-    bvh.nodes[task.node].bounds = bounds;
-    uint32_t count = task.end - task.begin;
-    if (count <= options_.maxLeafSize || task.depth >= options_.maxDepth) {
-      makeLeaf(bvh.nodes[task.node], task);
-      return;
+    Subtree right = buildRange(middle, end, depth + 1, split.right);
+    if (worker.joinable()) {
+      worker.join();
+      spareThreads_.fetch_add(1);
     }
-    Split split = findSplit(order, task, centroids, bounds);
-    uint32_t middle = partition(order, task, split, centroids);
-    if (middle == 0) {
-      makeLeaf(bvh.nodes[task.node], task);
-      return;
-    }
-    uint32_t left = static_cast<uint32_t>(bvh.nodes.size());
-    bvh.nodes.emplace_back();
-    bvh.nodes.emplace_back();
-    bvh.nodes[task.node].firstIndex = left;
-    bvh.nodes[task.node].count = 0;
-    tasks.push_back({left + 1, middle, task.end, task.depth + 1});
-    tasks.push_back({left, task.begin, middle, task.depth + 1});
+    return stitch(root, std::move(left), std::move(right));
   }
 
-  static void makeLeaf(BvhNode& node, const BuildTask& task) {
-    node.firstIndex = task.begin;
-    node.count = task.end - task.begin;
+  static Subtree stitch(BvhNode root, Subtree left, Subtree right) {
+    Subtree out;
+    out.depth = std::max(left.depth, right.depth);
+    out.nodes.reserve(1 + left.nodes.size() + right.nodes.size());
+    root.firstIndex = 1;
+    root.count = 0;
+    out.nodes.push_back(root);
+    // Children's own descendants move from index 1 of their subtree to
+    // `offset` here.
+    auto moved = [](BvhNode node, uint32_t offset) {
+      if (node.count == 0) node.firstIndex += offset - 1;
+      return node;
+    };
+    uint32_t leftOffset = 3;
+    uint32_t rightOffset = leftOffset + static_cast<uint32_t>(left.nodes.size()) - 1;
+    out.nodes.push_back(moved(left.nodes[0], leftOffset));
+    out.nodes.push_back(moved(right.nodes[0], rightOffset));
+    for (size_t i = 1; i < left.nodes.size(); ++i) {
+      out.nodes.push_back(moved(left.nodes[i], leftOffset));
+    }
+    for (size_t i = 1; i < right.nodes.size(); ++i) {
+      out.nodes.push_back(moved(right.nodes[i], rightOffset));
+    }
+    return out;
   }
 
-  // Best SAH split over binned centroid positions on all three axes.
-  Split findSplit(const std::vector<uint32_t>& order, const BuildTask& task, const Aabb& centroids,
-                  const Aabb& bounds) const {
-    Split best;
-    uint32_t bins = options_.binCount;
-    for (int axis = 0; axis < 3; ++axis) {
-      float lo = centroids.min[axis];
-      float extent = centroids.max[axis] - lo;
-      if (!(extent > 0.0f)) continue;
-      std::array<Bin, kMaxBins> binned{};
-      float scale = static_cast<float>(bins) / extent;
-      for (uint32_t i = task.begin; i < task.end; ++i) {
-        const Aabb& box = boxes_[order[i]];
-        uint32_t b = std::min(bins - 1, static_cast<uint32_t>((box.center()[axis] - lo) * scale));
-        binned[b].bounds.grow(box);
-        binned[b].count++;
+  Subtree buildSequential(uint32_t begin, uint32_t end, uint32_t depth, const RangeBounds& bounds) {
+    struct Task {
+      uint32_t node, begin, end, depth;
+      RangeBounds bounds;
+    };
+    Subtree out;
+    out.nodes.reserve(2 * (end - begin) / options_.maxLeafSize + 1);
+    out.nodes.emplace_back();
+    std::vector<Task> tasks{{0, begin, end, depth, bounds}};
+    while (!tasks.empty()) {
+      Task task = tasks.back();
+      tasks.pop_back();
+      out.depth = std::max(out.depth, task.depth);
+      BvhNode node;
+      Split split;
+      uint32_t middle = splitRange(task.begin, task.end, task.depth, task.bounds, node, split);
+      if (middle != task.end) {
+        node.firstIndex = static_cast<uint32_t>(out.nodes.size());
+        node.count = 0;
+        out.nodes.emplace_back();
+        out.nodes.emplace_back();
+        tasks.push_back({node.firstIndex + 1, middle, task.end, task.depth + 1, split.right});
+        tasks.push_back({node.firstIndex, task.begin, middle, task.depth + 1, split.left});
       }
-      evaluateBins(binned, bins, axis, lo, extent, bounds.surfaceArea(), best);
+      out.nodes[task.node] = node;
+    }
+    return out;
+  }
+
+  // Fills `node` with the range's bounds; either makes it a leaf (returns
+  // end) or partitions the range and returns where the right half starts,
+  // with both halves' bounds in `split`.
+  uint32_t splitRange(uint32_t begin, uint32_t end, uint32_t depth, const RangeBounds& bounds,
+                      BvhNode& node, Split& split) {
+    uint32_t count = end - begin;
+    node.bounds = bounds.boxes;
+    node.firstIndex = begin;
+    node.count = count;
+    if (count == 1 || depth >= options_.maxDepth) return end;
+    split = findSplit(begin, end, bounds);
+    bool leafIsCheaper = split.axis < 0 || split.cost >= static_cast<float>(count);
+    if (count <= options_.maxLeafSize && leafIsCheaper) return end;
+    if (split.axis < 0) {
+      // All centroids equal: any halving will do.
+      uint32_t middle = begin + count / 2;
+      split.left = rangeBounds(begin, middle);
+      split.right = rangeBounds(middle, end);
+      return middle;
+    }
+    BinMapping mapping = mappingFor(bounds, count);
+    auto first = refs_.begin() + begin;
+    auto middle = std::partition(first, refs_.begin() + end, [&](const PrimRef& ref) {
+      return mapping(ref, split.axis) < split.bin;
+    });
+    return static_cast<uint32_t>(middle - refs_.begin());
+  }
+
+  RangeBounds rangeBounds(uint32_t begin, uint32_t end) const {
+    uint32_t parts = chunksFor(end - begin);
+    std::vector<RangeBounds> partial(parts);
+    forChunks(begin, end, parts, [&](uint32_t part, uint32_t from, uint32_t to) {
+      RangeBounds local;
+      for (uint32_t i = from; i < to; ++i) {
+        local.boxes.grow(refs_[i].box);
+        local.centroids.grow(centroid(refs_[i]));
+      }
+      partial[part] = local;
+    });
+    RangeBounds total;
+    for (const RangeBounds& part : partial) total.grow(part);
+    return total;
+  }
+
+  // Small ranges use fewer bins (no more than they have primitives, at
+  // least 4): cheaper, and as good.
+  BinMapping mappingFor(const RangeBounds& bounds, uint32_t count) const {
+    uint32_t bins = std::min(std::max(count, 4u), options_.binCount);
+    glm::vec3 extent = bounds.centroids.max - bounds.centroids.min;
+    glm::vec3 scale(0.0f);
+    for (int axis = 0; axis < 3; ++axis) {
+      if (extent[axis] > 0.0f) scale[axis] = static_cast<float>(bins) / extent[axis];
+    }
+    return {bounds.centroids.min, scale, bins};
+  }
+
+  void binRange(uint32_t from, uint32_t to, const BinMapping& mapping, AxisBins& bins) const {
+    for (uint32_t i = from; i < to; ++i) {
+      const PrimRef& ref = refs_[i];
+      glm::vec3 c = centroid(ref);
+      for (int axis = 0; axis < 3; ++axis) {
+        Bin& bin = bins[axis][mapping(ref, axis)];
+        bin.bounds.grow(ref.box);
+        bin.centroids.grow(c);
+        bin.count++;
+      }
+    }
+  }
+
+  // Best SAH split over binned centroid positions on all three axes, all
+  // binned in one pass over the range (in chunks on several threads when
+  // the range is large; bins merge exactly, so the result is the same).
+  Split findSplit(uint32_t begin, uint32_t end, const RangeBounds& bounds) const {
+    BinMapping mapping = mappingFor(bounds, end - begin);
+    // Most nodes are small: reuse one set of bins per thread and clear only
+    // the bins in use, instead of building thousands of bytes per node.
+    thread_local AxisBins bins;
+    for (auto& axisBins : bins) std::fill_n(axisBins.begin(), mapping.bins, Bin{});
+    uint32_t parts = chunksFor(end - begin);
+    if (parts == 1) {
+      binRange(begin, end, mapping, bins);
+    } else {
+      std::vector<AxisBins> partial(parts);
+      forChunks(begin, end, parts, [&](uint32_t part, uint32_t from, uint32_t to) {
+        binRange(from, to, mapping, partial[part]);
+      });
+      for (const AxisBins& part : partial) {
+        for (int axis = 0; axis < 3; ++axis) {
+          for (uint32_t b = 0; b < mapping.bins; ++b) {
+            bins[axis][b].bounds.grow(part[axis][b].bounds);
+            bins[axis][b].centroids.grow(part[axis][b].centroids);
+            bins[axis][b].count += part[axis][b].count;
+          }
+        }
+      }
+    }
+    Split best;
+    float parentArea = std::max(bounds.boxes.surfaceArea(), 1e-30f);
+    for (int axis = 0; axis < 3; ++axis) {
+      if (mapping.scale[axis] > 0.0f) {
+        evaluateBins(bins[axis], mapping.bins, axis, parentArea, best);
+      }
     }
     return best;
   }
 
-  static void evaluateBins(const std::array<Bin, kMaxBins>& binned, uint32_t bins, int axis,
-                           float lo, float extent, float parentArea, Split& best) {
-    std::array<float, kMaxBins> rightCost{};
+  // SAH sweep over one axis's bins; the winner's two sides get their
+  // bounds merged from the bins once, after the sweep.
+  void evaluateBins(const std::array<Bin, kMaxBins>& binned, uint32_t bins, int axis,
+                    float parentArea, Split& best) const {
+    thread_local std::array<float, kMaxBins> rightCost;
+    thread_local std::array<uint32_t, kMaxBins> rightCount;
     Aabb right;
-    uint32_t rightCount = 0;
+    uint32_t rightTotal = 0;
     for (uint32_t b = bins - 1; b > 0; --b) {
       right.grow(binned[b].bounds);
-      rightCount += binned[b].count;
-      rightCost[b] = right.surfaceArea() * static_cast<float>(rightCount);
+      rightTotal += binned[b].count;
+      rightCost[b] = right.surfaceArea() * static_cast<float>(rightTotal);
+      rightCount[b] = rightTotal;
     }
     Aabb left;
     uint32_t leftCount = 0;
+    int bestBin = -1;
     for (uint32_t b = 0; b + 1 < bins; ++b) {
       left.grow(binned[b].bounds);
       leftCount += binned[b].count;
+      if (leftCount == 0 || rightCount[b + 1] == 0) continue;
       float cost =
-          kTraversalCost + (left.surfaceArea() * static_cast<float>(leftCount) + rightCost[b + 1]) /
-                               std::max(parentArea, 1e-30f);
+          kTraversalCost +
+          (left.surfaceArea() * static_cast<float>(leftCount) + rightCost[b + 1]) / parentArea;
       if (cost < best.cost) {
-        best = {axis, lo + extent * static_cast<float>(b + 1) / static_cast<float>(bins), cost};
+        best.cost = cost;
+        bestBin = static_cast<int>(b + 1);
       }
     }
-  }
-
-  // Splits [begin, end) at the SAH plane; falls back to a median split when
-  // the plane leaves one side empty (e.g. all centroids in one bin). Returns
-  // 0 when the range should stay a leaf.
-  uint32_t partition(std::vector<uint32_t>& order, const BuildTask& task, const Split& split,
-                     const Aabb& centroids) const {
-    uint32_t count = task.end - task.begin;
-    bool splitWorthIt = split.axis >= 0 && split.cost < static_cast<float>(count);
-    if (split.axis >= 0 && (splitWorthIt || count > options_.maxLeafSize * 4)) {
-      auto first = order.begin() + task.begin;
-      auto last = order.begin() + task.end;
-      auto middle = std::partition(
-          first, last, [&](uint32_t p) { return boxes_[p].center()[split.axis] < split.position; });
-      uint32_t index = static_cast<uint32_t>(middle - order.begin());
-      if (index != task.begin && index != task.end) return index;
+    if (bestBin < 0) return;
+    best.axis = axis;
+    best.bin = static_cast<uint32_t>(bestBin);
+    best.left = {};
+    best.right = {};
+    for (uint32_t b = 0; b < bins; ++b) {
+      RangeBounds& side = b < best.bin ? best.left : best.right;
+      side.boxes.grow(binned[b].bounds);
+      side.centroids.grow(binned[b].centroids);
     }
-    if (count <= options_.maxLeafSize * 4 && split.axis >= 0 && !splitWorthIt) return 0;
-    return medianSplit(order, task, centroids);
   }
 
-  uint32_t medianSplit(std::vector<uint32_t>& order, const BuildTask& task,
-                       const Aabb& centroids) const {
-    glm::vec3 extent = centroids.max - centroids.min;
-    int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-    uint32_t middle = task.begin + (task.end - task.begin) / 2;
-    std::nth_element(order.begin() + task.begin, order.begin() + middle, order.begin() + task.end,
-                     [&](uint32_t a, uint32_t b) {
-                       return boxes_[a].center()[axis] < boxes_[b].center()[axis];
-                     });
-    return middle;
-  }
-
-  const std::vector<Aabb>& boxes_;
+  std::vector<PrimRef> refs_;
   BvhBuildOptions options_;
+  uint32_t threads_ = 1;
+  std::atomic<int> spareThreads_{0};
 };
 
 }  // namespace

@@ -1,7 +1,9 @@
 // Bounding volume hierarchy over axis-aligned boxes, built on the CPU with
-// the binned surface area heuristic. Knows nothing about primitive kinds:
-// callers give one box per primitive and reorder their primitives by
-// `primitiveOrder`.
+// the binned surface area heuristic, on several threads. Knows nothing about
+// primitive kinds: callers give one box per primitive and reorder their
+// primitives by `primitiveOrder`. The tree is the same whatever the thread
+// count (splits are exact functions of the boxes; subtrees built apart are
+// laid out as one thread lays them out).
 #pragma once
 
 #include <cstdint>
@@ -47,9 +49,12 @@ struct Bvh {
 };
 
 struct BvhBuildOptions {
+  // Ranges up to this size become leaves when the SAH says a leaf is cheaper;
+  // larger ones are always split (except at maxDepth).
   uint32_t maxLeafSize = 4;
   uint32_t maxDepth = 48;  // must not exceed RT_BVH_MAX_DEPTH (traversal stack)
   uint32_t binCount = 16;
+  uint32_t threads = 0;  // 0: one per hardware thread
 };
 
 Bvh buildBvh(const std::vector<Aabb>& primitiveBounds, const BvhBuildOptions& options = {});

@@ -10,8 +10,8 @@
 namespace rt {
 
 BatchIntersector::BatchIntersector(VulkanContext& context, const ShaderCompiler& compiler,
-                                   const Scene& scene)
-    : context_(context), flat_(flattenScene(scene)) {
+                                   const Scene& scene, const FlattenOptions& options)
+    : context_(context), flat_(flattenScene(scene, options)) {
   buffers_ = std::make_unique<SceneBuffers>(context, flat_);
   std::vector<uint32_t> spirv =
       compiler.compile("intersect_batch.comp", detectFeatures(scene, flat_).defines());

@@ -20,7 +20,8 @@ class VulkanContext;
 
 class BatchIntersector {
  public:
-  BatchIntersector(VulkanContext& context, const ShaderCompiler& compiler, const Scene& scene);
+  BatchIntersector(VulkanContext& context, const ShaderCompiler& compiler, const Scene& scene,
+                   const FlattenOptions& options = {});
   ~BatchIntersector();
 
   std::vector<gpu::GpuHit> intersect(const std::vector<gpu::GpuRay>& rays);

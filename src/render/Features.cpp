@@ -21,6 +21,7 @@ void addGeometryFeatures(const Shape& shape, ShaderFeatures& features) {
                       std::is_same_v<T, MeshInstance>) {
           features.triangles = true;
         }
+        if constexpr (std::is_same_v<T, MeshInstance>) features.meshes = true;
       },
       shape.geometry);
 }
@@ -57,6 +58,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(spheres, "RT_FEATURE_SPHERES");
   flag(triangles, "RT_FEATURE_TRIANGLES");
   flag(cylinders, "RT_FEATURE_CYLINDERS");
+  flag(meshes, "RT_FEATURE_MESHES");
   flag(reflection, "RT_FEATURE_REFLECTION");
   flag(refraction, "RT_FEATURE_REFRACTION");
   flag(thinLens, "RT_FEATURE_THIN_LENS");

@@ -15,6 +15,7 @@ namespace rt {
 struct ShaderFeatures {
   bool spheres = false;
   bool triangles = false;  // also quads and meshes
+  bool meshes = false;     // mesh instances: the two-level BVH
   bool cylinders = false;
   bool reflection = false;
   bool refraction = false;

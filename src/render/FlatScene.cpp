@@ -2,12 +2,16 @@
 
 #include <cmath>
 #include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_access.hpp>
 #include <glm/gtc/packing.hpp>
 #include <initializer_list>
+#include <optional>
 #include <variant>
 
 #include "bvh/Bvh.hpp"
 #include "render/Conventions.hpp"
+#include "render/GpuBvh.hpp"
+#include "util/Error.hpp"
 
 namespace rt {
 namespace {
@@ -44,13 +48,19 @@ glm::vec2 projectedUv(const glm::vec3& p, const glm::vec3& center, uint32_t pole
   return {u, v};
 }
 
+// A mesh placed by a shape, waiting for the mesh's BVH (built once per mesh).
+struct PendingInstance {
+  uint32_t primitive;  // index of its GpuPrimitive (kind RT_PRIM_INSTANCE)
+  uint32_t mesh;
+  glm::mat4 objectToWorld;
+};
+
 // Turns shapes into GPU primitives, and adds vertex records where a
 // triangle needs more than its corners: smooth normals or texture coordinates.
 struct PrimitiveSink {
-  const Scene& scene;
   const Material& material;
-  uint32_t uvPole;
   FlatScene& flat;
+  std::vector<PendingInstance>& instances;
 
   void operator()(const Sphere& s) const {
     gpu::GpuPrimitive prim{};
@@ -82,45 +92,17 @@ struct PrimitiveSink {
     flat.primitives.push_back(prim);
   }
   void operator()(const MeshInstance& instance) const {
-    const TriangleMesh& mesh = scene.meshes.at(instance.mesh);
-    std::vector<glm::vec3> world;
-    world.reserve(mesh.positions.size());
-    for (const glm::vec3& p : mesh.positions) {
-      world.push_back(glm::vec3(instance.objectToWorld * glm::vec4(p, 1.0f)));
-    }
-    bool smooth = !mesh.normals.empty();
-    bool needsVertices = smooth || !mesh.uvs.empty() || material.diffuseTexture >= 0;
-    uint32_t base = needsVertices ? addMeshVertices(mesh, instance, world) : 0;
-    for (const glm::uvec3& face : mesh.faces) {
-      gpu::GpuPrimitive prim = makeTriangle(world[face.x], world[face.y], world[face.z]);
-      if (needsVertices) attachVertices(prim, glm::uvec3(base) + face, smooth);
-      flat.primitives.push_back(prim);
-    }
+    gpu::GpuPrimitive prim{};
+    prim.kind = RT_PRIM_INSTANCE;
+    instances.push_back(
+        {static_cast<uint32_t>(flat.primitives.size()), instance.mesh, instance.objectToWorld});
+    flat.primitives.push_back(prim);
   }
 
  private:
   uint32_t addVertices(std::initializer_list<glm::vec2> uvs) const {
     uint32_t base = static_cast<uint32_t>(flat.vertices.size());
     for (const glm::vec2& uv : uvs) flat.vertices.push_back({glm::vec3(0.0f), uv.x, uv.y});
-    return base;
-  }
-
-  uint32_t addMeshVertices(const TriangleMesh& mesh, const MeshInstance& instance,
-                           const std::vector<glm::vec3>& world) const {
-    uint32_t base = static_cast<uint32_t>(flat.vertices.size());
-    // Normals transform with the inverse transpose (non-uniform scale, mirroring).
-    glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(instance.objectToWorld)));
-    Aabb bounds;
-    for (const glm::vec3& p : world) bounds.grow(p);
-    for (size_t i = 0; i < world.size(); ++i) {
-      gpu::GpuVertex vertex{};
-      if (!mesh.normals.empty()) vertex.normal = glm::normalize(normalMatrix * mesh.normals[i]);
-      glm::vec2 uv =
-          mesh.uvs.empty() ? projectedUv(world[i], bounds.center(), uvPole) : mesh.uvs[i];
-      vertex.u = uv.x;
-      vertex.v = uv.y;
-      flat.vertices.push_back(vertex);
-    }
     return base;
   }
 };
@@ -149,34 +131,230 @@ Aabb primitiveBounds(const gpu::GpuPrimitive& prim) {
   return box;
 }
 
-void collectPrimitives(const Scene& scene, FlatScene& flat) {
+Aabb transformedBounds(const Aabb& box, const glm::mat4& transform) {
+  Aabb out;
+  if (box.empty()) return out;
+  for (int corner = 0; corner < 8; ++corner) {
+    glm::vec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
+                (corner & 4) ? box.max.z : box.min.z);
+    out.grow(glm::vec3(transform * glm::vec4(p, 1.0f)));
+  }
+  return out;
+}
+
+// One mesh on the GPU: its triangles (in BVH order) and binary BVH, laid out
+// after the top level once that is known.
+struct MeshBlas {
+  Bvh bvh;
+  std::vector<gpu::GpuItem> triangles;
+  uint32_t flags = 0;  // RT_PRIM_HAS_VERTICES / RT_PRIM_SMOOTH for its instances
+  Aabb bounds;
+  uint32_t root = 0;  // GPU node index, once laid out
+};
+
+Bvh buildTree(const std::vector<Aabb>& boxes, uint32_t leafSize, const FlattenOptions& options) {
+  if (options.accel == AccelKind::None) {
+    Aabb all;
+    for (const Aabb& box : boxes) all.grow(box);
+    return bruteForceTree(static_cast<uint32_t>(boxes.size()), leafSize, all);
+  }
+  BvhBuildOptions build;
+  build.maxDepth = RT_BVH_MAX_DEPTH;
+  build.maxLeafSize = leafSize;
+  build.threads = options.buildThreads;
+  return buildBvh(boxes, build);
+}
+
+class MeshBuilder {
+ public:
+  MeshBuilder(const Scene& scene, FlatScene& flat, const FlattenOptions& options)
+      : scene_(scene), flat_(flat), options_(options) {}
+
+  // `placement` is applied to the vertices: a mesh used by one shape is
+  // stored in world space (tight top-level box, nothing to transform at
+  // shading); a shared mesh once, in object space (identity).
+  MeshBlas build(uint32_t meshIndex, const glm::mat4& placement, bool textured) {
+    const TriangleMesh& mesh = scene_.meshes.at(meshIndex);
+    MeshBlas blas;
+    std::vector<glm::vec3> points;
+    points.reserve(mesh.positions.size());
+    for (const glm::vec3& p : mesh.positions)
+      points.push_back(glm::vec3(placement * glm::vec4(p, 1.0f)));
+    // A mirroring placement reverses the winding; swapping two corners keeps
+    // the winding normal outward, as the normal matrix does for instances.
+    bool mirrored = glm::determinant(glm::mat3(placement)) < 0.0f;
+    bool needsVertices = !mesh.normals.empty() || !mesh.uvs.empty() || textured;
+    uint32_t base = needsVertices ? addMeshVertices(mesh, placement, points) : 0;
+    blas.flags =
+        (needsVertices ? RT_PRIM_HAS_VERTICES : 0u) | (!mesh.normals.empty() ? RT_PRIM_SMOOTH : 0u);
+    std::vector<gpu::GpuItem> triangles;
+    std::vector<Aabb> boxes;
+    triangles.reserve(mesh.faces.size());
+    boxes.reserve(mesh.faces.size());
+    for (glm::uvec3 face : mesh.faces) {
+      if (mirrored) std::swap(face.y, face.z);
+      glm::vec3 v0 = points[face.x];
+      glm::vec3 v1 = points[face.y];
+      glm::vec3 v2 = points[face.z];
+      glm::uvec3 corners = needsVertices ? glm::uvec3(base) + face : glm::uvec3(0);
+      triangles.push_back({glm::vec4(v0, glm::uintBitsToFloat(corners.x)),
+                           glm::vec4(v1 - v0, glm::uintBitsToFloat(corners.y)),
+                           glm::vec4(v2 - v0, glm::uintBitsToFloat(corners.z))});
+      Aabb box;
+      box.grow(v0);
+      box.grow(v1);
+      box.grow(v2);
+      boxes.push_back(box);
+      blas.bounds.grow(box);
+    }
+    blas.bvh = buildTree(boxes, options_.maxLeafSize, options_);
+    blas.triangles.reserve(triangles.size());
+    for (uint32_t index : blas.bvh.primitiveOrder) blas.triangles.push_back(triangles[index]);
+    return blas;
+  }
+
+ private:
+  uint32_t addMeshVertices(const TriangleMesh& mesh, const glm::mat4& placement,
+                           const std::vector<glm::vec3>& points) {
+    uint32_t base = static_cast<uint32_t>(flat_.vertices.size());
+    // Normals transform with the inverse transpose (non-uniform scale, mirroring).
+    glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(placement)));
+    Aabb bounds;
+    for (const glm::vec3& p : points) bounds.grow(p);
+    for (size_t i = 0; i < points.size(); ++i) {
+      gpu::GpuVertex vertex{};
+      if (!mesh.normals.empty()) vertex.normal = glm::normalize(normalMatrix * mesh.normals[i]);
+      glm::vec2 uv = mesh.uvs.empty()
+                         ? projectedUv(points[i], bounds.center(), flat_.info.sphereUvPole)
+                         : mesh.uvs[i];
+      vertex.u = uv.x;
+      vertex.v = uv.y;
+      flat_.vertices.push_back(vertex);
+    }
+    return base;
+  }
+
+  const Scene& scene_;
+  FlatScene& flat_;
+  const FlattenOptions& options_;
+};
+
+// Turns shapes into primitives, mesh instances first: their item indices
+// then number the instance root nodes (see GpuBvhNode).
+std::vector<PendingInstance> collectPrimitives(const Scene& scene, FlatScene& flat) {
+  std::vector<PendingInstance> instances;
   for (uint32_t shapeIndex = 0; shapeIndex < scene.shapes.size(); ++shapeIndex) {
     const Shape& shape = scene.shapes[shapeIndex];
     size_t first = flat.primitives.size();
-    PrimitiveSink sink{scene, scene.materials.at(shape.material), flat.info.sphereUvPole, flat};
-    std::visit(sink, shape.geometry);
+    std::visit(PrimitiveSink{scene.materials.at(shape.material), flat, instances}, shape.geometry);
     for (size_t i = first; i < flat.primitives.size(); ++i) {
       flat.primitives[i].materialIndex = shape.material;
       flat.primitives[i].shapeIndex = shapeIndex;
     }
   }
-}
-
-void addBvh(FlatScene& flat) {
-  std::vector<Aabb> bounds;
-  bounds.reserve(flat.primitives.size());
-  for (const auto& prim : flat.primitives) bounds.push_back(primitiveBounds(prim));
-  BvhBuildOptions options;
-  options.maxDepth = RT_BVH_MAX_DEPTH;
-  Bvh bvh = buildBvh(bounds, options);
   std::vector<gpu::GpuPrimitive> ordered;
   ordered.reserve(flat.primitives.size());
-  for (uint32_t index : bvh.primitiveOrder) ordered.push_back(flat.primitives[index]);
-  flat.primitives = std::move(ordered);
-  for (const BvhNode& node : bvh.nodes) {
-    flat.bvhNodes.push_back({node.bounds.min, node.firstIndex, node.bounds.max, node.count});
+  for (PendingInstance& instance : instances) {
+    ordered.push_back(flat.primitives[instance.primitive]);
+    instance.primitive = static_cast<uint32_t>(ordered.size() - 1);
   }
-  flat.bvhDepth = bvh.depth;
+  for (const gpu::GpuPrimitive& prim : flat.primitives) {
+    if (prim.kind != RT_PRIM_INSTANCE) ordered.push_back(prim);
+  }
+  flat.primitives = std::move(ordered);
+  return instances;
+}
+
+// Builds each used mesh's triangles and BVH once, and fills its instances'
+// primitives (world-to-object rows, flags). Returns the BVHs by mesh.
+std::vector<std::optional<MeshBlas>> addMeshes(const Scene& scene,
+                                               const std::vector<PendingInstance>& instances,
+                                               const FlattenOptions& options, FlatScene& flat) {
+  std::vector<uint32_t> uses(scene.meshes.size(), 0);
+  std::vector<bool> textured(scene.meshes.size(), false);
+  for (const PendingInstance& instance : instances) {
+    uses.at(instance.mesh)++;
+    const gpu::GpuPrimitive& prim = flat.primitives[instance.primitive];
+    textured[instance.mesh] =
+        textured[instance.mesh] || scene.materials[prim.materialIndex].diffuseTexture >= 0;
+  }
+  MeshBuilder builder(scene, flat, options);
+  std::vector<std::optional<MeshBlas>> meshes(scene.meshes.size());
+  for (const PendingInstance& instance : instances) {
+    std::optional<MeshBlas>& blas = meshes[instance.mesh];
+    bool bake = uses[instance.mesh] == 1;
+    if (!blas) {
+      blas = builder.build(instance.mesh, bake ? instance.objectToWorld : glm::mat4(1.0f),
+                           textured[instance.mesh]);
+    }
+    glm::mat4 worldToObject = bake ? glm::mat4(1.0f) : glm::inverse(instance.objectToWorld);
+    gpu::GpuPrimitive& prim = flat.primitives[instance.primitive];
+    // glm is column-major: row r of the matrix is (m[0][r], m[1][r], m[2][r], m[3][r]).
+    glm::vec4* rows[3] = {&prim.a, &prim.b, &prim.c};
+    for (int r = 0; r < 3; ++r) *rows[r] = glm::row(worldToObject, r);
+    prim.flags = blas->flags;
+  }
+  return meshes;
+}
+
+Aabb instanceBounds(const gpu::GpuPrimitive& prim, const MeshBlas& blas) {
+  glm::mat4 worldToObject(1.0f);
+  worldToObject = glm::row(worldToObject, 0, prim.a);
+  worldToObject = glm::row(worldToObject, 1, prim.b);
+  worldToObject = glm::row(worldToObject, 2, prim.c);
+  return transformedBounds(blas.bounds, glm::inverse(worldToObject));
+}
+
+// Nodes: the top-level root (node 0), one copy of the mesh root per instance,
+// the rest of the top level, then each mesh's tree. Items: every top-level primitive's rows, then
+// each mesh's triangles.
+void addBvh(const std::vector<PendingInstance>& instances,
+            std::vector<std::optional<MeshBlas>>& meshes, const FlattenOptions& options,
+            FlatScene& flat) {
+  std::vector<Aabb> bounds(flat.primitives.size());
+  for (size_t i = 0; i < flat.primitives.size(); ++i) {
+    if (flat.primitives[i].kind != RT_PRIM_INSTANCE)
+      bounds[i] = primitiveBounds(flat.primitives[i]);
+  }
+  for (const PendingInstance& instance : instances) {
+    bounds[instance.primitive] =
+        instanceBounds(flat.primitives[instance.primitive], *meshes[instance.mesh]);
+  }
+  for (const gpu::GpuPrimitive& prim : flat.primitives)
+    flat.items.push_back({prim.a, prim.b, prim.c});
+
+  Bvh top = buildTree(bounds, 1, options);
+  appendBvhNodes(
+      top,
+      [&](uint32_t first, uint32_t) {
+        uint32_t item = top.primitiveOrder[first];
+        return topLevelLeaf(item, flat.primitives[item].kind);
+      },
+      flat.bvhNodes);
+  // Room for the instance root copies at nodes 1..I (see GpuBvhNode): the
+  // top level's own nodes move up by I.
+  uint32_t shift = static_cast<uint32_t>(instances.size());
+  for (gpu::GpuBvhNode& node : flat.bvhNodes) {
+    for (uint32_t* ref : {&node.leftRef, &node.rightRef}) {
+      if ((*ref & RT_REF_LEAF) == 0) *ref += shift;
+    }
+  }
+  flat.bvhNodes.insert(flat.bvhNodes.begin() + 1, shift, gpu::GpuBvhNode{});
+  uint32_t meshDepth = 0;
+  for (std::optional<MeshBlas>& blas : meshes) {
+    if (!blas) continue;
+    uint32_t firstTriangle = static_cast<uint32_t>(flat.items.size());
+    flat.items.insert(flat.items.end(), blas->triangles.begin(), blas->triangles.end());
+    blas->root = appendBvhNodes(
+        blas->bvh,
+        [&](uint32_t first, uint32_t count) { return meshLeaf(firstTriangle + first, count); },
+        flat.bvhNodes);
+    meshDepth = std::max(meshDepth, blas->bvh.depth);
+  }
+  for (const PendingInstance& instance : instances) {
+    flat.bvhNodes[1 + instance.primitive] = flat.bvhNodes[meshes[instance.mesh]->root];
+  }
+  flat.bvhDepth = top.depth + meshDepth;
 }
 
 gpu::GpuMaterial toGpu(const Material& m) {
@@ -242,8 +420,9 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
         {light.position, 0.0f, light.diffuseIntensity, 0.0f, light.specularIntensity, 0.0f});
   }
   flat.info.sphereUvPole = dominantAxis(scene.camera.up);
-  collectPrimitives(scene, flat);
-  addBvh(flat);
+  std::vector<PendingInstance> instances = collectPrimitives(scene, flat);
+  std::vector<std::optional<MeshBlas>> meshes = addMeshes(scene, instances, options, flat);
+  addBvh(instances, meshes, options, flat);
 
   LightingConventions conventions = lightingConventionsFor(scene.family, options.shading);
   gpu::GpuSceneInfo& info = flat.info;

@@ -14,21 +14,29 @@ namespace rt {
 
 struct FlatScene {
   gpu::GpuSceneInfo info{};
-  std::vector<gpu::GpuPrimitive> primitives;
-  std::vector<gpu::GpuBvhNode> bvhNodes;
+  std::vector<gpu::GpuPrimitive> primitives;  // top level: shapes' primitives, mesh instances
+  std::vector<gpu::GpuItem> items;            // what BVH leaves point at (see gpu_types.h)
+  std::vector<gpu::GpuBvhNode> bvhNodes;      // top level first, then one tree per mesh
   std::vector<gpu::GpuMaterial> materials;
   std::vector<gpu::GpuPointLight> pointLights;
   std::vector<gpu::GpuVertex> vertices;  // shading data of some triangles
   std::vector<gpu::GpuTextureInfo> textureInfos;
-  std::vector<uint32_t> texels;  // RGBA8 of every texture, packed
-  uint32_t bvhDepth = 0;
+  std::vector<uint32_t> texels;       // RGBA8 of every texture, packed
+  uint32_t bvhDepth = 0;              // top level plus the deepest mesh
   std::vector<std::string> warnings;  // scene features the GPU scene leaves out
 };
+
+// Bvh: binned SAH trees. None: every ray tests every primitive (a chain of
+// nodes that prunes nothing), to compare against.
+enum class AccelKind { Bvh, None };
 
 struct FlattenOptions {
   uint32_t width = 0;  // override the camera's image size when non-zero
   uint32_t height = 0;
   std::optional<ShadingModel> shading;  // override the family's shading model
+  AccelKind accel = AccelKind::Bvh;
+  uint32_t maxLeafSize = 4;   // BVH leaves (<= RT_REF_MAX_LEAF_SIZE)
+  uint32_t buildThreads = 0;  // BVH build threads, 0: one per core
 };
 
 FlatScene flattenScene(const Scene& scene, const FlattenOptions& options = {});

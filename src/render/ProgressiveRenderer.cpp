@@ -64,7 +64,7 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
     : context_(context),
       compiler_(compiler),
       options_(options),
-      flat_(flattenScene(scene, {options.width, options.height, options.shading})),
+      flat_(flattenScene(scene, {options.width, options.height, options.shading, options.accel})),
       features_(featuresFor(scene, flat_, options)),
       width_(flat_.info.width),
       height_(flat_.info.height),

@@ -39,6 +39,7 @@ struct ProgressiveOptions {
   // Even and odd samples as two independent replicates (RT_SAMPLER_REPLICATES),
   // which the error estimate needs; it costs stratified samplers accuracy.
   bool independentHalves = false;
+  AccelKind accel = AccelKind::Bvh;
 };
 
 class ProgressiveRenderer {

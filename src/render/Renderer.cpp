@@ -198,6 +198,7 @@ ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
   progressive.countRays = options.countRays;
   progressive.firstSample = options.firstSample;
   progressive.independentHalves = options.estimateError || options.targetRmse > 0;
+  progressive.accel = options.accel;
   ProgressiveRenderer job(context_, compiler_, scene, progressive);
   s.primitives = job.flatScene().info.primitiveCount;
   s.bvhNodes = job.flatScene().info.bvhNodeCount;

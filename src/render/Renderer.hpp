@@ -44,6 +44,7 @@ struct RenderOptions {
   std::optional<ToneMapping> displayMapping;
   double secondsPerDispatch = 0.1;  // target duration of one dispatch
   bool countRays = false;           // compile in a ray counter (benchmarks)
+  AccelKind accel = AccelKind::Bvh;     // none: brute force, to compare against
   // Polled between dispatches; returning true ends the render early with
   // the samples accumulated so far (SIGINT, time budgets).
   std::function<bool()> shouldStop;

@@ -12,9 +12,18 @@ namespace rt {
 
 class VulkanContext;
 
+// Largest buffers a scene may use; 0: the device's limit (tests set less).
+struct SceneBufferLimits {
+  VkDeviceSize storageBytes = 0;  // per storage buffer (maxStorageBufferRange)
+  VkDeviceSize texels = 0;        // per texel buffer (maxTexelBufferElements)
+};
+
 class SceneBuffers {
  public:
-  SceneBuffers(VulkanContext& context, const FlatScene& scene);
+  // A buffer that would exceed the limits is a one-line "scene too large"
+  // Error naming it (nothing is rendered).
+  SceneBuffers(VulkanContext& context, const FlatScene& scene,
+               const SceneBufferLimits& limits = {});
   void bindTo(ComputeKernel& kernel) const;
   // The binding numbers bindTo() fills (set 0), for kernel layouts.
   static std::vector<KernelBinding> bindings();
@@ -26,6 +35,7 @@ class SceneBuffers {
   Buffer info_;
   Buffer primitives_;
   Buffer bvhNodes_;
+  Buffer items_;
   Buffer materials_;
   Buffer pointLights_;
   Buffer vertices_;

@@ -71,7 +71,7 @@ TEST_SUITE("bvh") {
     checkInvariants(bvh, boxes, options.maxDepth);
     uint32_t largestLeaf = 0;
     for (const BvhNode& node : bvh.nodes) largestLeaf = std::max(largestLeaf, node.count);
-    CHECK(largestLeaf <= 4 * options.maxLeafSize);
+    CHECK(largestLeaf <= options.maxLeafSize);
     // A balanced-ish tree over 5000 boxes is far shallower than the limit.
     CHECK(bvh.depth < 30);
   }

@@ -1,0 +1,216 @@
+// rt-bench-bvh: prints a table of the acceleration structure on generated
+// meshes (1k to 5M triangles) and the Stanford bunny: BVH build time and
+// rate, GPU bytes per triangle, primary and diffuse-bounce ray rates, and
+// the BVH on/off render-time ratio on a coursework scene. Not a test: it
+// asserts nothing and is run on demand (bench/run-bvh.sh).
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <glm/gtc/constants.hpp>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bvh/Bvh.hpp"
+#include "gpu/ShaderCompiler.hpp"
+#include "gpu/VulkanContext.hpp"
+#include "render/BatchIntersector.hpp"
+#include "render/FlatScene.hpp"
+#include "render/Renderer.hpp"
+#include "scene/PlyLoader.hpp"
+#include "scene/SceneLoader.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// A closed bumpy sphere of about `triangles` triangles (radius about 1).
+rt::TriangleMesh bumpySphere(uint32_t triangles) {
+  uint32_t rings = std::max(2u, static_cast<uint32_t>(std::sqrt(triangles / 4.0)));
+  uint32_t segments = 2 * rings;
+  rt::TriangleMesh mesh;
+  for (uint32_t r = 0; r <= rings; ++r) {
+    float theta = glm::pi<float>() * float(r) / float(rings);
+    for (uint32_t s = 0; s < segments; ++s) {
+      float phi = 2.0f * glm::pi<float>() * float(s) / float(segments);
+      glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
+                  std::sin(theta) * std::sin(phi));
+      mesh.positions.push_back((1.0f + 0.05f * std::sin(9.0f * phi) * std::sin(7.0f * theta)) * n);
+    }
+  }
+  for (uint32_t r = 0; r < rings; ++r) {
+    for (uint32_t s = 0; s < segments; ++s) {
+      uint32_t a = r * segments + s, b = r * segments + (s + 1) % segments;
+      mesh.faces.push_back({a, a + segments, b});
+      mesh.faces.push_back({b, a + segments, b + segments});
+    }
+  }
+  return mesh;
+}
+
+// The mesh alone, seen whole by a pinhole camera, binary mode: primary rays only.
+rt::Scene meshScene(rt::TriangleMesh mesh) {
+  rt::Scene scene;
+  rt::Aabb bounds;
+  for (const glm::vec3& p : mesh.positions) bounds.grow(p);
+  float radius = 0.5f * glm::length(bounds.max - bounds.min);
+  scene.settings.mode = rt::RenderMode::Binary;
+  scene.camera.fovYDegrees = 40.0f;
+  scene.camera.forward = {0.0f, 0.0f, -1.0f};
+  scene.camera.position = bounds.center() + glm::vec3(0.0f, 0.0f, 2.6f * radius);
+  scene.materials.push_back({});
+  scene.meshes.push_back(std::move(mesh));
+  scene.shapes.push_back({rt::MeshInstance{0, glm::mat4(1.0f)}, 0, ""});
+  return scene;
+}
+
+// Diffuse bounces: cosine-distributed rays leaving random surface points.
+std::vector<rt::gpu::GpuRay> diffuseRays(const rt::TriangleMesh& mesh, size_t count) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::uniform_int_distribution<size_t> pick(0, mesh.faces.size() - 1);
+  std::vector<rt::gpu::GpuRay> rays;
+  rays.reserve(count);
+  while (rays.size() < count) {
+    glm::uvec3 f = mesh.faces[pick(rng)];
+    glm::vec3 a = mesh.positions[f.x], b = mesh.positions[f.y], c = mesh.positions[f.z];
+    glm::vec3 n = glm::cross(b - a, c - a);
+    if (!(glm::length(n) > 0.0f)) continue;
+    n = glm::normalize(n);
+    float u = unit(rng), v = unit(rng);
+    if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+    glm::vec3 p = a + u * (b - a) + v * (c - a);
+    glm::vec3 t = glm::normalize(
+        glm::cross(std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0), n));
+    float r = std::sqrt(unit(rng)), phi = 2.0f * glm::pi<float>() * unit(rng);
+    glm::vec3 d = r * std::cos(phi) * t + r * std::sin(phi) * glm::cross(n, t) +
+                  std::sqrt(std::max(0.0f, 1.0f - r * r)) * n;
+    rays.push_back({p + 1e-4f * n, 0.0f, d, 1e30f});
+  }
+  return rays;
+}
+
+struct Row {
+  std::string label;
+  size_t triangles = 0;
+  double buildSeconds = 0;
+  double bytesPerTriangle = 0;
+  double primaryMrays = 0;
+  double diffuseMqueries = 0;
+};
+
+Row measure(const std::string& label, rt::TriangleMesh mesh, rt::Renderer& renderer,
+            rt::VulkanContext& context, const rt::ShaderCompiler& compiler) {
+  Row row{label, mesh.faces.size()};
+  std::vector<rt::Aabb> boxes;
+  boxes.reserve(mesh.faces.size());
+  for (glm::uvec3 f : mesh.faces) {
+    rt::Aabb box;
+    for (uint32_t i : {f.x, f.y, f.z}) box.grow(mesh.positions[i]);
+    boxes.push_back(box);
+  }
+  auto start = Clock::now();
+  rt::BvhBuildOptions build;
+  build.maxDepth = RT_BVH_MAX_DEPTH;
+  rt::Bvh bvh = rt::buildBvh(boxes, build);
+  row.buildSeconds = secondsSince(start);
+
+  std::vector<rt::gpu::GpuRay> diffuse = diffuseRays(mesh, 1u << 20);
+  rt::Scene scene = meshScene(std::move(mesh));
+  rt::FlatScene flat = rt::flattenScene(scene);
+  size_t bytes = flat.items.size() * sizeof(rt::gpu::GpuItem) +
+                 flat.bvhNodes.size() * sizeof(rt::gpu::GpuBvhNode) +
+                 flat.primitives.size() * sizeof(rt::gpu::GpuPrimitive) +
+                 flat.vertices.size() * sizeof(rt::gpu::GpuVertex);
+  row.bytesPerTriangle = double(bytes) / double(row.triangles);
+
+  rt::RenderOptions options;
+  options.width = 512;
+  options.height = 512;
+  options.samplesPerPixel = 8;
+  options.countRays = true;
+  rt::RenderStats stats;
+  renderer.render(scene, options, {}, &stats);
+  row.primaryMrays = double(stats.raysTraced) / stats.renderSeconds * 1e-6;
+
+  rt::BatchIntersector intersector(context, compiler, scene);
+  intersector.intersect(std::vector<rt::gpu::GpuRay>(diffuse.begin(), diffuse.begin() + 4096));
+  start = Clock::now();
+  intersector.intersect(diffuse);
+  // The batch kernel answers a closest-hit and an any-hit query per ray.
+  row.diffuseMqueries = 2.0 * double(diffuse.size()) / secondsSince(start) * 1e-6;
+  std::fprintf(stderr, "%s: done\n", label.c_str());
+  return row;
+}
+
+// Render time without a BVH over render time with one, on a scene file.
+double onOffRatio(const std::string& path, rt::Renderer& renderer) {
+  rt::Scene scene = rt::loadScene(path);
+  rt::RenderOptions options;
+  options.width = 200;
+  options.height = 200;
+  options.samplesPerPixel = 4;
+  double seconds[2] = {0, 0};
+  for (rt::AccelKind accel : {rt::AccelKind::Bvh, rt::AccelKind::None}) {
+    options.accel = accel;
+    rt::RenderStats stats;
+    renderer.render(scene, options, {}, &stats);  // first run compiles the kernel
+    renderer.render(scene, options, {}, &stats);
+    seconds[accel == rt::AccelKind::None] = stats.renderSeconds;
+  }
+  return seconds[1] / seconds[0];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<uint32_t> sizes{1000, 10000, 100000, 1000000, 5000000};
+  std::string bunny;
+  std::vector<std::string> onOffScenes;
+  CLI::App app{"Acceleration structure table: generated meshes and the bunny", "rt-bench-bvh"};
+  app.add_option("--sizes", sizes, "Triangle counts of the generated meshes");
+  app.add_option("--bunny", bunny, "The Stanford bunny PLY (bun_zipper.ply)");
+  app.add_option("--on-off", onOffScenes, "Scene files for the BVH on/off render-time ratio");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    rt::VulkanContext context;
+    rt::ShaderCompiler compiler(rt::ShaderCompiler::defaultShaderDir(),
+                                rt::ShaderCompiler::defaultCacheDir());
+    rt::Renderer renderer(context, compiler);
+    std::vector<Row> rows;
+    for (uint32_t size : sizes) {
+      rows.push_back(measure(fmt::format("bumpy sphere {}", size), bumpySphere(size), renderer,
+                             context, compiler));
+    }
+    if (!bunny.empty()) {
+      rows.push_back(measure("Stanford bunny", rt::loadPly(bunny), renderer, context, compiler));
+    }
+    std::printf(
+        "device: %s; %u hardware threads; primary: 512x512, 8 spp, binary mode; "
+        "diffuse: 2^20 cosine rays from the surface, closest + any hit each\n\n",
+        context.description().name.c_str(), std::thread::hardware_concurrency());
+    std::printf("| %-24s | %9s | %8s | %10s | %9s | %15s | %16s |\n", "mesh", "triangles",
+                "build s", "Mtris/s", "bytes/tri", "primary Mrays/s", "diffuse Mquery/s");
+    std::printf("|---|---|---|---|---|---|---|\n");
+    for (const Row& r : rows) {
+      std::printf("| %-24s | %9zu | %8.3f | %10.2f | %9.1f | %15.2f | %16.2f |\n", r.label.c_str(),
+                  r.triangles, r.buildSeconds, double(r.triangles) / r.buildSeconds * 1e-6,
+                  r.bytesPerTriangle, r.primaryMrays, r.diffuseMqueries);
+    }
+    if (!onOffScenes.empty()) std::printf("\n| scene | render time, BVH off / on |\n|---|---|\n");
+    for (const std::string& path : onOffScenes) {
+      std::printf("| %s | %.2f |\n", path.c_str(), onOffRatio(path, renderer));
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
