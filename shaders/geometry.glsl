@@ -2,41 +2,87 @@
 #ifndef RT_GEOMETRY_GLSL
 #define RT_GEOMETRY_GLSL
 
-// Hit position. On spheres the point is projected back onto the surface,
-// which removes most of the error of origin + t * direction.
+// Hit position, rebuilt from the primitive rather than taken as
+// origin + t * direction, whose error grows with the ray's length and the
+// error of t: spheres project onto the surface, triangles interpolate their
+// vertices, cylinders move onto the side or cap plane they were hit on. The
+// error left depends only on the primitive's coordinates (hitPositionError).
 vec3 hitPosition(Ray ray, SurfaceHit hit) {
   vec3 p = ray.origin + hit.t * ray.direction;
+  uint kind = primitiveInfo(hit.primitiveIndex).x;
+  vec4 a = primitiveRow(hit.primitiveIndex, 0u);
 #ifdef RT_FEATURE_SPHERES
-  if (primitiveInfo(hit.primitiveIndex).x == RT_PRIM_SPHERE) {
-    vec4 sphere = primitiveRow(hit.primitiveIndex, 0u);
-    p = sphere.xyz + sphere.w * hit.normal;
+  if (kind == RT_PRIM_SPHERE) p = a.xyz + a.w * hit.normal;
+#endif
+#ifdef RT_FEATURE_TRIANGLES
+  if (kind == RT_PRIM_TRIANGLE) {
+    vec3 weights = vec3(1.0 - hit.barycentric.x - hit.barycentric.y, hit.barycentric);
+    p = weights.x * a.xyz + weights.y * primitiveRow(hit.primitiveIndex, 1u).xyz +
+        weights.z * primitiveRow(hit.primitiveIndex, 2u).xyz;
+  }
+#endif
+#ifdef RT_FEATURE_CYLINDERS
+  if (kind == RT_PRIM_CYLINDER) {
+    // The side and the caps are each {x : dot(x - center, n) = distance}
+    // locally: radius from the axis on the side, half height on a cap.
+    vec4 b = primitiveRow(hit.primitiveIndex, 1u);
+    bool onCap = abs(dot(hit.normal, b.xyz)) > 0.5;
+    float distance = onCap ? b.w : a.w;
+    p += (distance - dot(p - a.xyz, hit.normal)) * hit.normal;
   }
 #endif
   return p;
 }
 
-// Moves a ray origin off the surface along the normal by a fixed number of
-// float ulps of the position (Waechter and Binder, Ray Tracing Gems ch. 6), so
-// the offset scales with the coordinates instead of being a fixed epsilon.
-// Near the origin, where ulps become tiny, a small absolute offset is used.
-vec3 offsetRayOrigin(vec3 p, vec3 n) {
-  const float nearOrigin = 1.0 / 32.0;
-  const float absoluteScale = 1.0 / 65536.0;
-  const float ulpScale = 256.0;
-  ivec3 ulps = ivec3(ulpScale * n);
-  ivec3 signedUlps = ivec3(p.x < 0.0 ? -ulps.x : ulps.x, p.y < 0.0 ? -ulps.y : ulps.y,
-                           p.z < 0.0 ? -ulps.z : ulps.z);
-  vec3 moved = intBitsToFloat(floatBitsToInt(p) + signedUlps);
-  return vec3(abs(p.x) < nearOrigin ? p.x + absoluteScale * n.x : moved.x,
-              abs(p.y) < nearOrigin ? p.y + absoluteScale * n.y : moved.y,
-              abs(p.z) < nearOrigin ? p.z + absoluteScale * n.z : moved.z);
+float largestComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }
+
+// Largest coordinate magnitude the primitive is built from.
+float primitiveMagnitude(uint index) {
+  uint kind = primitiveInfo(index).x;
+  vec4 a = primitiveRow(index, 0u);
+  vec3 extent = abs(a.xyz);
+  if (kind == RT_PRIM_SPHERE) return largestComponent(extent) + a.w;
+  vec4 b = primitiveRow(index, 1u);
+  if (kind == RT_PRIM_CYLINDER) return largestComponent(extent) + b.w + a.w;
+  extent = max(extent, max(abs(b.xyz), abs(primitiveRow(index, 2u).xyz)));
+  return largestComponent(extent);
 }
 
-// A ray leaving the surface at p towards `direction`, started on the side of
-// the surface that `direction` points to.
-Ray spawnRay(vec3 p, vec3 outwardNormal, vec3 direction) {
+// Bound on the error of each coordinate of hitPosition(), and with margin on
+// the error the intersection routines make when a ray starts that close to
+// the surface: 2^-16 of the primitive's magnitude (about 128 to 256 float
+// ulps of its largest coordinate). Relative, so the renders of a scene and of
+// the same scene scaled by a power of two are identical bit for bit.
+float hitPositionError(uint primitiveIndex) {
+  const float relativeError = 1.0 / 65536.0;
+  return relativeError * primitiveMagnitude(primitiveIndex);
+}
+
+// The next float after x towards the sign of `towards` (x itself if 0).
+float nextFloatTowards(float x, float towards) {
+  if (towards == 0.0) return x;
+  if (x == 0.0) return towards > 0.0 ? 1.17549435e-38 : -1.17549435e-38;
+  bool awayFromZero = (x > 0.0) == (towards > 0.0);
+  return intBitsToFloat(floatBitsToInt(x) + (awayFromZero ? 1 : -1));
+}
+
+// Moves p off the surface along n past the error of its coordinates (pbrt's
+// OffsetRayOrigin): error e in each coordinate is at most dot(|n|, e) along n.
+// Each coordinate then steps one float further, so that rounding p + offset
+// cannot bring the point back inside the error bound.
+vec3 offsetRayOrigin(vec3 p, float positionError, vec3 n) {
+  vec3 offset = positionError * dot(abs(n), vec3(1.0)) * n;
+  vec3 moved = p + offset;
+  return vec3(nextFloatTowards(moved.x, offset.x), nextFloatTowards(moved.y, offset.y),
+              nextFloatTowards(moved.z, offset.z));
+}
+
+// A ray leaving the surface at p (from hitPosition, with its error from
+// hitPositionError) towards `direction`, started on the side of the surface
+// that `direction` points to.
+Ray spawnRay(vec3 p, float positionError, vec3 outwardNormal, vec3 direction) {
   vec3 side = dot(direction, outwardNormal) >= 0.0 ? outwardNormal : -outwardNormal;
-  return Ray(offsetRayOrigin(p, side), direction);
+  return Ray(offsetRayOrigin(p, positionError, side), direction);
 }
 
 // A finite value, or 0 for NaN and +-Inf. Tested on the bit pattern because

@@ -30,7 +30,8 @@ float shadowTransmittance(Ray ray, vec3 lightPosition) {
     float reflectance = dielectricReflectance(abs(cosine), eta, cosTransmitted);
     transmittance *= blocker.transmission * (1.0 - reflectance);
     if (transmittance < RT_MIN_BRANCH_WEIGHT) return 0.0;
-    ray = spawnRay(hitPosition(ray, hit), hit.normal, ray.direction);
+    ray = spawnRay(hitPosition(ray, hit), hitPositionError(hit.primitiveIndex), hit.normal,
+                   ray.direction);
   }
   return 0.0;
 }
@@ -76,7 +77,8 @@ vec3 directLighting(SurfacePoint surface, vec3 toViewer, GpuMaterial material) {
     float cosine = dot(normal, l);
     // Light behind the surface as seen from the viewer (by either normal).
     if (cosine <= 0.0 || dot(surface.geometricNormal, l) <= 0.0) continue;
-    float visibility = lightVisibility(spawnRay(p, surface.geometricNormal, l), light.position);
+    Ray shadowRay = spawnRay(p, surface.positionError, surface.geometricNormal, l);
+    float visibility = lightVisibility(shadowRay, light.position);
     if (visibility <= 0.0) continue;
     vec3 halfway = normalize(l + toViewer);
     float highlight = pow(max(dot(normal, halfway), 0.0), material.specularExponent);
