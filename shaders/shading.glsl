@@ -81,7 +81,11 @@ vec3 directLighting(SurfacePoint surface, vec3 toViewer, GpuMaterial material) {
     float visibility = lightVisibility(shadowRay, light.position);
     if (visibility <= 0.0) continue;
     vec3 halfway = normalize(l + toViewer);
-    float highlight = pow(max(dot(normal, halfway), 0.0), material.specularExponent);
+    // pow(0, 0) is undefined in GLSL (exp2(0 * log2(0)) = NaN on some
+    // drivers): exponent 0 is the constant lobe 1.
+    float highlight = material.specularExponent > 0.0
+                          ? pow(max(dot(normal, halfway), 0.0), material.specularExponent)
+                          : 1.0;
     vec3 diffuse = material.kd * light.diffuseIntensity * cosine;
     vec3 specular = material.ks * light.specularIntensity * highlight;
     if (!coursework) {

@@ -11,7 +11,7 @@
 // makes the GPU see exactly the differences of the given floats, so a
 // translated scene renders bit for bit like the unit-scale scene with the
 // same rounded coordinates. Sweep: offsets from 1e3 to 4e6 per axis, at
-// scales 1, 2^-10 and 2^6. The unit scene's coordinates are multiples of
+// scales 1 and 2^-10. The unit scene's coordinates are multiples of
 // 1/16, so translations up to 1e6 do not round them and change nothing.
 // Against the unrounded unit scene, a decimal scale (1e-4 to 1e6, relative
 // rounding 6e-8) may change only pixels whose sample lands within rounding
@@ -202,7 +202,7 @@ TEST_SUITE("robustness-sweep") {
 
   TEST_CASE("translations up to 1e6, with scaling, render the rounded unit scene bit for bit") {
     for (glm::dvec3 offset : kOffsets) {
-      for (double scale : {1.0, 1.0 / 1024, 64.0}) {
+      for (double scale : {1.0, 1.0 / 1024}) {
         CAPTURE(offset.x);
         CAPTURE(offset.y);
         CAPTURE(offset.z);
