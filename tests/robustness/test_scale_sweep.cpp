@@ -150,7 +150,7 @@ Scene selfShadowScene(const Placement& at, Layout layout) {
 
 std::vector<double> powerOfTwoScales() {
   std::vector<double> scales;
-  for (int exponent : {-14, -10, -7, -3, 3, 7, 10, 14, 17, 20}) {
+  for (int exponent : {-14, -7, 3, 10, 17, 20}) {
     scales.push_back(std::ldexp(1.0, exponent));
   }
   return scales;
@@ -236,7 +236,7 @@ TEST_SUITE("robustness-sweep") {
 
   TEST_CASE("no lit pixel is shadowed by its own surface, at any scale or distance") {
     std::vector<Placement> placements;
-    for (double scale : {0x1p-14, 0x1p-7, 0x1p7, 0x1p20, 1e-4, 1e-3, 0.1, 1e3, 1e6}) {
+    for (double scale : {0x1p-14, 0x1p20, 1e-4, 0.1, 1e3, 1e6}) {
       placements.push_back(scaledAndMoved(scale, {}));
     }
     for (glm::dvec3 offset : kOffsets) placements.push_back(scaledAndMoved(1, offset));
