@@ -2,23 +2,42 @@
 #ifndef RT_GEOMETRY_GLSL
 #define RT_GEOMETRY_GLSL
 
-// Hit position, rebuilt from the primitive rather than taken as
-// origin + t * direction, whose error grows with the ray's length and the
-// error of t: spheres project onto the surface, triangles interpolate their
-// vertices, cylinders move onto the side or cap plane they were hit on. The
-// error left depends only on the primitive's coordinates (hitPositionError).
-vec3 hitPosition(Ray ray, SurfaceHit hit) {
+float largestComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }
+
+// Bound on the error of each coordinate of a rebuilt hit position, and with
+// margin on the error the intersection routines make when a ray starts that
+// close to the surface: 2^-20 of the largest coordinate the primitive is
+// built from (8 to 16 float ulps of it). tests/robustness/
+// test_reintersection.cpp sees no re-hit down to 2^-23, and rays into small
+// spheres far from the origin (1000 radii) bend measurably from 2^-19 up.
+// Relative, so the renders of a scene and of the same scene scaled by a
+// power of two are identical bit for bit.
+const float RT_RELATIVE_POSITION_ERROR = 1.0 / 1048576.0;  // 2^-20
+
+// The hit position (xyz) and the bound on its error (w). The position is
+// rebuilt from the primitive rather than taken as origin + t * direction,
+// whose error grows with the ray's length and the error of t: spheres
+// project onto the surface, triangles interpolate their vertices, cylinders
+// move onto the side or cap plane they were hit on. The error left depends
+// only on the primitive's coordinates, not on the ray.
+vec4 hitPoint(Ray ray, SurfaceHit hit) {
   vec3 p = ray.origin + hit.t * ray.direction;
+  float magnitude = largestComponent(abs(p));
   uint kind = primitiveInfo(hit.primitiveIndex).x;
   vec4 a = primitiveRow(hit.primitiveIndex, 0u);
 #ifdef RT_FEATURE_SPHERES
-  if (kind == RT_PRIM_SPHERE) p = a.xyz + a.w * hit.normal;
+  if (kind == RT_PRIM_SPHERE) {
+    p = a.xyz + a.w * hit.normal;
+    magnitude = largestComponent(abs(a.xyz)) + a.w;
+  }
 #endif
 #ifdef RT_FEATURE_TRIANGLES
   if (kind == RT_PRIM_TRIANGLE) {
+    vec3 v1 = primitiveRow(hit.primitiveIndex, 1u).xyz;
+    vec3 v2 = primitiveRow(hit.primitiveIndex, 2u).xyz;
     vec3 weights = vec3(1.0 - hit.barycentric.x - hit.barycentric.y, hit.barycentric);
-    p = weights.x * a.xyz + weights.y * primitiveRow(hit.primitiveIndex, 1u).xyz +
-        weights.z * primitiveRow(hit.primitiveIndex, 2u).xyz;
+    p = weights.x * a.xyz + weights.y * v1 + weights.z * v2;
+    magnitude = largestComponent(max(abs(a.xyz), max(abs(v1), abs(v2))));
   }
 #endif
 #ifdef RT_FEATURE_CYLINDERS
@@ -29,36 +48,10 @@ vec3 hitPosition(Ray ray, SurfaceHit hit) {
     bool onCap = abs(dot(hit.normal, b.xyz)) > 0.5;
     float distance = onCap ? b.w : a.w;
     p += (distance - dot(p - a.xyz, hit.normal)) * hit.normal;
+    magnitude = largestComponent(abs(a.xyz)) + b.w + a.w;
   }
 #endif
-  return p;
-}
-
-float largestComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }
-
-// Largest coordinate magnitude the primitive is built from.
-float primitiveMagnitude(uint index) {
-  uint kind = primitiveInfo(index).x;
-  vec4 a = primitiveRow(index, 0u);
-  vec3 extent = abs(a.xyz);
-  if (kind == RT_PRIM_SPHERE) return largestComponent(extent) + a.w;
-  vec4 b = primitiveRow(index, 1u);
-  if (kind == RT_PRIM_CYLINDER) return largestComponent(extent) + b.w + a.w;
-  extent = max(extent, max(abs(b.xyz), abs(primitiveRow(index, 2u).xyz)));
-  return largestComponent(extent);
-}
-
-// Bound on the error of each coordinate of hitPosition(), and with margin on
-// the error the intersection routines make when a ray starts that close to
-// the surface: 2^-20 of the primitive's largest coordinate (8 to 16 float
-// ulps of it). tests/robustness/test_reintersection.cpp sees no re-hit down
-// to 2^-23, and rays into small spheres far from the origin (1000 radii)
-// bend measurably from 2^-19 up; the old 256-ulp offset lay beyond that.
-// Relative, so the renders of a scene and of the same scene scaled by a
-// power of two are identical bit for bit.
-float hitPositionError(uint primitiveIndex) {
-  const float relativeError = 1.0 / 1048576.0;  // 2^-20
-  return relativeError * primitiveMagnitude(primitiveIndex);
+  return vec4(p, RT_RELATIVE_POSITION_ERROR * magnitude);
 }
 
 // The next float after x towards the sign of `towards` (x itself if 0).
@@ -80,8 +73,8 @@ vec3 offsetRayOrigin(vec3 p, float positionError, vec3 n) {
               nextFloatTowards(moved.z, offset.z));
 }
 
-// A ray leaving the surface at p (from hitPosition, with its error from
-// hitPositionError) towards `direction`, started on the side of the surface
+// A ray leaving the surface at p (with the error bound of hitPoint) towards
+// `direction`, started on the side of the surface
 // that `direction` points to.
 Ray spawnRay(vec3 p, float positionError, vec3 outwardNormal, vec3 direction) {
   vec3 side = dot(direction, outwardNormal) >= 0.0 ? outwardNormal : -outwardNormal;

@@ -30,8 +30,8 @@ float shadowTransmittance(Ray ray, vec3 lightPosition) {
     float reflectance = dielectricReflectance(abs(cosine), eta, cosTransmitted);
     transmittance *= blocker.transmission * (1.0 - reflectance);
     if (transmittance < RT_MIN_BRANCH_WEIGHT) return 0.0;
-    ray = spawnRay(hitPosition(ray, hit), hitPositionError(hit.primitiveIndex), hit.normal,
-                   ray.direction);
+    vec4 point = hitPoint(ray, hit);
+    ray = spawnRay(point.xyz, point.w, hit.normal, ray.direction);
   }
   return 0.0;
 }

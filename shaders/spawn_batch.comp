@@ -1,6 +1,6 @@
 #version 460
 // Test kernel for ray origins: each probe traces a ray to its closest hit,
-// spawns a second ray there the way the renderer does (hitPosition and
+// spawns a second ray there the way the renderer does (hitPoint and
 // spawnRay), and traces that one too. Probe i reads rays[2i] (the first ray)
 // and the direction of rays[2i + 1]; it writes hits[2i] and hits[2i + 1],
 // the second with the spawned origin in `normal` when it hit nothing.
@@ -41,9 +41,9 @@ void main() {
   hits[2u * probe] = record(found, hit);
   GpuHit second = record(false, hit);
   if (found) {
-    vec3 p = hitPosition(ray, hit);
+    vec4 point = hitPoint(ray, hit);
     vec3 leaving = normalize(rays[2u * probe + 1u].direction);
-    Ray spawned = spawnRay(p, hitPositionError(hit.primitiveIndex), hit.normal, leaving);
+    Ray spawned = spawnRay(point.xyz, point.w, hit.normal, leaving);
     SurfaceHit again;
     bool hitAgain = closestHit(spawned, 0.0, RT_FAR, again);
     second = record(hitAgain, again);

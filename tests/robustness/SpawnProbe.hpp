@@ -1,5 +1,5 @@
 // Runs shaders/spawn_batch.comp: for each probe, a ray to its closest hit,
-// then a ray spawned from that hit with the renderer's own hitPosition and
+// then a ray spawned from that hit with the renderer's own hitPoint and
 // spawnRay, traced again. Tests use it to check that rays leaving a surface
 // never hit it again.
 #pragma once

@@ -2,7 +2,7 @@
 // reintersection tests): random spheres, triangles, quads and cylinders at
 // sizes from 1e-8 to 1e8, some far from the origin relative to their size;
 // a ray hits each at a random point, and a ray spawned there by the
-// renderer's own code (hitPosition, spawnRay in shaders/geometry.glsl, run
+// renderer's own code (hitPoint, spawnRay in shaders/geometry.glsl, run
 // by shaders/spawn_batch.comp) leaves in a random direction.
 #include <doctest/doctest.h>
 
