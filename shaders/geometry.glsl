@@ -2,41 +2,83 @@
 #ifndef RT_GEOMETRY_GLSL
 #define RT_GEOMETRY_GLSL
 
-// Hit position. On spheres the point is projected back onto the surface,
-// which removes most of the error of origin + t * direction.
-vec3 hitPosition(Ray ray, SurfaceHit hit) {
+float largestComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }
+
+// Bound on the error of each coordinate of a rebuilt hit position, and with
+// margin on the error the intersection routines make when a ray starts that
+// close to the surface: 2^-20 of the largest coordinate the primitive is
+// built from (8 to 16 float ulps of it). tests/robustness/
+// test_reintersection.cpp sees no re-hit down to 2^-23, and rays into small
+// spheres far from the origin (1000 radii) bend measurably from 2^-19 up.
+// Relative, so the renders of a scene and of the same scene scaled by a
+// power of two are identical bit for bit.
+const float RT_RELATIVE_POSITION_ERROR = 1.0 / 1048576.0;  // 2^-20
+
+// The hit position (xyz) and the bound on its error (w). The position is
+// rebuilt from the primitive rather than taken as origin + t * direction,
+// whose error grows with the ray's length and the error of t: spheres
+// project onto the surface, triangles interpolate their vertices, cylinders
+// move onto the side or cap plane they were hit on. The error left depends
+// only on the primitive's coordinates, not on the ray.
+vec4 hitPoint(Ray ray, SurfaceHit hit) {
   vec3 p = ray.origin + hit.t * ray.direction;
+  float magnitude = largestComponent(abs(p));
+  uint kind = primitiveInfo(hit.primitiveIndex).x;
+  vec4 a = primitiveRow(hit.primitiveIndex, 0u);
 #ifdef RT_FEATURE_SPHERES
-  if (primitiveInfo(hit.primitiveIndex).x == RT_PRIM_SPHERE) {
-    vec4 sphere = primitiveRow(hit.primitiveIndex, 0u);
-    p = sphere.xyz + sphere.w * hit.normal;
+  if (kind == RT_PRIM_SPHERE) {
+    p = a.xyz + a.w * hit.normal;
+    magnitude = largestComponent(abs(a.xyz)) + a.w;
   }
 #endif
-  return p;
+#ifdef RT_FEATURE_TRIANGLES
+  if (kind == RT_PRIM_TRIANGLE) {
+    vec3 v1 = primitiveRow(hit.primitiveIndex, 1u).xyz;
+    vec3 v2 = primitiveRow(hit.primitiveIndex, 2u).xyz;
+    vec3 weights = vec3(1.0 - hit.barycentric.x - hit.barycentric.y, hit.barycentric);
+    p = weights.x * a.xyz + weights.y * v1 + weights.z * v2;
+    magnitude = largestComponent(max(abs(a.xyz), max(abs(v1), abs(v2))));
+  }
+#endif
+#ifdef RT_FEATURE_CYLINDERS
+  if (kind == RT_PRIM_CYLINDER) {
+    // The side and the caps are each {x : dot(x - center, n) = distance}
+    // locally: radius from the axis on the side, half height on a cap.
+    vec4 b = primitiveRow(hit.primitiveIndex, 1u);
+    bool onCap = abs(dot(hit.normal, b.xyz)) > 0.5;
+    float distance = onCap ? b.w : a.w;
+    p += (distance - dot(p - a.xyz, hit.normal)) * hit.normal;
+    magnitude = largestComponent(abs(a.xyz)) + b.w + a.w;
+  }
+#endif
+  return vec4(p, RT_RELATIVE_POSITION_ERROR * magnitude);
 }
 
-// Moves a ray origin off the surface along the normal by a fixed number of
-// float ulps of the position (Waechter and Binder, Ray Tracing Gems ch. 6), so
-// the offset scales with the coordinates instead of being a fixed epsilon.
-// Near the origin, where ulps become tiny, a small absolute offset is used.
-vec3 offsetRayOrigin(vec3 p, vec3 n) {
-  const float nearOrigin = 1.0 / 32.0;
-  const float absoluteScale = 1.0 / 65536.0;
-  const float ulpScale = 256.0;
-  ivec3 ulps = ivec3(ulpScale * n);
-  ivec3 signedUlps = ivec3(p.x < 0.0 ? -ulps.x : ulps.x, p.y < 0.0 ? -ulps.y : ulps.y,
-                           p.z < 0.0 ? -ulps.z : ulps.z);
-  vec3 moved = intBitsToFloat(floatBitsToInt(p) + signedUlps);
-  return vec3(abs(p.x) < nearOrigin ? p.x + absoluteScale * n.x : moved.x,
-              abs(p.y) < nearOrigin ? p.y + absoluteScale * n.y : moved.y,
-              abs(p.z) < nearOrigin ? p.z + absoluteScale * n.z : moved.z);
+// The next float after x towards the sign of `towards` (x itself if 0).
+float nextFloatTowards(float x, float towards) {
+  if (towards == 0.0) return x;
+  if (x == 0.0) return towards > 0.0 ? 1.17549435e-38 : -1.17549435e-38;
+  bool awayFromZero = (x > 0.0) == (towards > 0.0);
+  return intBitsToFloat(floatBitsToInt(x) + (awayFromZero ? 1 : -1));
 }
 
-// A ray leaving the surface at p towards `direction`, started on the side of
-// the surface that `direction` points to.
-Ray spawnRay(vec3 p, vec3 outwardNormal, vec3 direction) {
+// Moves p off the surface along n past the error of its coordinates (pbrt's
+// OffsetRayOrigin): error e in each coordinate is at most dot(|n|, e) along n.
+// Each coordinate then steps one float further, so that rounding p + offset
+// cannot bring the point back inside the error bound.
+vec3 offsetRayOrigin(vec3 p, float positionError, vec3 n) {
+  vec3 offset = positionError * dot(abs(n), vec3(1.0)) * n;
+  vec3 moved = p + offset;
+  return vec3(nextFloatTowards(moved.x, offset.x), nextFloatTowards(moved.y, offset.y),
+              nextFloatTowards(moved.z, offset.z));
+}
+
+// A ray leaving the surface at p (with the error bound of hitPoint) towards
+// `direction`, started on the side of the surface
+// that `direction` points to.
+Ray spawnRay(vec3 p, float positionError, vec3 outwardNormal, vec3 direction) {
   vec3 side = dot(direction, outwardNormal) >= 0.0 ? outwardNormal : -outwardNormal;
-  return Ray(offsetRayOrigin(p, side), direction);
+  return Ray(offsetRayOrigin(p, positionError, side), direction);
 }
 
 // A finite value, or 0 for NaN and +-Inf. Tested on the bit pattern because

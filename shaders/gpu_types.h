@@ -82,8 +82,10 @@ using uint = uint32_t;
 // One surface primitive (64 bytes). Quads are split into two triangles on the
 // host; mesh triangles use the same record.
 //   sphere:   a = (center, radius)
-//   triangle: a = (v0, i0), b = (v1 - v0, i1), c = (v2 - v0, i2) where the
-//             i are GpuVertex indices (as float bits) if RT_PRIM_HAS_VERTICES
+//   triangle: a = (v0, i0), b = (v1, i1), c = (v2, i2) where the i are
+//             GpuVertex indices (as float bits) if RT_PRIM_HAS_VERTICES;
+//             vertices, not edges, so that triangles sharing a vertex see
+//             the same floats (watertight intersection)
 //   cylinder: a = (center, radius), b = (unit axis, half height)
 struct GpuPrimitive {
   vec4 a;

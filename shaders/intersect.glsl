@@ -38,24 +38,78 @@ bool intersectSphere(vec3 center, float radius, Ray ray, float tMin, inout float
 #endif
 
 #ifdef RT_FEATURE_TRIANGLES
-// Moller-Trumbore; two-sided. The normal follows the winding (v0, v1, v2).
-bool intersectTriangle(vec3 v0, vec3 edge1, vec3 edge2, Ray ray, float tMin, inout float tMax,
+// Watertight ray/triangle test (Woop, Benthin and Wald, JCGT 2013). The
+// vertices move into a frame where the ray runs along +z from the origin:
+// a permutation putting the direction's largest axis last and a shear. The
+// three edge functions are then 2D cross products of transformed vertices,
+// and a shared edge of two triangles gives both exactly opposite values, so
+// a ray through an edge or a vertex of a closed mesh cannot slip between
+// its triangles. Edges with a zero function count as inside (closed).
+// `precise` forbids fusing multiply-adds: fusing could round the same
+// shared-vertex expression differently in two triangles.
+struct ShearedRay {
+  uint dominantAxis;  // ray direction's largest component becomes z
+  vec3 shear;         // (-dx/dz, -dy/dz, 1/dz) after the permutation
+};
+
+vec3 permuteDominantLast(vec3 v, uint axis) {
+  return axis == 0u ? v.yzx : (axis == 1u ? v.zxy : v);
+}
+
+ShearedRay shearRay(vec3 direction) {
+  vec3 magnitude = abs(direction);
+  uint axis = magnitude.x > magnitude.y ? (magnitude.x > magnitude.z ? 0u : 2u)
+                                        : (magnitude.y > magnitude.z ? 1u : 2u);
+  vec3 d = permuteDominantLast(direction, axis);
+  return ShearedRay(axis, vec3(-d.x / d.z, -d.y / d.z, 1.0 / d.z));
+}
+
+// The frame of the last ray seen: traversal tests many triangles against one
+// ray, and the frame costs a division and a few selects to build.
+vec3 rtShearedDirection = vec3(0.0);
+ShearedRay rtShearedRay = ShearedRay(2u, vec3(0.0, 0.0, 1.0));
+
+ShearedRay shearedRayFor(vec3 direction) {
+  if (direction != rtShearedDirection) {
+    rtShearedDirection = direction;
+    rtShearedRay = shearRay(direction);
+  }
+  return rtShearedRay;
+}
+
+// The vertex relative to the ray origin in the sheared frame; z unscaled.
+vec3 shearVertex(vec3 vertex, vec3 origin, ShearedRay frame) {
+  precise vec3 v = permuteDominantLast(vertex - origin, frame.dominantAxis);
+  precise float x = v.x + frame.shear.x * v.z;
+  precise float y = v.y + frame.shear.y * v.z;
+  return vec3(x, y, v.z);
+}
+
+float edgeFunction(vec3 from, vec3 to) {
+  precise float value = from.x * to.y - from.y * to.x;
+  return value;
+}
+
+// Two-sided. The normal follows the winding (v0, v1, v2); `barycentric` is
+// the weights of v1 and v2.
+bool intersectTriangle(vec3 v0, vec3 v1, vec3 v2, Ray ray, float tMin, inout float tMax,
                        out vec3 normal, out vec2 barycentric) {
-  vec3 p = cross(ray.direction, edge2);
-  float det = dot(edge1, p);
-  if (det == 0.0) return false;
-  float invDet = 1.0 / det;
-  vec3 s = ray.origin - v0;
-  float u = dot(s, p) * invDet;
-  if (u < 0.0 || u > 1.0) return false;
-  vec3 q = cross(s, edge1);
-  float v = dot(ray.direction, q) * invDet;
-  if (v < 0.0 || u + v > 1.0) return false;
-  float t = dot(edge2, q) * invDet;
+  ShearedRay frame = shearedRayFor(ray.direction);
+  vec3 a = shearVertex(v0, ray.origin, frame);
+  vec3 b = shearVertex(v1, ray.origin, frame);
+  vec3 c = shearVertex(v2, ray.origin, frame);
+  float u = edgeFunction(b, c);
+  float v = edgeFunction(c, a);
+  float w = edgeFunction(a, b);
+  if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return false;
+  float det = u + v + w;
+  if (det == 0.0) return false;  // the ray lies in the triangle's plane
+  float scaledT = frame.shear.z * (u * a.z + v * b.z + w * c.z);
+  float t = scaledT / det;
   if (!(t > tMin && t < tMax)) return false;
   tMax = t;
-  normal = normalize(cross(edge1, edge2));
-  barycentric = vec2(u, v);
+  normal = normalize(cross(v1 - v0, v2 - v0));
+  barycentric = vec2(v, w) / det;
   return true;
 }
 #endif

@@ -30,7 +30,8 @@ float shadowTransmittance(Ray ray, vec3 lightPosition) {
     float reflectance = dielectricReflectance(abs(cosine), eta, cosTransmitted);
     transmittance *= blocker.transmission * (1.0 - reflectance);
     if (transmittance < RT_MIN_BRANCH_WEIGHT) return 0.0;
-    ray = spawnRay(hitPosition(ray, hit), hit.normal, ray.direction);
+    vec4 point = hitPoint(ray, hit);
+    ray = spawnRay(point.xyz, point.w, hit.normal, ray.direction);
   }
   return 0.0;
 }
@@ -76,10 +77,15 @@ vec3 directLighting(SurfacePoint surface, vec3 toViewer, GpuMaterial material) {
     float cosine = dot(normal, l);
     // Light behind the surface as seen from the viewer (by either normal).
     if (cosine <= 0.0 || dot(surface.geometricNormal, l) <= 0.0) continue;
-    float visibility = lightVisibility(spawnRay(p, surface.geometricNormal, l), light.position);
+    Ray shadowRay = spawnRay(p, surface.positionError, surface.geometricNormal, l);
+    float visibility = lightVisibility(shadowRay, light.position);
     if (visibility <= 0.0) continue;
     vec3 halfway = normalize(l + toViewer);
-    float highlight = pow(max(dot(normal, halfway), 0.0), material.specularExponent);
+    // pow(0, 0) is undefined in GLSL (exp2(0 * log2(0)) = NaN on some
+    // drivers): exponent 0 is the constant lobe 1.
+    float highlight = material.specularExponent > 0.0
+                          ? pow(max(dot(normal, halfway), 0.0), material.specularExponent)
+                          : 1.0;
     vec3 diffuse = material.kd * light.diffuseIntensity * cosine;
     vec3 specular = material.ks * light.specularIntensity * highlight;
     if (!coursework) {

@@ -10,6 +10,7 @@ layout(std430, set = 0, binding = RT_BINDING_VERTICES) readonly buffer VertexBuf
 
 struct SurfacePoint {
   vec3 position;
+  float positionError;   // bound on the error of each coordinate of position
   vec3 geometricNormal;  // outward (winding) normal of the surface
   vec3 shadingNormal;    // interpolated normal, on the geometric normal's side
   vec2 uv;
@@ -72,7 +73,9 @@ void interpolateVertices(uvec3 indices, bool smoothNormals, mat3 normalMatrix, v
 
 SurfacePoint surfaceAt(Ray ray, SurfaceHit hit) {
   SurfacePoint surface;
-  surface.position = hitPosition(ray, hit);
+  vec4 point = hitPoint(ray, hit);
+  surface.position = point.xyz;
+  surface.positionError = point.w;
   surface.geometricNormal = hit.normal;
   surface.shadingNormal = hit.normal;
   surface.uv = hit.barycentric;

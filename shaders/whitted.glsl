@@ -40,8 +40,9 @@ void pushChildren(inout RayStack stack, PendingRay first, PendingRay second, flo
   pushIfVisible(stack, chosen);
 }
 
-PendingRay childRay(vec3 p, vec3 outwardNormal, vec3 direction, vec3 weight, uint depth) {
-  return PendingRay(spawnRay(p, outwardNormal, direction), weight, depth);
+PendingRay childRay(SurfacePoint surface, vec3 direction, vec3 weight, uint depth) {
+  Ray ray = spawnRay(surface.position, surface.positionError, surface.geometricNormal, direction);
+  return PendingRay(ray, weight, depth);
 }
 
 // Adds the mirror and refraction children of a hit to the stack.
@@ -51,8 +52,6 @@ void spawnSecondaryRays(inout RayStack stack, PendingRay parent, SurfacePoint su
                         bool entering, GpuMaterial material, float choice) {
   vec3 d = parent.ray.direction;
   vec3 facing = surface.shadingNormal;
-  vec3 p = surface.position;
-  vec3 outward = surface.geometricNormal;
   uint depth = parent.depth + 1u;
 #ifdef RT_FEATURE_REFLECTION
   vec3 mirrorWeight = parent.weight * material.reflectivity;
@@ -70,13 +69,13 @@ void spawnSecondaryRays(inout RayStack stack, PendingRay parent, SurfacePoint su
     if (reflectance < 1.0) {
       vec3 refractDir = normalize(eta * d + (eta * cosIncident - cosTransmitted) * facing);
       vec3 refractWeight = parent.weight * material.transmission * (1.0 - reflectance);
-      pushChildren(stack, childRay(p, outward, mirrorDir, mirrorWeight, depth),
-                   childRay(p, outward, refractDir, refractWeight, depth), choice);
+      pushChildren(stack, childRay(surface, mirrorDir, mirrorWeight, depth),
+                   childRay(surface, refractDir, refractWeight, depth), choice);
       return;
     }
   }
 #endif
-  pushIfVisible(stack, childRay(p, outward, mirrorDir, mirrorWeight, depth));
+  pushIfVisible(stack, childRay(surface, mirrorDir, mirrorWeight, depth));
 }
 
 

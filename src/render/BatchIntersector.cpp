@@ -30,7 +30,9 @@ std::vector<gpu::GpuHit> BatchIntersector::intersect(const std::vector<gpu::GpuR
   if (rays.empty()) return hits;
   Buffer rayBuffer(context_, rays.size() * sizeof(gpu::GpuRay), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   Buffer hitBuffer(context_, hits.size() * sizeof(gpu::GpuHit), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  rayBuffer.upload(rays.data(), rays.size() * sizeof(gpu::GpuRay));
+  std::vector<gpu::GpuRay> framed = rays;  // into the flat scene's camera-relative frame
+  for (gpu::GpuRay& ray : framed) ray.origin -= flat_.frameOrigin;
+  rayBuffer.upload(framed.data(), framed.size() * sizeof(gpu::GpuRay));
   kernel_->bind(RT_BINDING_RAYS, rayBuffer);
   kernel_->bind(RT_BINDING_HITS, hitBuffer);
   gpu::GpuBatchParams params{static_cast<uint32_t>(rays.size()), 0, 0, 0};

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_access.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
 #include <initializer_list>
 #include <optional>
@@ -23,8 +24,8 @@ gpu::GpuPrimitive makeTriangle(const glm::vec3& v0, const glm::vec3& v1, const g
   gpu::GpuPrimitive prim{};
   prim.kind = RT_PRIM_TRIANGLE;
   prim.a = glm::vec4(v0, 0.0f);
-  prim.b = glm::vec4(v1 - v0, 0.0f);
-  prim.c = glm::vec4(v2 - v0, 0.0f);
+  prim.b = glm::vec4(v1, 0.0f);
+  prim.c = glm::vec4(v2, 0.0f);
   return prim;
 }
 
@@ -115,8 +116,8 @@ Aabb primitiveBounds(const gpu::GpuPrimitive& prim) {
     box.grow(a + glm::vec3(prim.a.w));
   } else if (prim.kind == RT_PRIM_TRIANGLE) {
     box.grow(a);
-    box.grow(a + glm::vec3(prim.b));
-    box.grow(a + glm::vec3(prim.c));
+    box.grow(glm::vec3(prim.b));
+    box.grow(glm::vec3(prim.c));
   } else {
     // Cylinder: the caps' discs bound it; a disc of radius r around axis n
     // extends r * sqrt(1 - n_i^2) along axis i.
@@ -265,6 +266,29 @@ std::vector<PendingInstance> collectPrimitives(const Scene& scene, FlatScene& fl
   return instances;
 }
 
+// Camera-relative coordinates (before the BVH is built): floats are coarse
+// far from the world origin (ulp 0.0625 at 1e6), so a scene far from it is
+// moved next to the camera, where what the camera sees is resolved finely.
+// Each coordinate is one float subtraction, rounded once; a scene that is
+// only translated gives the GPU the very same numbers.
+// Mesh instances move by their transforms (applied when meshes are built).
+void recenterOnCamera(FlatScene& flat, std::vector<PendingInstance>& instances) {
+  glm::vec3 origin = flat.info.cameraPosition;
+  for (PendingInstance& instance : instances) {
+    instance.objectToWorld = glm::translate(glm::mat4(1.0f), -origin) * instance.objectToWorld;
+  }
+  for (gpu::GpuPrimitive& prim : flat.primitives) {
+    if (prim.kind == RT_PRIM_INSTANCE) continue;
+    prim.a = glm::vec4(glm::vec3(prim.a) - origin, prim.a.w);
+    if (prim.kind != RT_PRIM_TRIANGLE) continue;
+    prim.b = glm::vec4(glm::vec3(prim.b) - origin, prim.b.w);
+    prim.c = glm::vec4(glm::vec3(prim.c) - origin, prim.c.w);
+  }
+  for (gpu::GpuPointLight& light : flat.pointLights) light.position -= origin;
+  flat.info.cameraPosition = glm::vec3(0.0f);
+  flat.frameOrigin = origin;
+}
+
 // Builds each used mesh's triangles and BVH once, and fills its instances'
 // primitives (world-to-object rows, flags). Returns the BVHs by mesh.
 std::vector<std::optional<MeshBlas>> addMeshes(const Scene& scene,
@@ -393,10 +417,11 @@ uint32_t dominantAxis(const glm::vec3& v) {
 
 }  // namespace
 
-void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuSceneInfo& info) {
+void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuSceneInfo& info,
+                const glm::vec3& frameOrigin) {
   glm::vec3 forward = glm::normalize(camera.forward);
   glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
-  info.cameraPosition = camera.position;
+  info.cameraPosition = camera.position - frameOrigin;
   info.cameraForward = forward;
   info.cameraRight = right;
   info.cameraUp = glm::cross(right, forward);
@@ -421,6 +446,7 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   }
   flat.info.sphereUvPole = dominantAxis(scene.camera.up);
   std::vector<PendingInstance> instances = collectPrimitives(scene, flat);
+  recenterOnCamera(flat, instances);
   std::vector<std::optional<MeshBlas>> meshes = addMeshes(scene, instances, options, flat);
   addBvh(instances, meshes, options, flat);
 

@@ -23,6 +23,7 @@ struct FlatScene {
   std::vector<gpu::GpuTextureInfo> textureInfos;
   std::vector<uint32_t> texels;       // RGBA8 of every texture, packed
   uint32_t bvhDepth = 0;              // top level plus the deepest mesh
+  glm::vec3 frameOrigin{0.0f};  // world point at the GPU coordinates' origin (the camera)
   std::vector<std::string> warnings;  // scene features the GPU scene leaves out
 };
 
@@ -41,7 +42,9 @@ struct FlattenOptions {
 
 FlatScene flattenScene(const Scene& scene, const FlattenOptions& options = {});
 
-// Writes the camera fields of `info` (basis, field of view, lens, image size).
-void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuSceneInfo& info);
+// Writes the camera fields of `info` (basis, field of view, lens, image size),
+// the position relative to the flat scene's frameOrigin.
+void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuSceneInfo& info,
+                const glm::vec3& frameOrigin = glm::vec3(0.0f));
 
 }  // namespace rt

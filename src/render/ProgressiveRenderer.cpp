@@ -135,7 +135,7 @@ void ProgressiveRenderer::reset() {
 }
 
 void ProgressiveRenderer::setCamera(const Camera& camera) {
-  fillCamera(camera, width_, height_, flat_.info);
+  fillCamera(camera, width_, height_, flat_.info, flat_.frameOrigin);
   sceneBuffers_.updateInfo(flat_.info);
   reset();
 }
