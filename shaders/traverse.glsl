@@ -235,7 +235,8 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
 #endif
 #ifdef RT_FEATURE_TRIANGLES
   if (hitKind == RT_PRIM_TRIANGLE) {
-    hit.normal = normalize(cross(itemRow(hitItem, 1u).xyz, itemRow(hitItem, 2u).xyz));
+    // Items hold the corners themselves (watertight intersection needs them).
+    hit.normal = normalize(cross(itemRow(hitItem, 1u).xyz - row0.xyz, itemRow(hitItem, 2u).xyz - row0.xyz));
 #ifdef RT_FEATURE_MESHES
     if (hit.triangleIndex != RT_NONE) hit.normal = normalToWorld(hit.primitiveIndex, hit.normal);
 #endif

@@ -199,8 +199,8 @@ class MeshBuilder {
       glm::vec3 v2 = points[face.z];
       glm::uvec3 corners = needsVertices ? glm::uvec3(base) + face : glm::uvec3(0);
       triangles.push_back({glm::vec4(v0, glm::uintBitsToFloat(corners.x)),
-                           glm::vec4(v1 - v0, glm::uintBitsToFloat(corners.y)),
-                           glm::vec4(v2 - v0, glm::uintBitsToFloat(corners.z))});
+                           glm::vec4(v1, glm::uintBitsToFloat(corners.y)),
+                           glm::vec4(v2, glm::uintBitsToFloat(corners.z))});
       Aabb box;
       box.grow(v0);
       box.grow(v1);
