@@ -42,6 +42,8 @@ using uint = uint32_t;
 // Sums of the odd-indexed samples alone (the error estimate's second half).
 #define RT_BINDING_ACCUMULATION_ODD 13
 #define RT_BINDING_ITEMS 12
+#define RT_BINDING_AREA_LIGHTS 14
+#define RT_BINDING_EMITTERS 15
 
 #define RT_WORKGROUP_SIZE_X 8
 #define RT_WORKGROUP_SIZE_Y 8
@@ -62,6 +64,7 @@ using uint = uint32_t;
 // GpuSceneInfo::renderMode
 #define RT_MODE_BINARY 0u
 #define RT_MODE_PHONG 1u
+#define RT_MODE_PATH_TRACER 2u
 
 // GpuSceneInfo::shadingModel
 #define RT_SHADING_STANDARD 0u    // per-channel Blinn-Phong: kd*Cd*Id*cos + ks*Cs*Is*spec
@@ -162,16 +165,49 @@ struct GpuMaterial {
   float kd;
   vec3 specularColor;
   float ks;
+  vec3 emission;  // area lights: radiance leaving the surface, times pi (README "Area lights")
   float specularExponent;
   float reflectivity;
   float transmission;
   float ior;
   int diffuseTexture;  // index into the texture table, -1: none
-  uint pad0;
-  uint pad1;
-  uint pad2;
 };
 RT_ASSERT_STD430_SIZE(GpuMaterial, 64);
+
+// ---- Area lights (src/render/AreaLights.cpp, shaders/lights.glsl) ----
+// An area light is a list of emitter pieces (a sphere, a cylinder, or the
+// triangles of a quad, triangle or mesh). Every point of its surface shines
+// like a point light, equally in all directions, the light's intensity
+// shared evenly over the area; a piece is chosen by its share of the area,
+// then a point on it. Spheres are lamps instead (emitting evenly from their
+// surface, Lambertian) and are sampled by the cone they subtend.
+struct GpuAreaLight {
+  vec3 diffuseIntensity;  // as GpuPointLight, the whole light's
+  uint firstEmitter;
+  vec3 specularIntensity;
+  uint emitterCount;
+  float area;    // total area of the pieces
+  uint samples;  // shadow rays per shading point and pixel sample
+  uint pad0;
+  uint pad1;
+};
+RT_ASSERT_STD430_SIZE(GpuAreaLight, 48);
+
+// GpuEmitter::kind (the RT_PRIM_* numbers)
+//   sphere:   a = (center, radius)
+//   triangle: a, b, c = corners
+//   cylinder: a = (center, radius), b = (unit axis, half height)
+struct GpuEmitter {
+  vec4 a;
+  vec4 b;
+  vec4 c;
+  uint kind;
+  float cdfEnd;  // share of the light's area of the pieces up to this one
+  float area;
+  uint pad0;
+};
+RT_ASSERT_STD430_SIZE(GpuEmitter, 64);
+// ---- end of area lights ----
 
 // Per-vertex shading data of triangles (meshes, and quads/triangles for UVs).
 struct GpuVertex {
@@ -228,8 +264,8 @@ struct GpuSceneInfo {
   uint shadingModel;
   uint sphereUvPole;  // 0, 1, 2: world axis through the poles of sphere UVs
   uint textureCount;
-  uint pad0;
-  uint pad1;
+  uint areaLightCount;
+  uint distributedBounces;  // Phong mode: sampled diffuse bounces besides the Whitted tree
 };
 RT_ASSERT_STD430_SIZE(GpuSceneInfo, 144);
 

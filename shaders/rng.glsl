@@ -7,7 +7,19 @@
 // Random dimensions used by the kernels (each a pair of numbers).
 #define RT_DIM_PIXEL 0u
 #define RT_DIM_LENS 2u
-#define RT_DIM_BRANCH 4u  // stochastic choices when the Whitted stack is full (per depth)
+
+
+// Dimensions drawn at a path vertex (a hit; depth 0 is the primary hit):
+// each vertex has its own block, so no two vertices share a dimension.
+#define RT_DIM_VERTEX_BASE 64u
+#define RT_DIMS_PER_VERTEX 1024u
+#define RT_VERTEX_DIM_BOUNCE 0u  // direction of a sampled diffuse bounce
+#define RT_VERTEX_DIM_LOBE 2u    // which continuation the path takes (x), Fresnel choice (y)
+#define RT_VERTEX_DIM_LIGHTS 4u  // + 2 * area light index: points on that light
+
+uint vertexDimension(uint depth, uint offset) {
+  return RT_DIM_VERTEX_BASE + depth * RT_DIMS_PER_VERTEX + offset;
+}
 
 // Four rounds of mixing of a 4-component counter (a PCG-style hash: every
 // input bit affects every output bit after the second round).

@@ -1,6 +1,8 @@
-// Blinn-Phong direct lighting from point lights, with shadow rays.
+// Blinn-Phong direct lighting from point and area lights, with shadow rays.
 #ifndef RT_SHADING_GLSL
 #define RT_SHADING_GLSL
+
+float maxComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
 float lightAttenuation(float distance) {
   float attenuation = sceneInfo.lightScale;
@@ -14,15 +16,17 @@ float lightAttenuation(float distance) {
 // Beyond this many transmissive surfaces a shadow ray counts as blocked.
 const int RT_MAX_SHADOW_CROSSINGS = 8;
 
-// Fraction of a light's intensity that reaches the end of `ray` through
-// transmissive surfaces. Shadow rays go straight (refraction does not bend
-// them: caustics need the path tracer), losing the Fresnel reflectance and
-// (1 - transmission) at each crossing; an opaque surface blocks all.
-float shadowTransmittance(Ray ray, vec3 lightPosition) {
+// Fraction of a light's intensity that reaches distance `tMax` along `ray`
+// through transmissive surfaces. Shadow rays go straight (refraction does
+// not bend them: caustics need sampled bounces), losing the Fresnel
+// reflectance and (1 - transmission) at each crossing; an opaque surface
+// blocks all.
+float shadowTransmittance(Ray ray, float tMax) {
   float transmittance = 1.0;
+  float travelled = 0.0;
   for (int crossing = 0; crossing < RT_MAX_SHADOW_CROSSINGS; ++crossing) {
     SurfaceHit hit;
-    if (!closestHit(ray, 0.0, length(lightPosition - ray.origin), hit)) return transmittance;
+    if (!closestHit(ray, 0.0, tMax - travelled, hit)) return transmittance;
     GpuMaterial blocker = materials[hitMaterial(hit)];
     float cosine = dot(ray.direction, hit.normal);
     float eta = cosine < 0.0 ? 1.0 / blocker.ior : blocker.ior;
@@ -31,19 +35,22 @@ float shadowTransmittance(Ray ray, vec3 lightPosition) {
     transmittance *= blocker.transmission * (1.0 - reflectance);
     if (transmittance < RT_MIN_BRANCH_WEIGHT) return 0.0;
     vec4 point = hitPoint(ray, hit);
-    ray = spawnRay(point.xyz, point.w, hit.normal, ray.direction);
+    Ray next = spawnRay(point.xyz, point.w, hit.normal, ray.direction);
+    travelled += dot(next.origin - ray.origin, ray.direction);
+    ray = next;
   }
   return 0.0;
 }
 #endif
 
-// Share of a light that reaches p from `shadowRay`'s origin.
-float lightVisibility(Ray shadowRay, vec3 lightPosition) {
+// Share of a light that reaches the end of `shadowRay` at distance tMax.
+// `throughGlass`: transmissive surfaces let light through (attenuated)
+// instead of blocking it; off where sampled bounces carry that light.
+float lightVisibility(Ray shadowRay, float tMax, bool throughGlass) {
 #ifdef RT_FEATURE_REFRACTION
-  return shadowTransmittance(shadowRay, lightPosition);
-#else
-  return occluded(shadowRay, 0.0, length(lightPosition - shadowRay.origin)) ? 0.0 : 1.0;
+  if (throughGlass) return shadowTransmittance(shadowRay, tMax);
 #endif
+  return occluded(shadowRay, 0.0, tMax) ? 0.0 : 1.0;
 }
 
 // Unit-length colour: the coursework's renderer tints by the diffuse colour's
@@ -61,12 +68,44 @@ void faceViewer(inout SurfacePoint surface, vec3 toViewer) {
   }
 }
 
-// Light reflected towards `toViewer` from a surface already facing the viewer.
-vec3 directLighting(SurfacePoint surface, vec3 toViewer, GpuMaterial material) {
-  bool coursework = sceneInfo.shadingModel == RT_SHADING_COURSEWORK;
-  vec3 p = surface.position;
-  vec3 normal = surface.shadingNormal;
-  vec3 color = diffuseColorAt(material, surface.uv);
+// What direct lighting needs of the point being shaded.
+struct ShadingContext {
+  SurfacePoint surface;  // facing the viewer
+  vec3 toViewer;
+  GpuMaterial material;
+  vec3 color;  // diffuse colour at the point (texture or plain)
+  bool coursework;
+};
+
+// The coursework model's colour: a texture's as it is, a plain colour normalised.
+vec3 courseworkDiffuseTint(ShadingContext context) {
+  return isTextured(context.material) ? context.color : courseworkTint(context.color);
+}
+
+// Blinn-Phong light reflected towards the viewer from a light in direction l
+// (unit) with diffuse and specular intensities arriving at the point, or 0
+// when the light is behind the surface.
+vec3 blinnPhong(ShadingContext context, vec3 l, vec3 diffuseIntensity, vec3 specularIntensity) {
+  vec3 normal = context.surface.shadingNormal;
+  float cosine = dot(normal, l);
+  // Light behind the surface as seen from the viewer (by either normal).
+  if (cosine <= 0.0 || dot(context.surface.geometricNormal, l) <= 0.0) return vec3(0.0);
+  vec3 halfway = normalize(l + context.toViewer);
+  // pow(0, 0) is undefined in GLSL (exp2(0 * log2(0)) = NaN on some
+  // drivers): exponent 0 is the constant lobe 1.
+  float exponent = context.material.specularExponent;
+  float highlight = exponent > 0.0 ? pow(max(dot(normal, halfway), 0.0), exponent) : 1.0;
+  vec3 diffuse = context.material.kd * diffuseIntensity * cosine;
+  vec3 specular = context.material.ks * specularIntensity * highlight;
+  if (!context.coursework) {
+    diffuse *= context.color;
+    specular *= context.material.specularColor;
+  }
+  return diffuse + specular;
+}
+
+vec3 pointLighting(ShadingContext context, bool throughGlass) {
+  vec3 p = context.surface.position;
   vec3 radiance = vec3(0.0);
   for (uint i = 0u; i < sceneInfo.pointLightCount; ++i) {
     GpuPointLight light = pointLights[i];
@@ -74,31 +113,77 @@ vec3 directLighting(SurfacePoint surface, vec3 toViewer, GpuMaterial material) {
     float distance = length(toLight);
     if (!(distance > 0.0)) continue;
     vec3 l = toLight / distance;
-    float cosine = dot(normal, l);
-    // Light behind the surface as seen from the viewer (by either normal).
-    if (cosine <= 0.0 || dot(surface.geometricNormal, l) <= 0.0) continue;
-    Ray shadowRay = spawnRay(p, surface.positionError, surface.geometricNormal, l);
-    float visibility = lightVisibility(shadowRay, light.position);
-    if (visibility <= 0.0) continue;
-    vec3 halfway = normalize(l + toViewer);
-    // pow(0, 0) is undefined in GLSL (exp2(0 * log2(0)) = NaN on some
-    // drivers): exponent 0 is the constant lobe 1.
-    float highlight = material.specularExponent > 0.0
-                          ? pow(max(dot(normal, halfway), 0.0), material.specularExponent)
-                          : 1.0;
-    vec3 diffuse = material.kd * light.diffuseIntensity * cosine;
-    vec3 specular = material.ks * light.specularIntensity * highlight;
-    if (!coursework) {
-      diffuse *= color;
-      specular *= material.specularColor;
-    }
-    radiance += visibility * lightAttenuation(distance) * (diffuse + specular);
+    vec3 reflected = blinnPhong(context, l, light.diffuseIntensity, light.specularIntensity);
+    if (maxComponent(reflected) <= 0.0) continue;
+    Ray shadowRay = spawnRay(p, context.surface.positionError, context.surface.geometricNormal, l);
+    float visibility = lightVisibility(shadowRay, length(light.position - shadowRay.origin),
+                                       throughGlass);
+    radiance += visibility * lightAttenuation(distance) * reflected;
   }
+  return radiance;
+}
+
+#ifdef RT_FEATURE_AREA_LIGHTS
+// Next-event estimation of one area light: `samples` points on it per pixel
+// sample, each lighting like a point light with its share of the intensity.
+vec3 areaLighting(ShadingContext context, uint lightIndex, uvec2 pixelSample, uint vertexDepth,
+                  bool throughGlass) {
+  GpuAreaLight light = areaLights[lightIndex];
+  vec3 p = context.surface.position;
+  uint dimension = vertexDimension(vertexDepth, RT_VERTEX_DIM_LIGHTS + 2u * lightIndex);
+  vec3 radiance = vec3(0.0);
+  for (uint sub = 0u; sub < light.samples; ++sub) {
+    vec2 u = sampleSubPair(frame.samplerKind, pixelSample.x, pixelSample.y, sub, light.samples,
+                           frame.samplesTotal, dimension, frame.seed);
+    LightPoint point = samplePointOnLight(light, p, u);
+    vec3 toLight = point.position - p;
+    float distance = length(toLight);
+    if (!(distance > 0.0)) continue;
+    vec3 l = toLight / distance;
+    vec3 reflected = blinnPhong(context, l, light.diffuseIntensity, light.specularIntensity);
+    if (!(maxComponent(reflected) > 0.0)) continue;
+    float falloffDistance = point.falloffDistance < 0.0 ? distance : point.falloffDistance;
+    reflected *= point.weight * lightAttenuation(falloffDistance);
+    // Both ends leave their surfaces by their error bounds, so the ray
+    // neither starts inside the shaded surface nor ends inside the light.
+    Ray shadowRay = spawnRay(p, context.surface.positionError, context.surface.geometricNormal, l);
+    vec3 target = offsetRayOrigin(point.position, point.positionError,
+                                  dot(point.normal, l) < 0.0 ? point.normal : -point.normal);
+    vec3 toTarget = target - shadowRay.origin;
+    float tMax = length(toTarget);
+    if (!(tMax > 0.0)) continue;
+    shadowRay.direction = toTarget / tMax;
+    radiance += lightVisibility(shadowRay, tMax, throughGlass) * reflected;
+  }
+  return radiance / float(max(light.samples, 1u));
+}
+
+// Radiance a ray sees leaving an area light's surface (material.emission
+// holds it head on): spheres are lamps, every other surface a sheet of
+// points shining in all directions, brighter where seen edge on (by the
+// cosine, bounded so that grazing views stay finite).
+vec3 emittedRadiance(GpuMaterial material, SurfaceHit hit, vec3 direction) {
+  if (primitiveInfo(hit.primitiveIndex).x == RT_PRIM_SPHERE) return material.emission;
+  return material.emission / max(abs(dot(direction, hit.normal)), 0.01);
+}
+#endif
+
+// Light reflected towards the viewer from a surface already facing it, from
+// every point and area light. `throughGlass`: shadow rays pass transmissive
+// surfaces (see lightVisibility).
+vec3 directLighting(ShadingContext context, uvec2 pixelSample, uint vertexDepth,
+                    bool throughGlass) {
+  vec3 radiance = pointLighting(context, throughGlass);
+#ifdef RT_FEATURE_AREA_LIGHTS
+  for (uint i = 0u; i < sceneInfo.areaLightCount; ++i) {
+    radiance += areaLighting(context, i, pixelSample, vertexDepth, throughGlass);
+  }
+#endif
   // The coursework model clamps the light reaching the eye first, then tints
   // it (highlights included) by the normalised diffuse colour, or by the
   // texture colour as it is.
-  if (!coursework) return radiance;
-  return (isTextured(material) ? color : courseworkTint(color)) * min(radiance, vec3(1.0));
+  if (!context.coursework) return radiance;
+  return courseworkDiffuseTint(context) * min(radiance, vec3(1.0));
 }
 
 #endif

@@ -33,8 +33,9 @@ layout(std430, set = 0, binding = RT_BINDING_RAY_COUNTER) buffer RayCounterBuffe
 #include "textures.glsl"
 #include "camera.glsl"
 #include "optics.glsl"
+#include "lights.glsl"
 #include "shading.glsl"
-#include "whitted.glsl"
+#include "integrator.glsl"
 
 void main() {
   uvec2 local = gl_GlobalInvocationID.xy;
@@ -51,7 +52,7 @@ void main() {
     vec2 lens = samplePair(frame.samplerKind, pixelIndex, s, frame.samplesTotal, RT_DIM_LENS,
                            frame.seed);
     Ray ray = cameraRay(vec2(pixel) + jitter, lens);
-    vec3 radiance = traceRadiance(ray, uvec3(pixelIndex, s, frame.seed));
+    vec3 radiance = traceRadiance(ray, uvec2(pixelIndex, s));
     vec4 contribution = vec4(finiteOrZero(radiance), 1.0);
     sum += contribution;
     if ((s & 1u) == 1u) oddSum += contribution;

@@ -43,7 +43,18 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat) {
   }
   features.thinLens =
       scene.camera.type == CameraType::ThinLens && scene.camera.apertureRadius > 0.0f;
-  if (features.refraction) {
+  bool lit = scene.settings.mode != RenderMode::Binary;
+  features.areaLights = lit && !flat.areaLights.empty();
+  features.pathTracer = scene.settings.mode == RenderMode::PathTracer;
+  features.diffuseBounces = features.pathTracer ? scene.settings.maxBounces > 0
+                                                : lit && flat.info.distributedBounces > 0;
+  if (features.pathTracer) {
+    features.whittedStackSize = 1;  // one path: each hit follows one continuation
+  } else if (features.diffuseBounces) {
+    // Depth first, up to three continuations a hit: two pending rays per level.
+    uint32_t levels = scene.settings.maxBounces + flat.info.distributedBounces;
+    features.whittedStackSize = std::min(2 * levels + 1, kMaxWhittedStack);
+  } else if (features.refraction) {
     // Depth-first walk of a binary ray tree: at most one pending ray per level.
     features.whittedStackSize = std::min(scene.settings.maxBounces + 1, kMaxWhittedStack);
   }
@@ -64,6 +75,9 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(thinLens, "RT_FEATURE_THIN_LENS");
   flag(vertices, "RT_FEATURE_VERTICES");
   flag(textures, "RT_FEATURE_TEXTURES");
+  flag(areaLights, "RT_FEATURE_AREA_LIGHTS");
+  flag(diffuseBounces, "RT_FEATURE_DIFFUSE_BOUNCES");
+  flag(pathTracer, "RT_FEATURE_PATH_TRACER");
   flag(countRays, "RT_COUNT_RAYS");
   result.emplace_back("RT_WHITTED_STACK_SIZE", std::to_string(whittedStackSize));
   return result;

@@ -22,6 +22,9 @@ struct ShaderFeatures {
   bool thinLens = false;
   bool vertices = false;  // per-vertex normals / UVs on triangles
   bool textures = false;
+  bool areaLights = false;
+  bool diffuseBounces = false;  // sampled diffuse bounces (distributed bounces, path tracer)
+  bool pathTracer = false;      // one continuation per hit
   bool countRays = false;         // benchmark instrumentation
   uint32_t whittedStackSize = 1;  // pending rays of the ray tree
 

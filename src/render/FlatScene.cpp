@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "bvh/Bvh.hpp"
+#include "render/AreaLights.hpp"
 #include "render/Conventions.hpp"
 #include "render/GpuBvh.hpp"
 #include "util/Error.hpp"
@@ -242,14 +243,17 @@ class MeshBuilder {
 
 // Turns shapes into primitives, mesh instances first: their item indices
 // then number the instance root nodes (see GpuBvhNode).
-std::vector<PendingInstance> collectPrimitives(const Scene& scene, FlatScene& flat) {
+// `shapeMaterials` gives each shape's GPU material (light shapes have their own).
+std::vector<PendingInstance> collectPrimitives(const Scene& scene,
+                                               const std::vector<uint32_t>& shapeMaterials,
+                                               FlatScene& flat) {
   std::vector<PendingInstance> instances;
   for (uint32_t shapeIndex = 0; shapeIndex < scene.shapes.size(); ++shapeIndex) {
     const Shape& shape = scene.shapes[shapeIndex];
     size_t first = flat.primitives.size();
     std::visit(PrimitiveSink{scene.materials.at(shape.material), flat, instances}, shape.geometry);
     for (size_t i = first; i < flat.primitives.size(); ++i) {
-      flat.primitives[i].materialIndex = shape.material;
+      flat.primitives[i].materialIndex = shapeMaterials[shapeIndex];
       flat.primitives[i].shapeIndex = shapeIndex;
     }
   }
@@ -393,7 +397,33 @@ gpu::GpuMaterial toGpu(const Material& m) {
   out.transmission = m.transmission;
   out.ior = m.ior;
   out.diffuseTexture = m.diffuseTexture;
+  out.emission = glm::vec3(0.0f);
   return out;
+}
+
+// Each shape's GPU material. An area light's shape gets a copy of its
+// material that emits, so that no other shape sharing the material glows.
+std::vector<uint32_t> addLightMaterials(const Scene& scene, const FlatAreaLights& lights,
+                                        FlatScene& flat) {
+  std::vector<uint32_t> shapeMaterials;
+  for (const Shape& shape : scene.shapes) shapeMaterials.push_back(shape.material);
+  for (size_t i = 0; i < scene.areaLights.size(); ++i) {
+    uint32_t shape = scene.areaLights[i].shape;
+    gpu::GpuMaterial material = flat.materials.at(shapeMaterials[shape]);
+    material.emission = lights.emission[i];
+    flat.materials.push_back(material);
+    shapeMaterials[shape] = static_cast<uint32_t>(flat.materials.size() - 1);
+  }
+  return shapeMaterials;
+}
+
+uint32_t gpuRenderMode(RenderMode mode) {
+  switch (mode) {
+    case RenderMode::Binary: return RT_MODE_BINARY;
+    case RenderMode::Phong: return RT_MODE_PHONG;
+    case RenderMode::PathTracer: return RT_MODE_PATH_TRACER;
+  }
+  return RT_MODE_PHONG;
 }
 
 void addTextures(const Scene& scene, FlatScene& flat) {
@@ -445,18 +475,33 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
         {light.position, 0.0f, light.diffuseIntensity, 0.0f, light.specularIntensity, 0.0f});
   }
   flat.info.sphereUvPole = dominantAxis(scene.camera.up);
-  std::vector<PendingInstance> instances = collectPrimitives(scene, flat);
+  LightingConventions conventions = lightingConventionsFor(scene.family, options.shading);
+  if (scene.settings.mode == RenderMode::PathTracer &&
+      conventions.shading == ShadingModel::Coursework) {
+    // The coursework model clamps the sum of direct light: not a BRDF a path can sample.
+    conventions.shading = ShadingModel::Standard;
+    if (options.shading) flat.warnings.push_back("the path tracer uses the standard shading model");
+  }
+  // Camera-relative frame (see recenterOnCamera), known before anything moves.
+  FlatAreaLights areaLights =
+      flattenAreaLights(scene, flat.info.cameraPosition, conventions.lightScale);
+  flat.areaLights = std::move(areaLights.lights);
+  flat.emitters = std::move(areaLights.emitters);
+  std::vector<uint32_t> shapeMaterials = addLightMaterials(scene, areaLights, flat);
+  std::vector<PendingInstance> instances = collectPrimitives(scene, shapeMaterials, flat);
   recenterOnCamera(flat, instances);
   std::vector<std::optional<MeshBlas>> meshes = addMeshes(scene, instances, options, flat);
   addBvh(instances, meshes, options, flat);
 
-  LightingConventions conventions = lightingConventionsFor(scene.family, options.shading);
   gpu::GpuSceneInfo& info = flat.info;
   info.backgroundColor = scene.backgroundColor;
   info.maxBounces = scene.settings.maxBounces;
+  info.distributedBounces =
+      scene.settings.mode == RenderMode::Phong ? scene.settings.distributedBounces : 0u;
   info.binaryHitColor = kBinaryHitColor;
-  info.renderMode = scene.settings.mode == RenderMode::Binary ? RT_MODE_BINARY : RT_MODE_PHONG;
+  info.renderMode = gpuRenderMode(scene.settings.mode);
   info.pointLightCount = static_cast<uint32_t>(flat.pointLights.size());
+  info.areaLightCount = static_cast<uint32_t>(flat.areaLights.size());
   info.primitiveCount = static_cast<uint32_t>(flat.primitives.size());
   info.bvhNodeCount = static_cast<uint32_t>(flat.bvhNodes.size());
   info.lightFalloff = conventions.falloff;

@@ -19,6 +19,8 @@ struct FlatScene {
   std::vector<gpu::GpuBvhNode> bvhNodes;      // top level first, then one tree per mesh
   std::vector<gpu::GpuMaterial> materials;
   std::vector<gpu::GpuPointLight> pointLights;
+  std::vector<gpu::GpuAreaLight> areaLights;
+  std::vector<gpu::GpuEmitter> emitters;  // pieces of the area lights' surfaces
   std::vector<gpu::GpuVertex> vertices;  // shading data of some triangles
   std::vector<gpu::GpuTextureInfo> textureInfos;
   std::vector<uint32_t> texels;       // RGBA8 of every texture, packed

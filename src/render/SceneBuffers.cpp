@@ -52,6 +52,8 @@ SceneBuffers::SceneBuffers(VulkanContext& context, const FlatScene& scene,
       items_(makeTexels(context, limits, scene.items, "BVH leaf items")),
       materials_(makeStorage(context, limits, scene.materials, "materials")),
       pointLights_(makeStorage(context, limits, scene.pointLights, "point lights")),
+      areaLights_(makeStorage(context, limits, scene.areaLights, "area lights")),
+      emitters_(makeStorage(context, limits, scene.emitters, "area light surfaces")),
       vertices_(makeStorage(context, limits, scene.vertices, "vertices")),
       textureInfos_(makeStorage(context, limits, scene.textureInfos, "texture table")),
       texels_(makeStorage(context, limits, scene.texels, "texture texels")) {}
@@ -63,6 +65,8 @@ void SceneBuffers::bindTo(ComputeKernel& kernel) const {
   kernel.bindTexels(RT_BINDING_ITEMS, items_, VK_FORMAT_R32G32B32A32_SFLOAT);
   kernel.bind(RT_BINDING_MATERIALS, materials_);
   kernel.bind(RT_BINDING_POINT_LIGHTS, pointLights_);
+  kernel.bind(RT_BINDING_AREA_LIGHTS, areaLights_);
+  kernel.bind(RT_BINDING_EMITTERS, emitters_);
   kernel.bind(RT_BINDING_VERTICES, vertices_);
   kernel.bind(RT_BINDING_TEXTURE_INFO, textureInfos_);
   kernel.bind(RT_BINDING_TEXELS, texels_);
@@ -76,6 +80,8 @@ std::vector<KernelBinding> SceneBuffers::bindings() {
           {RT_BINDING_ITEMS, kTexels},
           {RT_BINDING_MATERIALS},
           {RT_BINDING_POINT_LIGHTS},
+          {RT_BINDING_AREA_LIGHTS},
+          {RT_BINDING_EMITTERS},
           {RT_BINDING_VERTICES},
           {RT_BINDING_TEXTURE_INFO},
           {RT_BINDING_TEXELS}};
@@ -85,7 +91,7 @@ void SceneBuffers::updateInfo(const gpu::GpuSceneInfo& info) { info_.upload(&inf
 
 size_t SceneBuffers::bytes() const {
   return info_.size() + primitives_.size() + bvhNodes_.size() + items_.size() + materials_.size() +
-         pointLights_.size() + vertices_.size() + textureInfos_.size() + texels_.size();
+         pointLights_.size() + areaLights_.size() + emitters_.size() + vertices_.size() + textureInfos_.size() + texels_.size();
 }
 
 }  // namespace rt

@@ -38,6 +38,8 @@ class SceneBuffers {
   Buffer items_;
   Buffer materials_;
   Buffer pointLights_;
+  Buffer areaLights_;
+  Buffer emitters_;
   Buffer vertices_;
   Buffer textureInfos_;
   Buffer texels_;

@@ -89,6 +89,18 @@ struct PointLight {
   glm::vec3 specularIntensity{1.0f};  // family A `is`, family B / 2019 `intensity`
 };
 
+// A shape that emits light: an area light. Its intensities mean what a
+// point light's mean (for family A the power that falls off as
+// I / (4 pi d^2)), spread evenly over the shape's surface, so a small light
+// far away lights like the point light of the same intensity. Triangles,
+// quads and meshes emit from both faces, spheres and cylinders outwards.
+struct AreaLight {
+  uint32_t shape = 0;                 // index into Scene::shapes: the emitting surface
+  glm::vec3 diffuseIntensity{1.0f};   // like PointLight
+  glm::vec3 specularIntensity{1.0f};
+  uint32_t samples = 1;               // shadow rays per shading point and pixel sample
+};
+
 enum class CameraType { Pinhole, ThinLens };
 
 struct Camera {
@@ -104,7 +116,12 @@ struct Camera {
   float focusDistance = 1.0f;            // thin lens: distance to the plane in focus
 };
 
-enum class RenderMode { Binary, Phong };
+// Phong: Whitted ray tracing (mirror and refraction branches), direct light
+// from point and area lights, and optionally `distributedBounces` sampled
+// diffuse bounces. PathTracer: Monte Carlo path tracing of the same
+// materials (one sampled continuation per hit), physically consistent with
+// the direct lighting of Phong mode.
+enum class RenderMode { Binary, Phong, PathTracer };
 
 enum class SamplerKind { Random, Jittered, Sobol };  // Sobol: Owen-scrambled (rng.glsl)
 
@@ -114,7 +131,8 @@ enum class SceneFamily { PathOfLight, Rendering };
 
 struct RenderSettings {
   RenderMode mode = RenderMode::Phong;
-  uint32_t maxBounces = 4;       // `nbounces`
+  uint32_t maxBounces = 4;       // `nbounces`: Whitted depth, path length in PathTracer mode
+  uint32_t distributedBounces = 0;  // sampled diffuse bounces in Phong mode
   uint32_t samplesPerPixel = 0;  // 0: not given in the file
   SamplerKind sampler = SamplerKind::Jittered;
 };
@@ -126,6 +144,7 @@ struct Scene {
   Camera camera;
   glm::vec3 backgroundColor{0.0f};
   std::vector<PointLight> pointLights;
+  std::vector<AreaLight> areaLights;
   std::vector<Material> materials;
   std::vector<Shape> shapes;
   std::vector<TriangleMesh> meshes;

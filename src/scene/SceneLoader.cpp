@@ -111,12 +111,20 @@ bool anyElement(const Json* array, bool (*predicate)(const Json&)) {
   return array && array->is_array() && std::any_of(array->begin(), array->end(), predicate);
 }
 
+// TsFreddie's renderer (metallic/transmit/roughness materials) lit its
+// scenes as family B does: no falloff, per-channel Blinn-Phong; its
+// reference renders in ../shared match only that reading.
+bool isTsFreddieMaterial(const Json& material) {
+  return findKey(material, "metallic") || findKey(material, "transmit") ||
+         findKey(material, "roughness");
+}
+
 bool isFamilyBShape(const Json& shape) {
   const Json* type = findKey(shape, "type");
   if (type && *type == "cylinder") return true;
   const Json* material = findKey(shape, "material");
   return material && (findKey(*material, "specularcolor") || findKey(*material, "isreflective") ||
-                      findKey(*material, "isrefractive"));
+                      findKey(*material, "isrefractive") || isTsFreddieMaterial(*material));
 }
 
 bool hasIntensity(const Json& light) { return findKey(light, "intensity") != nullptr; }
@@ -159,12 +167,30 @@ RenderMode readRenderMode(JsonObject& top) {
   const std::string mode = node->string();
   if (mode == "binary") return RenderMode::Binary;
   if (mode == "phong") return RenderMode::Phong;
-  node->fail("rendermode '" + mode + "' is not supported yet (supported: \"binary\", \"phong\")");
+  if (mode == "pathtracer" || mode == "pathtracing" || mode == "path") {
+    return RenderMode::PathTracer;
+  }
+  node->fail("unknown rendermode '" + mode +
+             "' (expected \"binary\", \"phong\" or \"pathtracer\")");
 }
 
 uint32_t readBounces(JsonObject& top) {
   const std::optional<JsonNode> node = top.optional("nbounces");
   return node ? static_cast<uint32_t>(node->integer(0, kMaxBounces)) : kDefaultBounces;
+}
+
+// The mixed mode's second depth (the seed report's "distributed ray bounce"):
+// sampled diffuse bounces on top of the Whitted tree. The path tracer
+// counts every bounce against nbounces instead.
+uint32_t readDistributedBounces(JsonObject& top, RenderMode mode) {
+  const std::optional<JsonNode> node =
+      top.optionalOneOf({"distributedbounces", "ndistributedbounces", "distributed_bounces"});
+  if (!node) return 0;
+  const auto bounces = static_cast<uint32_t>(node->integer(0, kMaxBounces));
+  if (mode == RenderMode::PathTracer && bounces > 0) {
+    node->warn("ignored: the path tracer's paths are nbounces long");
+  }
+  return bounces;
 }
 
 SamplerKind parseSampler(const JsonNode& node) {
@@ -191,19 +217,20 @@ auto readFromEither(const std::optional<JsonNode>& first, const std::optional<Js
   return value;
 }
 
-void readSampling(JsonObject& top, JsonObject& camera, RenderSettings& settings) {
+// Returns whether the file names a sampler.
+bool readSampling(JsonObject& top, JsonObject& camera, RenderSettings& settings) {
   const auto samplerAt = [](JsonObject& object) {
     return object.optionalOneOf({"sampler", "method"});
   };
   const auto samplesAt = [](JsonObject& object) {
     return object.optionalOneOf({"nsamples", "samples", "spp"});
   };
-  if (const auto sampler = readFromEither(samplerAt(top), samplerAt(camera), parseSampler)) {
-    settings.sampler = *sampler;
-  }
+  const auto sampler = readFromEither(samplerAt(top), samplerAt(camera), parseSampler);
+  if (sampler) settings.sampler = *sampler;
   if (const auto samples = readFromEither(samplesAt(top), samplesAt(camera), parseSampleCount)) {
     settings.samplesPerPixel = *samples;
   }
+  return sampler.has_value();
 }
 
 // ------------------------------------------------------------------- camera
@@ -253,7 +280,7 @@ glm::vec3 readUp(JsonObject& camera, glm::vec3 forward) {
 CameraType readCameraType(const JsonNode& node) {
   const std::string type = node.string();
   if (type == "pinhole") return CameraType::Pinhole;
-  if (type == "thinlens") return CameraType::ThinLens;
+  if (type == "thinlens" || type == "thinlen") return CameraType::ThinLens;
   node.fail("unknown camera type '" + type + "' (expected \"pinhole\" or \"thinlens\")");
 }
 
@@ -284,7 +311,7 @@ std::optional<JsonNode> readFocusDistanceKey(JsonObject& camera) {
 
 LensKeys readLensKeys(JsonObject& camera) {
   LensKeys keys;
-  keys.aperture = camera.optional("aperture");
+  keys.aperture = camera.optionalOneOf({"aperture", "size"});  // `size`: TsFreddie's files
   keys.lensRadius = camera.optional("lensRadius");
   if (keys.aperture && keys.lensRadius) {
     keys.lensRadius->fail(
@@ -355,8 +382,8 @@ void readThinLens(JsonObject& camera, Camera& out) {
 }
 
 void warnLensKeysOnPinhole(JsonObject& camera) {
-  for (const char* key : {"aperture", "lensRadius", "focusdistance", "focus_dist", "focalDistance",
-                          "focal_length", "f", "focal", "d"}) {
+  for (const char* key : {"aperture", "size", "lensRadius", "focusdistance", "focus_dist",
+                          "focalDistance", "focal_length", "f", "focal", "d"}) {
     camera.ignoreWithWarning(
         key, std::string("thin lens key '") + key + "' ignored: the camera type is \"pinhole\"");
   }
@@ -391,11 +418,14 @@ bool isAreaLightType(std::string type) {
   return type.find("area") != std::string::npos;
 }
 
+struct LightIntensity {
+  glm::vec3 diffuse{1.0f};
+  glm::vec3 specular{1.0f};
+};
+
 // `intensity` (2019 and family B) sets both terms; family A gives `is`
 // (specular) and `id` (diffuse) separately.
-PointLight readPointLight(JsonObject& light) {
-  PointLight out;
-  out.position = light.required("position").vec3();
+LightIntensity readIntensity(JsonObject& light) {
   const std::optional<JsonNode> intensity = light.optional("intensity");
   const std::optional<JsonNode> specular = light.optional("is");
   const std::optional<JsonNode> diffuse = light.optional("id");
@@ -403,43 +433,150 @@ PointLight readPointLight(JsonObject& light) {
     if (specular || diffuse) {
       (specular ? specular : diffuse)->fail("conflicts with 'intensity': give intensity or is/id");
     }
-    out.diffuseIntensity = out.specularIntensity = intensity->nonNegativeVec3();
-    return out;
+    const glm::vec3 both = intensity->nonNegativeVec3();
+    return {both, both};
   }
   if (!specular && !diffuse) {
     light.diagnostics().fail(light.childPath("intensity"),
-                             "missing: a pointlight needs 'intensity', or both 'is' and 'id'");
+                             "missing: a light needs 'intensity', or both 'is' and 'id'");
   }
-  out.specularIntensity = light.required("is").nonNegativeVec3();
-  out.diffuseIntensity = light.required("id").nonNegativeVec3();
+  LightIntensity out;
+  out.specular = light.required("is").nonNegativeVec3();
+  out.diffuse = light.required("id").nonNegativeVec3();
   return out;
 }
 
-void readLight(const JsonNode& node, Scene& scene) {
+PointLight readPointLight(JsonObject& light) {
+  PointLight out;
+  out.position = light.required("position").vec3();
+  const LightIntensity intensity = readIntensity(light);
+  out.diffuseIntensity = intensity.diffuse;
+  out.specularIntensity = intensity.specular;
+  return out;
+}
+
+// Shadow rays per shading point; the students wrote `samples` or `nsamples`.
+constexpr int64_t kMaxLightSamples = 4096;
+
+uint32_t readLightSamples(JsonObject& light) {
+  const std::optional<JsonNode> node = light.optionalOneOf({"samples", "nsamples"});
+  return node ? static_cast<uint32_t>(node->integer(1, kMaxLightSamples)) : 1u;
+}
+
+// Every random dimension draws from the scene's one sampler; a light's own
+// `method`/`sampler` is honoured only when the scene names none.
+void readLightSampler(JsonObject& light, std::optional<SamplerKind>& lightSampler) {
+  const std::optional<JsonNode> node = light.optionalOneOf({"method", "sampler"});
+  if (!node) return;
+  const SamplerKind kind = parseSampler(*node);
+  if (lightSampler && *lightSampler != kind) {
+    node->warn("ignored: another light asks for a different sampler, the first one is used");
+    return;
+  }
+  lightSampler = kind;
+}
+
+// The emitting surface of an area light written with its own geometry:
+//   v0 v1 v2 [v3]        a triangle or a planar quad (julie-o, PFNK);
+//   position u v [width height]
+//                        a parallelogram centred on position with edges u
+//                        and v (with width/height: unit directions scaled);
+//   position radius      a sphere;
+//   position size        a sphere of diameter size (TsFreddie).
+Geometry readAreaLightGeometry(JsonObject& light) {
+  if (light.has("v0")) {
+    const glm::vec3 v0 = light.required("v0").vec3();
+    const glm::vec3 v1 = light.required("v1").vec3();
+    const glm::vec3 v2 = light.required("v2").vec3();
+    if (const std::optional<JsonNode> v3 = light.optional("v3")) return Quad{v0, v1, v2, v3->vec3()};
+    return Triangle{v0, v1, v2};
+  }
+  const glm::vec3 position = light.required("position").vec3();
+  if (light.has("u") || light.has("v")) {
+    glm::vec3 u = light.required("u").vec3();
+    glm::vec3 v = light.required("v").vec3();
+    const std::optional<JsonNode> width = light.optional("width");
+    const std::optional<JsonNode> height = light.optional("height");
+    if (width) u = unitVector(light.required("u")) * width->positiveFloat();
+    if (height) v = unitVector(light.required("v")) * height->positiveFloat();
+    const glm::vec3 corner = position - 0.5f * (u + v);
+    return Quad{corner, corner + u, corner + u + v, corner + v};
+  }
+  if (const std::optional<JsonNode> radius = light.optional("radius")) {
+    return Sphere{position, radius->positiveFloat()};
+  }
+  if (const std::optional<JsonNode> size = light.optional("size")) {
+    return Sphere{position, size->positiveFloat() / 2.0f};
+  }
+  light.diagnostics().fail(light.childPath("shape"),
+                           "missing: an area light needs its surface: v0..v3, position with u "
+                           "and v, position with radius or size, or the id of a shape");
+}
+
+// A light source in the file, kept until the shapes are read (area lights
+// may name a shape by its id).
+struct PendingAreaLight {
+  AreaLight light;
+  std::optional<Geometry> geometry;  // its own surface, or
+  std::optional<JsonNode> shapeId;   // the id of the shape that emits
+};
+
+struct LightList {
+  std::vector<PendingAreaLight> areaLights;
+  std::optional<SamplerKind> sampler;  // asked for by the lights themselves
+};
+
+void readAreaLight(JsonObject& light, LightList& lights) {
+  PendingAreaLight pending;
+  const LightIntensity intensity = readIntensity(light);
+  pending.light.diffuseIntensity = intensity.diffuse;
+  pending.light.specularIntensity = intensity.specular;
+  pending.light.samples = readLightSamples(light);
+  readLightSampler(light, lights.sampler);
+  pending.shapeId = light.optionalOneOf({"shape", "shapeid", "shapeId", "shape_id"});
+  if (!pending.shapeId) pending.geometry = readAreaLightGeometry(light);
+  lights.areaLights.push_back(std::move(pending));
+}
+
+void readLight(const JsonNode& node, Scene& scene, LightList& lights) {
   JsonObject light = node.object();
   const JsonNode typeNode = light.required("type");
   const std::string type = typeNode.string();
-  if (isAreaLightType(type)) typeNode.fail("area lights are not supported yet");
-  if (type != "pointlight") {
-    typeNode.fail("unknown light type '" + type + "' (expected \"pointlight\")");
+  if (isAreaLightType(type)) {
+    readAreaLight(light, lights);
+  } else if (type == "pointlight") {
+    scene.pointLights.push_back(readPointLight(light));
+  } else {
+    typeNode.fail("unknown light type '" + type + "' (expected \"pointlight\" or \"arealight\")");
   }
-  scene.pointLights.push_back(readPointLight(light));
   light.reportUnknownKeys();
 }
 
 // ---------------------------------------------------------------- materials
 
+// Some students ran from a build folder inside the scene's folder
+// ("../textures/x.jpg" next to demo.json): the path seen from a subfolder.
+fs::path seenFromSubfolder(const fs::path& written, const fs::path& sceneDir) {
+  auto part = written.begin();
+  if (written.is_absolute() || part == written.end() || *part != "..") return {};
+  fs::path rest;
+  for (++part; part != written.end(); ++part) rest /= *part;
+  return rest.empty() ? fs::path{} : (sceneDir / rest).lexically_normal();
+}
+
 // Texture paths in family A are relative to a build folder beside examples/,
 // so "../textures/x.jpg" works from the scene's own folder; the README also
 // allows the folder above it. Students' mesh paths follow the same habit
-// ("examples/monkey.ply" from examples/). `kind` names the file in messages.
+// ("examples/monkey.ply" from examples/), and some ran from a folder inside
+// the scene's. `kind` names the file in messages.
 fs::path resolveRelative(const JsonNode& node, const fs::path& sceneDir, std::string_view kind) {
   const fs::path written = node.nonEmptyString();
   const fs::path parentDir = sceneDir.parent_path();
-  for (const fs::path& base : {sceneDir, parentDir}) {
-    const fs::path candidate = (base / written).lexically_normal();
+  for (const fs::path& candidate : {(sceneDir / written).lexically_normal(),
+                                    (parentDir / written).lexically_normal(),
+                                    seenFromSubfolder(written, sceneDir)}) {
     std::error_code ignored;
-    if (fs::is_regular_file(candidate, ignored)) return candidate;
+    if (!candidate.empty() && fs::is_regular_file(candidate, ignored)) return candidate;
   }
   const std::string notFound = std::string(kind) + " file not found: " + written.string();
   if (written.is_absolute()) node.fail(notFound);
@@ -452,7 +589,7 @@ fs::path resolveTexture(const JsonNode& node, const fs::path& sceneDir) {
 
 // Family A: `kr`. Family B: `reflectivity`, which counts only when `isreflective` is true.
 float readReflectivity(JsonObject& material) {
-  const std::optional<JsonNode> kr = material.optional("kr");
+  const std::optional<JsonNode> kr = material.optionalOneOf({"kr", "metallic"});
   const std::optional<JsonNode> isReflective = material.optional("isreflective");
   const std::optional<JsonNode> reflectivity = material.optional("reflectivity");
   if (kr && (isReflective || reflectivity)) {
@@ -467,7 +604,7 @@ float readReflectivity(JsonObject& material) {
 
 // Family A: `kt` weight. Family B: `isrefractive` means fully transmissive.
 void readRefraction(JsonObject& material, Material& out) {
-  const std::optional<JsonNode> kt = material.optional("kt");
+  const std::optional<JsonNode> kt = material.optionalOneOf({"kt", "transmit"});
   const std::optional<JsonNode> isRefractive = material.optional("isrefractive");
   if (kt && isRefractive) kt->fail("conflicts with 'isrefractive': give one transmission weight");
   if (kt) out.transmission = kt->floatInRange(0.0f, 1.0f);
@@ -491,6 +628,28 @@ int32_t addTexture(const JsonNode& node, const fs::path& file, Scene& scene) {
   return static_cast<int32_t>(scene.textures.size() - 1);
 }
 
+// TsFreddie's procedural "checkerboard": 8 x 8 squares over the unit square.
+int32_t addCheckerboard(Scene& scene) {
+  for (size_t i = 0; i < scene.textures.size(); ++i) {
+    if (scene.textures[i].source == "checkerboard") return static_cast<int32_t>(i);
+  }
+  constexpr uint32_t kSide = 64;
+  constexpr uint32_t kSquare = 8;
+  ImageRgba8 image;
+  image.width = image.height = kSide;
+  image.rgba.resize(size_t{kSide} * kSide * 4);
+  for (uint32_t y = 0; y < kSide; ++y) {
+    for (uint32_t x = 0; x < kSide; ++x) {
+      const uint8_t value = ((x / kSquare + y / kSquare) % 2) ? 255 : 32;
+      uint8_t* pixel = &image.rgba[(size_t{y} * kSide + x) * 4];
+      pixel[0] = pixel[1] = pixel[2] = value;
+      pixel[3] = 255;
+    }
+  }
+  scene.textures.push_back({"checkerboard", std::move(image)});
+  return static_cast<int32_t>(scene.textures.size() - 1);
+}
+
 Material readMaterial(JsonObject& material, const fs::path& sceneDir, Scene& scene) {
   Material out;
   out.ks = material.required("ks").nonNegativeFloat();
@@ -503,12 +662,19 @@ Material readMaterial(JsonObject& material, const fs::path& sceneDir, Scene& sce
   out.reflectivity = readReflectivity(material);
   readRefraction(material, out);
   if (const std::optional<JsonNode> texture =
-          material.optionalOneOf({"tPath", "texture", "texture_file", "texturepath"})) {
-    out.texture = resolveTexture(*texture, sceneDir);
-    out.diffuseTexture = addTexture(*texture, out.texture, scene);
+          material.optionalOneOf({"tPath", "texture", "texture_file", "texturepath", "diffuse"})) {
+    if (texture->raw() == "checkerboard") {
+      out.texture = "checkerboard";
+      out.diffuseTexture = addCheckerboard(scene);
+    } else {
+      out.texture = resolveTexture(*texture, sceneDir);
+      out.diffuseTexture = addTexture(*texture, out.texture, scene);
+    }
   }
   // The coursework's texture sizes do not match the real images; the image file decides.
   material.ignore({"tWidth", "tHeight"});
+  material.ignoreWithWarning("roughness", "'roughness' ignored: mirror reflection is sharp");
+  material.ignoreWithWarning("ka", "'ka' ignored: there is no ambient term");
   material.reportUnknownKeys();
   return out;
 }
@@ -532,12 +698,37 @@ Sphere readSphere(JsonObject& shape) {
   return {shape.required("center").vec3(), shape.required("radius").positiveFloat()};
 }
 
+// Corners as a `vertices` array (TsFreddie's files) instead of v0, v1, ...
+std::optional<std::vector<glm::vec3>> readCornerArray(JsonObject& shape, size_t lowest,
+                                                      size_t highest) {
+  const std::optional<JsonNode> node = shape.optional("vertices");
+  if (!node) return std::nullopt;
+  std::vector<glm::vec3> corners;
+  for (const JsonNode& corner : node->array()) corners.push_back(corner.vec3());
+  if (corners.size() < lowest || corners.size() > highest) {
+    node->fail("expected " + std::to_string(lowest) +
+               (lowest == highest ? "" : " or " + std::to_string(highest)) + " vertices, got " +
+               std::to_string(corners.size()));
+  }
+  return corners;
+}
+
+// Four corners in cyclic order; three (v0 and its two neighbours, as
+// TsFreddie writes planes) span a parallelogram.
 Quad readQuad(JsonObject& shape) {
+  if (const auto corners = readCornerArray(shape, 3, 4)) {
+    const std::vector<glm::vec3>& c = *corners;
+    if (c.size() == 4) return {c[0], c[1], c[2], c[3]};
+    return {c[0], c[1], c[1] + c[2] - c[0], c[2]};
+  }
   return {shape.required("v0").vec3(), shape.required("v1").vec3(), shape.required("v2").vec3(),
           shape.required("v3").vec3()};
 }
 
 Triangle readTriangle(JsonObject& shape) {
+  if (const auto corners = readCornerArray(shape, 3, 3)) {
+    return {(*corners)[0], (*corners)[1], (*corners)[2]};
+  }
   return {shape.required("v0").vec3(), shape.required("v1").vec3(), shape.required("v2").vec3()};
 }
 
@@ -582,9 +773,21 @@ TriangleMesh readInlineMesh(JsonObject& shape) {
   const JsonNode vertices = shape.required("vertices");
   for (const JsonNode& vertex : vertices.array()) mesh.positions.push_back(vertex.vec3());
   if (mesh.positions.empty()) vertices.fail("must list at least one vertex");
-  const JsonNode faces = shape.required("faces");
-  for (const JsonNode& face : faces.array()) appendFace(face, mesh);
-  if (mesh.faces.empty()) faces.fail("must list at least one face");
+  const std::optional<JsonNode> faces = shape.optionalOneOf({"faces", "tris"});
+  if (!faces) shape.diagnostics().fail(shape.childPath("faces"), "missing required key");
+  for (const JsonNode& face : faces->array()) appendFace(face, mesh);
+  if (mesh.faces.empty()) faces->fail("must list at least one face");
+  if (const std::optional<JsonNode> uvs = shape.optionalOneOf({"uv", "uvs"})) {
+    for (const JsonNode& uv : uvs->array()) {
+      const std::vector<JsonNode> pair = uv.array();
+      if (pair.size() != 2) uv.fail("expected 2 texture coordinates, got " + std::to_string(pair.size()));
+      mesh.uvs.emplace_back(pair[0].floatValue(), pair[1].floatValue());
+    }
+    if (mesh.uvs.size() != mesh.positions.size()) {
+      uvs->fail("has " + std::to_string(mesh.uvs.size()) + " entries for " +
+                std::to_string(mesh.positions.size()) + " vertices");
+    }
+  }
   return mesh;
 }
 
@@ -667,16 +870,59 @@ void readShape(const JsonNode& node, ShapeContext& context, Scene& scene) {
 
 // -------------------------------------------------------------------- scene
 
-void readSceneObject(JsonObject& object, ShapeContext& context, Scene& scene) {
+// The shape an area light names by its `id`: exactly one, not yet a light.
+uint32_t findLightShape(const JsonNode& id, const Scene& scene) {
+  const std::string label = id.nonEmptyString();
+  std::optional<uint32_t> found;
+  for (uint32_t i = 0; i < scene.shapes.size(); ++i) {
+    if (scene.shapes[i].label != label) continue;
+    if (found) id.fail("shape id '" + label + "' is not unique: give the light's shape one id");
+    found = i;
+  }
+  if (!found) id.fail("no shape has the id '" + label + "'");
+  for (const AreaLight& light : scene.areaLights) {
+    if (light.shape == *found) id.fail("shape '" + label + "' already is a light");
+  }
+  return *found;
+}
+
+// A light's own surface becomes a shape that only emits (black otherwise),
+// so that the camera and mirrors see it. Binary mode draws the file's shapes
+// only.
+void addAreaLights(const LightList& lights, RenderMode mode, Scene& scene) {
+  for (const PendingAreaLight& pending : lights.areaLights) {
+    AreaLight light = pending.light;
+    if (pending.shapeId) {
+      light.shape = findLightShape(*pending.shapeId, scene);
+    } else {
+      if (mode == RenderMode::Binary) continue;
+      Material emitter;
+      emitter.kd = 0.0f;
+      emitter.ks = 0.0f;
+      scene.materials.push_back(emitter);
+      Shape shape;
+      shape.geometry = *pending.geometry;
+      shape.material = static_cast<uint32_t>(scene.materials.size() - 1);
+      shape.label = "area light " + std::to_string(scene.areaLights.size());
+      scene.shapes.push_back(std::move(shape));
+      light.shape = static_cast<uint32_t>(scene.shapes.size() - 1);
+    }
+    scene.areaLights.push_back(light);
+  }
+}
+
+LightList readSceneObject(JsonObject& object, ShapeContext& context, Scene& scene) {
   if (const std::optional<JsonNode> background = object.optional("backgroundcolor")) {
     scene.backgroundColor = background->nonNegativeVec3();
   }
-  if (const std::optional<JsonNode> lights = object.optional("lightsources")) {
-    for (const JsonNode& light : lights->array()) readLight(light, scene);
+  LightList lights;
+  if (const std::optional<JsonNode> list = object.optional("lightsources")) {
+    for (const JsonNode& light : list->array()) readLight(light, scene, lights);
   }
   for (const JsonNode& shape : object.required("shapes").array()) {
     readShape(shape, context, scene);
   }
+  addAreaLights(lights, context.mode, scene);
   ignoreRendererKeys(object);
   for (const char* key : {"sampler", "method", "nsamples", "samples", "spp"}) {
     object.ignoreWithWarning(key, std::string("'") + key +
@@ -684,6 +930,40 @@ void readSceneObject(JsonObject& object, ShapeContext& context, Scene& scene) {
                                       "the top level or in camera");
   }
   object.reportUnknownKeys();
+  return lights;
+}
+
+// A point inside each shape, for the default view.
+glm::vec3 shapeCenter(const Shape& shape, const Scene& scene) {
+  return std::visit(
+      [&](const auto& g) -> glm::vec3 {
+        using T = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<T, Sphere> || std::is_same_v<T, Cylinder>) return g.center;
+        if constexpr (std::is_same_v<T, Triangle>) return (g.v0 + g.v1 + g.v2) / 3.0f;
+        if constexpr (std::is_same_v<T, Quad>) return (g.v0 + g.v1 + g.v2 + g.v3) / 4.0f;
+        if constexpr (std::is_same_v<T, MeshInstance>) {
+          const TriangleMesh& mesh = scene.meshes.at(g.mesh);
+          glm::vec3 sum(0.0f);
+          for (const glm::vec3& p : mesh.positions) sum += p;
+          const glm::vec3 mean = sum / static_cast<float>(std::max<size_t>(1, mesh.positions.size()));
+          return glm::vec3(g.objectToWorld * glm::vec4(mean, 1.0f));
+        }
+      },
+      shape.geometry);
+}
+
+// A camera without a view direction looks along the z axis (the 2019 file's
+// spheres lie at +z, TsFreddie's at -z): towards the side the shapes are
+// on, planes left out (floors and walls reach past the camera).
+void chooseDefaultView(Scene& scene) {
+  float side = 0.0f;
+  float planeSide = 0.0f;
+  for (const Shape& shape : scene.shapes) {
+    const float z = shapeCenter(shape, scene).z - scene.camera.position.z;
+    (std::holds_alternative<Quad>(shape.geometry) ? planeSide : side) += z;
+  }
+  if (side == 0.0f) side = planeSide;
+  if (side < 0.0f) scene.camera.forward = -kDefaultForward;
 }
 
 fs::path absoluteFolderOf(const fs::path& file) {
@@ -701,13 +981,17 @@ Scene readScene(std::string_view jsonText, const fs::path& file) {
   JsonObject top = JsonNode(document, "", diagnostics).object();
   scene.settings.maxBounces = readBounces(top);
   scene.settings.mode = readRenderMode(top);
+  scene.settings.distributedBounces = readDistributedBounces(top, scene.settings.mode);
   JsonObject camera = top.required("camera").object();
+  const bool defaultView = !camera.has("lookat") && !camera.has("lookAt");
   scene.camera = readCamera(camera);
-  readSampling(top, camera, scene.settings);
+  const bool samplerGiven = readSampling(top, camera, scene.settings);
   camera.reportUnknownKeys();
   JsonObject sceneObject = top.required("scene").object();
   ShapeContext context{absoluteFolderOf(file), scene.settings.mode, {}};
-  readSceneObject(sceneObject, context, scene);
+  const LightList lights = readSceneObject(sceneObject, context, scene);
+  if (lights.sampler && !samplerGiven) scene.settings.sampler = *lights.sampler;
+  if (defaultView) chooseDefaultView(scene);
   ignoreRendererKeys(top);
   top.reportUnknownKeys();
   scene.warnings = diagnostics.takeWarnings();

@@ -1,0 +1,213 @@
+// Radiance along a camera ray. One loop serves both shaded modes:
+//  - Phong: the Whitted ray tree of mirror reflection and refraction
+//    (nbounces deep), walked depth first with an explicit stack (GLSL has no
+//    recursion), plus `distributedBounces` sampled diffuse bounces;
+//  - path tracer: the same continuations, but the stack holds one ray, so
+//    each hit follows one of them, chosen with probability proportional to
+//    its weight (Monte Carlo path tracing).
+// Direct light comes from next-event estimation at every hit; emitted light
+// is counted where no earlier estimate covered it (camera rays, and rays
+// after a mirror or refraction), so no light is counted twice.
+#ifndef RT_INTEGRATOR_GLSL
+#define RT_INTEGRATOR_GLSL
+
+struct PendingRay {
+  Ray ray;
+  vec3 weight;
+  uint depth;          // hits before this ray's origin (0: camera ray)
+  uint diffuseDepth;   // of which sampled diffuse bounces
+  bool countsEmission;  // no direct-light estimate covered what this ray hits
+};
+
+struct RayStack {
+  PendingRay entries[RT_WHITTED_STACK_SIZE];
+  uint size;
+};
+
+// Up to three continuations of one hit.
+struct Continuations {
+  PendingRay rays[3];
+  uint count;
+};
+
+void addContinuation(inout Continuations next, PendingRay ray) {
+  if (maxComponent(ray.weight) < RT_MIN_BRANCH_WEIGHT) return;
+  next.rays[next.count++] = ray;
+}
+
+// Pushes every continuation when the stack has room; otherwise follows one
+// of them, chosen with probability proportional to its weight and
+// reweighted, which keeps the estimate unbiased at any depth.
+void pushContinuations(inout RayStack stack, Continuations next, float choice) {
+  if (next.count == 0u) return;
+  if (stack.size + next.count <= RT_WHITTED_STACK_SIZE) {
+    for (uint i = 0u; i < next.count; ++i) stack.entries[stack.size++] = next.rays[i];
+    return;
+  }
+  float total = 0.0;
+  for (uint i = 0u; i < next.count; ++i) total += maxComponent(next.rays[i].weight);
+  if (!(total > 0.0) || stack.size >= RT_WHITTED_STACK_SIZE) return;
+  float threshold = choice * total;
+  uint chosen = next.count - 1u;
+  float running = 0.0;
+  for (uint i = 0u; i < next.count; ++i) {
+    running += maxComponent(next.rays[i].weight);
+    if (threshold < running) {
+      chosen = i;
+      break;
+    }
+  }
+  PendingRay ray = next.rays[chosen];
+  ray.weight *= total / maxComponent(ray.weight);
+  stack.entries[stack.size++] = ray;
+}
+
+PendingRay childRay(SurfacePoint surface, vec3 direction, vec3 weight, PendingRay parent,
+                    bool diffuse) {
+  Ray ray = spawnRay(surface.position, surface.positionError, surface.geometricNormal, direction);
+  return PendingRay(ray, weight, parent.depth + 1u, parent.diffuseDepth + (diffuse ? 1u : 0u),
+                    !diffuse);
+}
+
+// Mirror and refraction continuations of a hit. `surface` faces the
+// incoming ray; `entering` says whether that side is the outside (winding
+// normal) of the surface. `fresnelChoice` picks reflection or refraction
+// where the path tracer follows one of them.
+void addSpecularContinuations(inout Continuations next, PendingRay parent, SurfacePoint surface,
+                              bool entering, GpuMaterial material, float fresnelChoice) {
+  vec3 d = parent.ray.direction;
+  vec3 facing = surface.shadingNormal;
+#ifdef RT_FEATURE_REFLECTION
+  vec3 mirrorWeight = parent.weight * material.reflectivity;
+#else
+  vec3 mirrorWeight = vec3(0.0);
+#endif
+  vec3 mirrorDir = reflect(d, facing);
+#ifdef RT_FEATURE_REFRACTION
+  if (material.transmission > 0.0) {
+    float eta = entering ? 1.0 / material.ior : material.ior;
+    float cosIncident = dot(-d, facing);
+    float cosTransmitted;
+    float reflectance = dielectricReflectance(cosIncident, eta, cosTransmitted);
+    vec3 transmitted = parent.weight * material.transmission;
+    bool refracts = reflectance < 1.0;
+#ifdef RT_FEATURE_PATH_TRACER
+    // One of the two, by Fresnel: the weight stays that of the glass.
+    refracts = refracts && fresnelChoice >= reflectance;
+    reflectance = refracts ? 0.0 : 1.0;
+#endif
+    mirrorWeight += transmitted * reflectance;
+    if (refracts) {
+      vec3 refractDir = normalize(eta * d + (eta * cosIncident - cosTransmitted) * facing);
+      addContinuation(next, childRay(surface, refractDir, transmitted * (1.0 - reflectance),
+                                     parent, false));
+    }
+  }
+#endif
+  addContinuation(next, childRay(surface, mirrorDir, mirrorWeight, parent, false));
+}
+
+#ifdef RT_FEATURE_DIFFUSE_BOUNCES
+// A diffuse bounce: cosine-weighted about the shading normal, so the
+// Blinn-Phong diffuse term (kd times colour, cos and 1/pi cancelling the
+// density) is the whole weight. Directions below the geometric surface are
+// dropped.
+void addDiffuseContinuation(inout Continuations next, PendingRay parent, ShadingContext context,
+                            vec2 u) {
+  vec3 n = context.surface.shadingNormal;
+  vec3 tangent;
+  vec3 bitangent;
+  tangentFrame(n, tangent, bitangent);
+  vec2 disc = concentricDisc(u);
+  float up = sqrt(max(0.0, 1.0 - dot(disc, disc)));
+  vec3 direction = normalize(disc.x * tangent + disc.y * bitangent + up * n);
+  if (dot(direction, context.surface.geometricNormal) <= 0.0) return;
+  vec3 albedo = context.material.kd *
+                (context.coursework ? courseworkDiffuseTint(context) : context.color);
+  addContinuation(next, childRay(context.surface, direction, parent.weight * albedo, parent, true));
+}
+#endif
+
+// How deep each kind of continuation may go.
+struct DepthLimits {
+  uint specular;  // mirror/refraction bounces on a path (nbounces)
+  uint diffuse;   // sampled diffuse bounces on a path
+  uint total;
+};
+
+DepthLimits depthLimits() {
+#ifdef RT_FEATURE_PATH_TRACER
+  uint bounces = sceneInfo.maxBounces;
+  return DepthLimits(bounces, bounces, bounces);
+#else
+  uint diffuse = sceneInfo.distributedBounces;
+  return DepthLimits(sceneInfo.maxBounces, diffuse, sceneInfo.maxBounces + diffuse);
+#endif
+}
+
+// Everything a path does at a hit: emitted and direct light, continuations.
+void shadeHit(inout RayStack stack, inout vec3 radiance, PendingRay job, SurfaceHit hit,
+              uvec2 pixelSample, DepthLimits limits) {
+  GpuMaterial material = materials[hitMaterial(hit)];
+  SurfacePoint surface = surfaceAt(job.ray, hit);
+  bool entering = dot(job.ray.direction, surface.geometricNormal) < 0.0;
+  faceViewer(surface, -job.ray.direction);
+#ifdef RT_FEATURE_AREA_LIGHTS
+  if (job.countsEmission) radiance += job.weight * emittedRadiance(material, hit, job.ray.direction);
+#endif
+  ShadingContext context = ShadingContext(surface, -job.ray.direction, material,
+                                          diffuseColorAt(material, surface.uv),
+                                          sceneInfo.shadingModel == RT_SHADING_COURSEWORK);
+  uint vertex = job.depth;
+  // With sampled diffuse bounces, light through glass arrives along them
+  // (caustics); straight shadow rays through glass would count it twice.
+  bool throughGlass = limits.diffuse == 0u;
+  radiance += job.weight * directLighting(context, pixelSample, vertex, throughGlass);
+#if defined(RT_FEATURE_REFLECTION) || defined(RT_FEATURE_REFRACTION) || \
+    defined(RT_FEATURE_DIFFUSE_BOUNCES)
+  if (job.depth >= limits.total) return;
+  vec2 choice = samplePair(frame.samplerKind, pixelSample.x, pixelSample.y, frame.samplesTotal,
+                           vertexDimension(vertex, RT_VERTEX_DIM_LOBE), frame.seed);
+  Continuations next;
+  next.count = 0u;
+#if defined(RT_FEATURE_REFLECTION) || defined(RT_FEATURE_REFRACTION)
+  if (job.depth - job.diffuseDepth < limits.specular) {
+    addSpecularContinuations(next, job, surface, entering, material, choice.y);
+  }
+#endif
+#ifdef RT_FEATURE_DIFFUSE_BOUNCES
+  if (job.diffuseDepth < limits.diffuse) {
+    vec2 u = samplePair(frame.samplerKind, pixelSample.x, pixelSample.y, frame.samplesTotal,
+                        vertexDimension(vertex, RT_VERTEX_DIM_BOUNCE), frame.seed);
+    addDiffuseContinuation(next, job, context, u);
+  }
+#endif
+  pushContinuations(stack, next, choice.x);
+#endif
+}
+
+// Radiance arriving along `primary` for sample pixelSample.y of pixel
+// pixelSample.x.
+vec3 traceRadiance(Ray primary, uvec2 pixelSample) {
+  RayStack stack;
+  stack.size = 1u;
+  stack.entries[0] = PendingRay(primary, vec3(1.0), 0u, 0u, true);
+  DepthLimits limits = depthLimits();
+  vec3 radiance = vec3(0.0);
+  while (stack.size > 0u) {
+    PendingRay job = stack.entries[--stack.size];
+    SurfaceHit hit;
+    if (!closestHit(job.ray, 0.0, RT_FAR, hit)) {
+      radiance += job.weight * sceneInfo.backgroundColor;
+      continue;
+    }
+    if (sceneInfo.renderMode == RT_MODE_BINARY) {
+      radiance += job.weight * sceneInfo.binaryHitColor;
+      continue;
+    }
+    shadeHit(stack, radiance, job, hit, pixelSample, limits);
+  }
+  return radiance;
+}
+
+#endif

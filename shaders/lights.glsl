@@ -1,0 +1,152 @@
+// Points on area lights (GpuAreaLight, GpuEmitter in gpu_types.h), for
+// direct lighting by next-event estimation. Needs camera.glsl
+// (concentricDisc) and geometry.glsl.
+#ifndef RT_LIGHTS_GLSL
+#define RT_LIGHTS_GLSL
+
+#ifdef RT_FEATURE_AREA_LIGHTS
+layout(std430, set = 0, binding = RT_BINDING_AREA_LIGHTS) readonly buffer AreaLightBuffer {
+  GpuAreaLight areaLights[];
+};
+layout(std430, set = 0, binding = RT_BINDING_EMITTERS) readonly buffer EmitterBuffer {
+  GpuEmitter emitters[];
+};
+
+// A point on a light seen from a shading point, standing for a point light
+// whose share of the light's intensity is `weight` times that of a point
+// light at distance `falloffDistance` (the scene's falloff applies there).
+struct LightPoint {
+  vec3 position;
+  float positionError;  // as hitPoint's bound
+  vec3 normal;          // unit; its side does not matter (lights emit both ways)
+  float falloffDistance;
+  float weight;
+};
+
+// Orthonormal tangents of a unit vector (Duff et al. 2017, no branches on
+// the axis, continuous except at n.z = -0).
+void tangentFrame(vec3 n, out vec3 tangent, out vec3 bitangent) {
+  float sign = n.z >= 0.0 ? 1.0 : -1.0;
+  float a = -1.0 / (sign + n.z);
+  float b = n.x * n.y * a;
+  tangent = vec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  bitangent = vec3(b, sign + n.y * n.y * a, -n.y);
+}
+
+// The piece of `light` whose share of the area holds u.x, found by binary
+// search over the cumulative shares; u.x is rescaled to [0, 1) inside the
+// piece, so stratification carries over to the point on it.
+uint pickEmitter(GpuAreaLight light, inout vec2 u) {
+  uint low = light.firstEmitter;
+  uint high = light.firstEmitter + light.emitterCount - 1u;
+  while (low < high) {
+    uint middle = (low + high) / 2u;
+    if (u.x < emitters[middle].cdfEnd) {
+      high = middle;
+    } else {
+      low = middle + 1u;
+    }
+  }
+  float start = low == light.firstEmitter ? 0.0 : emitters[low - 1u].cdfEnd;
+  float width = emitters[low].cdfEnd - start;
+  u.x = width > 0.0 ? clamp((u.x - start) / width, 0.0, 0.99999994) : 0.0;
+  return low;
+}
+
+LightPoint pointOnTriangle(GpuEmitter piece, vec2 u) {
+  // Uniform by area: the square root warps the unit square onto the triangle.
+  float root = sqrt(u.x);
+  vec3 weights = vec3(1.0 - root, root * (1.0 - u.y), root * u.y);
+  vec3 v0 = piece.a.xyz;
+  vec3 v1 = piece.b.xyz;
+  vec3 v2 = piece.c.xyz;
+  vec3 p = weights.x * v0 + weights.y * v1 + weights.z * v2;
+  float magnitude = largestComponent(max(abs(v0), max(abs(v1), abs(v2))));
+  return LightPoint(p, RT_RELATIVE_POSITION_ERROR * magnitude,
+                    normalize(cross(v1 - v0, v2 - v0)), -1.0, 1.0);
+}
+
+LightPoint pointOnSphereByArea(vec3 center, float radius, vec2 u) {
+  float z = 1.0 - 2.0 * u.x;
+  float r = sqrt(max(0.0, 1.0 - z * z));
+  float phi = 2.0 * RT_PI * u.y;
+  vec3 n = vec3(r * cos(phi), r * sin(phi), z);
+  float magnitude = largestComponent(abs(center)) + radius;
+  return LightPoint(center + radius * n, RT_RELATIVE_POSITION_ERROR * magnitude, n, -1.0, 1.0);
+}
+
+// Uniform over the cone of directions in which the sphere is seen from p
+// (pbrt's sphere sampling): no sample is wasted on the far side. A lamp
+// sphere of radiance L lights p with L cos per unit solid angle; the host
+// sets L so that, facing it, p gets exactly what a point light of the same
+// intensity at the centre gives: the solid angle of the cone relative to
+// that of the disc pi R^2 / d^2 is the weight. From inside the sphere every
+// direction sees it: uniform by area.
+LightPoint pointOnSphere(vec3 center, float radius, vec3 p, vec2 u) {
+  vec3 toCenter = center - p;
+  float distance2 = dot(toCenter, toCenter);
+  if (distance2 <= radius * radius * 1.0001) return pointOnSphereByArea(center, radius, u);
+  float distance = sqrt(distance2);
+  float sin2Max = radius * radius / distance2;
+  // 1 - cos(theta_max) without cancellation for small or distant spheres.
+  float oneMinusCosMax = sin2Max / (1.0 + sqrt(1.0 - sin2Max));
+  float oneMinusCos = u.x * oneMinusCosMax;
+  float cosTheta = 1.0 - oneMinusCos;
+  float sin2Theta = oneMinusCos * (2.0 - oneMinusCos);
+  float sinTheta = sqrt(max(0.0, sin2Theta));
+  float phi = 2.0 * RT_PI * u.y;
+  vec3 axis = toCenter / distance;
+  vec3 tangent;
+  vec3 bitangent;
+  tangentFrame(axis, tangent, bitangent);
+  vec3 direction = sinTheta * cos(phi) * tangent + sinTheta * sin(phi) * bitangent +
+                   cosTheta * axis;
+  // Nearest intersection along the direction, then onto the surface exactly.
+  float along = distance * cosTheta - sqrt(max(0.0, radius * radius - distance2 * sin2Theta));
+  vec3 n = normalize(p + along * direction - center);
+  float magnitude = largestComponent(abs(center)) + radius;
+  float coneOverDisc = 2.0 * oneMinusCosMax / sin2Max;  // 2 / (1 + cos theta_max)
+  return LightPoint(center + radius * n, RT_RELATIVE_POSITION_ERROR * magnitude, n, distance,
+                    coneOverDisc);
+}
+
+// Uniform by area over the side and both caps.
+LightPoint pointOnCylinder(GpuEmitter piece, vec2 u) {
+  vec3 center = piece.a.xyz;
+  float radius = piece.a.w;
+  vec3 axis = piece.b.xyz;
+  float halfHeight = piece.b.w;
+  vec3 tangent;
+  vec3 bitangent;
+  tangentFrame(axis, tangent, bitangent);
+  float side = 2.0 * halfHeight;
+  float sideShare = side / (side + radius);  // side 2 pi r 2h against caps 2 pi r^2
+  float magnitude = largestComponent(abs(center)) + halfHeight + radius;
+  float error = RT_RELATIVE_POSITION_ERROR * magnitude;
+  if (u.x < sideShare) {
+    float phi = 2.0 * RT_PI * (u.x / sideShare);
+    vec3 n = cos(phi) * tangent + sin(phi) * bitangent;
+    return LightPoint(center + (2.0 * u.y - 1.0) * halfHeight * axis + radius * n, error, n, -1.0,
+                      1.0);
+  }
+  float capU = (u.x - sideShare) / (1.0 - sideShare);
+  float capSign = capU < 0.5 ? -1.0 : 1.0;
+  vec2 disc = radius * concentricDisc(vec2(fract(2.0 * capU), u.y));
+  vec3 p = center + capSign * halfHeight * axis + disc.x * tangent + disc.y * bitangent;
+  return LightPoint(p, error, capSign * axis, -1.0, 1.0);
+}
+
+// A point on `light` for shading point p; u is the sample's 2D point.
+// falloffDistance < 0 means: the distance to the point itself.
+LightPoint samplePointOnLight(GpuAreaLight light, vec3 p, vec2 u) {
+  GpuEmitter piece = emitters[pickEmitter(light, u)];
+  if (piece.kind == RT_PRIM_SPHERE) {
+    if (light.emitterCount == 1u) return pointOnSphere(piece.a.xyz, piece.a.w, p, u);
+    return pointOnSphereByArea(piece.a.xyz, piece.a.w, u);
+  }
+  if (piece.kind == RT_PRIM_CYLINDER) return pointOnCylinder(piece, u);
+  return pointOnTriangle(piece, u);
+}
+#endif
+
+#endif
