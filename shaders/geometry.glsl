@@ -81,6 +81,16 @@ Ray spawnRay(vec3 p, float positionError, vec3 outwardNormal, vec3 direction) {
   return Ray(offsetRayOrigin(p, positionError, side), direction);
 }
 
+// Orthonormal tangents of a unit vector (Duff et al. 2017, no branches on
+// the axis, continuous except at n.z = -0).
+void tangentFrame(vec3 n, out vec3 tangent, out vec3 bitangent) {
+  float sign = n.z >= 0.0 ? 1.0 : -1.0;
+  float a = -1.0 / (sign + n.z);
+  float b = n.x * n.y * a;
+  tangent = vec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  bitangent = vec3(b, sign + n.y * n.y * a, -n.y);
+}
+
 // A finite value, or 0 for NaN and +-Inf. Tested on the bit pattern because
 // a driver may fold isnan()/isinf() away.
 float finiteOrZero(float x) {

@@ -171,16 +171,26 @@ struct GpuMaterial {
   float transmission;
   float ior;
   int diffuseTexture;  // index into the texture table, -1: none
+  uint emissionProfile;  // RT_EMISSION_*: how emission depends on the view
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
-RT_ASSERT_STD430_SIZE(GpuMaterial, 64);
+RT_ASSERT_STD430_SIZE(GpuMaterial, 80);
+
+// How an area light's surface emits (GpuMaterial::emissionProfile,
+// GpuAreaLight::profile). Spheres are always lamps (Lambertian).
+#define RT_EMISSION_ISOTROPIC 0u   // each point shines equally in all directions (coursework)
+#define RT_EMISSION_LAMBERTIAN 1u  // radiance the same in every direction (physical)
 
 // ---- Area lights (src/render/AreaLights.cpp, shaders/lights.glsl) ----
 // An area light is a list of emitter pieces (a sphere, a cylinder, or the
-// triangles of a quad, triangle or mesh). Every point of its surface shines
-// like a point light, equally in all directions, the light's intensity
-// shared evenly over the area; a piece is chosen by its share of the area,
-// then a point on it. Spheres are lamps instead (emitting evenly from their
-// surface, Lambertian) and are sampled by the cone they subtend.
+// triangles of a quad, triangle or mesh), its intensity shared evenly over
+// their area. Isotropic lights (the coursework's): every point shines like a
+// point light, equally in all directions. Lambertian lights: the same power,
+// with the radiance the same in every direction (both faces of triangles).
+// A piece is chosen by its share of the area, then a point on it. Spheres
+// are lamps (Lambertian) sampled by the cone they subtend.
 struct GpuAreaLight {
   vec3 diffuseIntensity;  // as GpuPointLight, the whole light's
   uint firstEmitter;
@@ -188,8 +198,8 @@ struct GpuAreaLight {
   uint emitterCount;
   float area;    // total area of the pieces
   uint samples;  // shadow rays per shading point and pixel sample
+  uint profile;  // RT_EMISSION_*
   uint pad0;
-  uint pad1;
 };
 RT_ASSERT_STD430_SIZE(GpuAreaLight, 48);
 

@@ -23,16 +23,6 @@ struct LightPoint {
   float weight;
 };
 
-// Orthonormal tangents of a unit vector (Duff et al. 2017, no branches on
-// the axis, continuous except at n.z = -0).
-void tangentFrame(vec3 n, out vec3 tangent, out vec3 bitangent) {
-  float sign = n.z >= 0.0 ? 1.0 : -1.0;
-  float a = -1.0 / (sign + n.z);
-  float b = n.x * n.y * a;
-  tangent = vec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
-  bitangent = vec3(b, sign + n.y * n.y * a, -n.y);
-}
-
 // The piece of `light` whose share of the area holds u.x, found by binary
 // search over the cumulative shares; u.x is rescaled to [0, 1) inside the
 // piece, so stratification carries over to the point on it.
@@ -140,12 +130,23 @@ LightPoint pointOnCylinder(GpuEmitter piece, vec2 u) {
 // falloffDistance < 0 means: the distance to the point itself.
 LightPoint samplePointOnLight(GpuAreaLight light, vec3 p, vec2 u) {
   GpuEmitter piece = emitters[pickEmitter(light, u)];
-  if (piece.kind == RT_PRIM_SPHERE) {
-    if (light.emitterCount == 1u) return pointOnSphere(piece.a.xyz, piece.a.w, p, u);
-    return pointOnSphereByArea(piece.a.xyz, piece.a.w, u);
+  if (piece.kind == RT_PRIM_SPHERE && light.emitterCount == 1u) {
+    return pointOnSphere(piece.a.xyz, piece.a.w, p, u);
   }
-  if (piece.kind == RT_PRIM_CYLINDER) return pointOnCylinder(piece, u);
-  return pointOnTriangle(piece, u);
+  LightPoint point;
+  if (piece.kind == RT_PRIM_SPHERE) {
+    point = pointOnSphereByArea(piece.a.xyz, piece.a.w, u);
+  } else if (piece.kind == RT_PRIM_CYLINDER) {
+    point = pointOnCylinder(piece, u);
+  } else {
+    point = pointOnTriangle(piece, u);
+  }
+  // A Lambertian light of the same power sends 2 |cos| as much as the
+  // isotropic one towards a direction at angle acos(cos) to its normal.
+  if (light.profile == RT_EMISSION_LAMBERTIAN) {
+    point.weight = 2.0 * abs(dot(point.normal, normalize(point.position - p)));
+  }
+  return point;
 }
 #endif
 

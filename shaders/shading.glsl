@@ -159,11 +159,15 @@ vec3 areaLighting(ShadingContext context, uint lightIndex, uvec2 pixelSample, ui
 }
 
 // Radiance a ray sees leaving an area light's surface (material.emission
-// holds it head on): spheres are lamps, every other surface a sheet of
-// points shining in all directions, brighter where seen edge on (by the
-// cosine, bounded so that grazing views stay finite).
+// holds it head on): spheres and Lambertian lights the same from every
+// direction; isotropic ones are sheets of points shining in all directions,
+// brighter where seen edge on (by the cosine, bounded so that grazing views
+// stay finite).
 vec3 emittedRadiance(GpuMaterial material, SurfaceHit hit, vec3 direction) {
-  if (primitiveInfo(hit.primitiveIndex).x == RT_PRIM_SPHERE) return material.emission;
+  if (material.emissionProfile == RT_EMISSION_LAMBERTIAN ||
+      primitiveInfo(hit.primitiveIndex).x == RT_PRIM_SPHERE) {
+    return material.emission;
+  }
   return material.emission / max(abs(dot(direction, hit.normal)), 0.01);
 }
 #endif

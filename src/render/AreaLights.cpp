@@ -40,13 +40,16 @@ struct SurfacePieces {
 // directions give pi I lightScale / (A |cos|) (the shader divides by the
 // cosine); a lamp sphere of radius R gives I lightScale / R^2, which lights
 // a facing point exactly like the point light at its centre.
+// A Lambertian light of the same power emits 2 pi I lightScale / A from
+// each face (its radiance, unlike the isotropic one's, needs no cosine).
 glm::vec3 emittedRadiance(const AreaLight& light, const Shape& shape, float area,
                           float lightScale) {
   glm::vec3 intensity = 0.5f * (light.diffuseIntensity + light.specularIntensity) * lightScale;
   if (const auto* sphere = std::get_if<Sphere>(&shape.geometry)) {
     return intensity / (sphere->radius * sphere->radius);
   }
-  return kPi * intensity / area;
+  float faces = light.profile == EmissionProfile::Lambertian ? 2.0f : 1.0f;
+  return faces * kPi * intensity / area;
 }
 
 SurfacePieces piecesOf(const Shape& shape, const Scene& scene, const glm::vec3& origin) {
@@ -105,6 +108,8 @@ FlatAreaLights flattenAreaLights(const Scene& scene, const glm::vec3& frameOrigi
     gpuLight.firstEmitter = static_cast<uint32_t>(flat.emitters.size());
     gpuLight.emitterCount = static_cast<uint32_t>(surface.pieces.size());
     gpuLight.samples = light.samples;
+    gpuLight.profile = light.profile == EmissionProfile::Lambertian ? RT_EMISSION_LAMBERTIAN
+                                                                     : RT_EMISSION_ISOTROPIC;
     double total = 0.0;
     for (const gpu::GpuEmitter& piece : surface.pieces) total += piece.area;
     double running = 0.0;

@@ -23,11 +23,23 @@ LightingConventions lightingConventionsFor(SceneFamily family,
   return conventions;
 }
 
+LightingConventions pathTracerConventions() {
+  return {RT_FALLOFF_INVERSE_SQUARE, 1.0f / (4.0f * glm::pi<float>()), ShadingModel::Standard};
+}
+
+LightingConventions lightingConventionsFor(const Scene& scene,
+                                           std::optional<ShadingModel> shading) {
+  if (scene.settings.mode == RenderMode::PathTracer) return pathTracerConventions();
+  return lightingConventionsFor(scene.family, shading);
+}
+
 ToneMapping toneMappingFor(const Scene& scene) {
   ToneMapping mapping;
   // Family B's `exposure` (0.1 in every official file) belongs to its path
   // tracing mode; the Whitted modes display radiance as is.
-  mapping.exposure = scene.family == SceneFamily::Rendering ? 1.0f : scene.camera.exposure;
+  bool exposed = scene.family != SceneFamily::Rendering ||
+                 scene.settings.mode == RenderMode::PathTracer;
+  mapping.exposure = exposed ? scene.camera.exposure : 1.0f;
   mapping.curve = ToneCurve::Clamp;
   mapping.srgbEncode = false;
   return mapping;

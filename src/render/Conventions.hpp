@@ -24,6 +24,15 @@ struct LightingConventions {
 LightingConventions lightingConventionsFor(SceneFamily family,
                                            std::optional<ShadingModel> shading = std::nullopt);
 
+// The path tracer is physically based in both families: lights fall off as
+// I / (4 pi d^2) (I is the power, as family A has it) and shading is the
+// per-channel Blinn-Phong (the coursework model's clamp is no BRDF).
+LightingConventions pathTracerConventions();
+
+// The conventions a scene renders with: its family's, or the path tracer's.
+LightingConventions lightingConventionsFor(const Scene& scene,
+                                           std::optional<ShadingModel> shading = std::nullopt);
+
 // Tone mapping for PNG/PPM output, including the camera's exposure.
 ToneMapping toneMappingFor(const Scene& scene);
 

@@ -398,6 +398,7 @@ gpu::GpuMaterial toGpu(const Material& m) {
   out.ior = m.ior;
   out.diffuseTexture = m.diffuseTexture;
   out.emission = glm::vec3(0.0f);
+  out.emissionProfile = RT_EMISSION_ISOTROPIC;
   return out;
 }
 
@@ -411,6 +412,7 @@ std::vector<uint32_t> addLightMaterials(const Scene& scene, const FlatAreaLights
     uint32_t shape = scene.areaLights[i].shape;
     gpu::GpuMaterial material = flat.materials.at(shapeMaterials[shape]);
     material.emission = lights.emission[i];
+    material.emissionProfile = flat.areaLights.at(i).profile;
     flat.materials.push_back(material);
     shapeMaterials[shape] = static_cast<uint32_t>(flat.materials.size() - 1);
   }
@@ -475,12 +477,9 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
         {light.position, 0.0f, light.diffuseIntensity, 0.0f, light.specularIntensity, 0.0f});
   }
   flat.info.sphereUvPole = dominantAxis(scene.camera.up);
-  LightingConventions conventions = lightingConventionsFor(scene.family, options.shading);
-  if (scene.settings.mode == RenderMode::PathTracer &&
-      conventions.shading == ShadingModel::Coursework) {
-    // The coursework model clamps the sum of direct light: not a BRDF a path can sample.
-    conventions.shading = ShadingModel::Standard;
-    if (options.shading) flat.warnings.push_back("the path tracer uses the standard shading model");
+  LightingConventions conventions = lightingConventionsFor(scene, options.shading);
+  if (scene.settings.mode == RenderMode::PathTracer && options.shading == ShadingModel::Coursework) {
+    flat.warnings.push_back("the path tracer uses the standard shading model");
   }
   // Camera-relative frame (see recenterOnCamera), known before anything moves.
   FlatAreaLights areaLights =

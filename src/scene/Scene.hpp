@@ -92,13 +92,19 @@ struct PointLight {
 // A shape that emits light: an area light. Its intensities mean what a
 // point light's mean (for family A the power that falls off as
 // I / (4 pi d^2)), spread evenly over the shape's surface, so a small light
-// far away lights like the point light of the same intensity. Triangles,
-// quads and meshes emit from both faces, spheres and cylinders outwards.
+// far away lights like the point light of the same intensity.
+// Isotropic: every point of the surface shines like a small point light,
+// equally in all directions (what the coursework reports describe).
+// Lambertian: the same power, radiance equal in all directions (physical
+// lamps; a flat light then hardly lights surfaces in its own plane).
+enum class EmissionProfile { Isotropic, Lambertian };
+
 struct AreaLight {
   uint32_t shape = 0;                 // index into Scene::shapes: the emitting surface
   glm::vec3 diffuseIntensity{1.0f};   // like PointLight
   glm::vec3 specularIntensity{1.0f};
   uint32_t samples = 1;               // shadow rays per shading point and pixel sample
+  EmissionProfile profile = EmissionProfile::Isotropic;  // spheres are always Lambertian
 };
 
 enum class CameraType { Pinhole, ThinLens };

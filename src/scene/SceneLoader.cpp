@@ -532,6 +532,16 @@ void readAreaLight(JsonObject& light, LightList& lights) {
   pending.light.diffuseIntensity = intensity.diffuse;
   pending.light.specularIntensity = intensity.specular;
   pending.light.samples = readLightSamples(light);
+  if (const std::optional<JsonNode> profile = light.optional("emission")) {
+    const std::string name = profile->string();
+    if (name == "isotropic") {
+      pending.light.profile = EmissionProfile::Isotropic;
+    } else if (name == "lambertian" || name == "diffuse") {
+      pending.light.profile = EmissionProfile::Lambertian;
+    } else {
+      profile->fail("unknown emission '" + name + "' (expected \"isotropic\" or \"lambertian\")");
+    }
+  }
   readLightSampler(light, lights.sampler);
   pending.shapeId = light.optionalOneOf({"shape", "shapeid", "shapeId", "shape_id"});
   if (!pending.shapeId) pending.geometry = readAreaLightGeometry(light);

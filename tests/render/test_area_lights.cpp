@@ -1,0 +1,348 @@
+// Area lights, the mixed mode's distributed bounces and the path tracer,
+// against answers known in advance: limits, quadratures, furnaces, and the
+// two modes agreeing where they must.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <glm/gtc/constants.hpp>
+
+#include "render/Renderer.hpp"
+#include "scene/SceneLoader.hpp"
+#include "support/TestSupport.hpp"
+
+using namespace rt;
+
+namespace {
+
+constexpr float kPi = glm::pi<float>();
+
+ImageF renderScene(const Scene& scene, uint32_t spp, SamplerKind sampler = SamplerKind::Sobol) {
+  Renderer renderer(test::gpu(), test::shaderCompiler());
+  RenderOptions options;
+  options.samplesPerPixel = spp;
+  options.sampler = sampler;
+  ImageF image = renderer.render(scene, options);
+  test::checkNoValidationMessages();
+  return image;
+}
+
+glm::vec3 pixel(const ImageF& image, uint32_t x, uint32_t y) {
+  const float* p = image.pixel(x, y);
+  return {p[0], p[1], p[2]};
+}
+
+// Mean of one channel over a square of pixels around (x, y).
+float meanAround(const ImageF& image, uint32_t x, uint32_t y, uint32_t half, int channel = 0) {
+  double sum = 0;
+  uint32_t count = 0;
+  for (uint32_t j = y - half; j <= y + half; ++j) {
+    for (uint32_t i = x - half; i <= x + half; ++i) {
+      sum += image.pixel(i, j)[channel];
+      ++count;
+    }
+  }
+  return float(sum / count);
+}
+
+Material diffuse(glm::vec3 color, float kd = 1.0f) {
+  Material m;
+  m.diffuseColor = color;
+  m.kd = kd;
+  m.ks = 0.0f;
+  m.specularExponent = 1;
+  return m;
+}
+
+uint32_t addShape(Scene& scene, Geometry geometry, const Material& material) {
+  scene.materials.push_back(material);
+  Shape shape;
+  shape.geometry = geometry;
+  shape.material = uint32_t(scene.materials.size() - 1);
+  scene.shapes.push_back(std::move(shape));
+  return uint32_t(scene.shapes.size() - 1);
+}
+
+void addAreaLight(Scene& scene, Geometry geometry, float intensity, uint32_t samples) {
+  Material emitter = diffuse(glm::vec3(0), 0);
+  AreaLight light;
+  light.shape = addShape(scene, geometry, emitter);
+  light.diffuseIntensity = light.specularIntensity = glm::vec3(intensity);
+  light.samples = samples;
+  scene.areaLights.push_back(light);
+}
+
+// A white diffuse wall in the plane z = 0 facing a camera on +z, family A
+// (lights fall off as I / (4 pi d^2)) with the linear shading model.
+Scene wallScene(uint32_t size) {
+  Scene scene;
+  scene.family = SceneFamily::PathOfLight;
+  scene.settings.maxBounces = 4;
+  scene.camera.width = scene.camera.height = size;
+  scene.camera.position = {0, 0, 5};
+  scene.camera.forward = {0, 0, -1};
+  scene.camera.fovYDegrees = 40;
+  addShape(scene, Quad{{-20, -20, 0}, {20, -20, 0}, {20, 20, 0}, {-20, 20, 0}},
+           diffuse(glm::vec3(1)));
+  return scene;
+}
+
+RenderOptions standardShading(uint32_t spp) {
+  RenderOptions options;
+  options.samplesPerPixel = spp;
+  options.sampler = SamplerKind::Sobol;
+  options.shading = ShadingModel::Standard;
+  return options;
+}
+
+ImageF render(const Scene& scene, const RenderOptions& options) {
+  Renderer renderer(test::gpu(), test::shaderCompiler());
+  ImageF image = renderer.render(scene, options);
+  test::checkNoValidationMessages();
+  return image;
+}
+
+double maxRelativeDifference(const ImageF& a, const ImageF& b, float floor) {
+  double worst = 0;
+  for (size_t i = 0; i < a.rgba.size(); i += 4) {
+    double reference = std::max(std::abs(double(b.rgba[i])), double(floor));
+    worst = std::max(worst, std::abs(double(a.rgba[i]) - b.rgba[i]) / reference);
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_SUITE("area lights") {
+  TEST_CASE("a tiny quad light and a lamp sphere light like the point light at their centre") {
+    // The lights sit above the view, so only their light is seen.
+    const glm::vec3 centre{0.3f, 2.5f, 1.5f};
+    Scene point = wallScene(48);
+    point.pointLights.push_back({centre, glm::vec3(3), glm::vec3(3)});
+    const ImageF expected = render(point, standardShading(16));
+
+    Scene tinyQuad = wallScene(48);
+    const float h = 5e-4f;
+    addAreaLight(tinyQuad,
+                 Quad{centre + glm::vec3(-h, 0, -h), centre + glm::vec3(h, 0, -h),
+                      centre + glm::vec3(h, 0, h), centre + glm::vec3(-h, 0, h)},
+                 3.0f, 1);
+    CHECK(maxRelativeDifference(render(tinyQuad, standardShading(16)), expected, 1e-3f) < 2e-3);
+
+    // A Lambertian sphere wholly above a surface lights it exactly like a
+    // point at its centre, however large it is.
+    Scene lamp = wallScene(48);
+    addAreaLight(lamp, Sphere{centre, 0.5f}, 3.0f, 4);
+    CHECK(maxRelativeDifference(render(lamp, standardShading(64)), expected, 1e-3f) < 0.02);
+  }
+
+  TEST_CASE("a large quad light gives the irradiance of its points' quadrature") {
+    // A vertical 2 x 1 light above the view, facing nothing in particular:
+    // its points shine in all directions, I / A each.
+    const float intensity = 8.0f;
+    Scene scene = wallScene(33);
+    addAreaLight(scene, Quad{{-1, 2.5f, 0.5f}, {1, 2.5f, 0.5f}, {1, 2.5f, 1.5f}, {-1, 2.5f, 1.5f}},
+                 intensity, 4);
+    const ImageF image = render(scene, standardShading(256));
+    // The centre pixel sees the wall at the origin (normal +z).
+    double sum = 0;
+    const int n = 400;
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        double x = -1 + 2 * (i + 0.5) / n;
+        double z = 0.5 + (j + 0.5) / n;
+        double d2 = x * x + 2.5 * 2.5 + z * z;
+        sum += (z / std::sqrt(d2)) / d2;  // cos at the wall / d^2
+      }
+    }
+    double area = 2.0;
+    double expected = intensity / (4 * kPi) * sum * (area / (double(n) * n)) / area;
+    CHECK(meanAround(image, 16, 16, 1) == doctest::Approx(expected).epsilon(0.01));
+
+    // Lambertian, the same power: radiance 2 pi I lightScale / A from each
+    // face, so each point sends 2 |cos| times as much (normal along y).
+    scene.areaLights[0].profile = EmissionProfile::Lambertian;
+    const ImageF lambertian = render(scene, standardShading(256));
+    sum = 0;
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        double x = -1 + 2 * (i + 0.5) / n;
+        double z = 0.5 + (j + 0.5) / n;
+        double d2 = x * x + 2.5 * 2.5 + z * z;
+        sum += 2 * (2.5 / std::sqrt(d2)) * (z / std::sqrt(d2)) / d2;
+      }
+    }
+    expected = intensity / (4 * kPi) * sum / (double(n) * n);
+    CHECK(meanAround(lambertian, 16, 16, 1) == doctest::Approx(expected).epsilon(0.01));
+  }
+
+  TEST_CASE("an area light casts a penumbra, a point light a sharp shadow") {
+    // A black ball between the wall and a light above the view.
+    // Each pixel against the same scene without the ball.
+    const auto shadowBand = [](Scene scene) {
+      const ImageF image = render(scene, standardShading(64));
+      scene.materials[scene.shapes[1].material] = diffuse(glm::vec3(0), 0);
+      scene.shapes[1].geometry = Sphere{{0, 0, -5}, 0.1f};  // out of the way, behind the wall
+      const ImageF unshadowed = render(scene, standardShading(64));
+      uint32_t partial = 0;
+      uint32_t dark = 0;
+      for (uint32_t y = 0; y < image.height; ++y) {
+        for (uint32_t x = 0; x < image.width; ++x) {
+          float ratio = pixel(image, x, y).x / pixel(unshadowed, x, y).x;
+          partial += ratio > 0.1f && ratio < 0.9f;
+          dark += ratio <= 0.1f;
+        }
+      }
+      return std::pair{partial, dark};
+    };
+    Scene point = wallScene(64);
+    addShape(point, Sphere{{0, 0, 1}, 0.4f}, diffuse(glm::vec3(0), 0));
+    Scene area = point;
+    point.pointLights.push_back({{0, 2, 2.5f}, glm::vec3(40), glm::vec3(40)});
+    addAreaLight(area, Quad{{-0.5f, 2, 2}, {0.5f, 2, 2}, {0.5f, 2, 3}, {-0.5f, 2, 3}}, 40.0f, 8);
+    auto [pointPartial, pointDark] = shadowBand(point);
+    auto [areaPartial, areaDark] = shadowBand(area);
+    CAPTURE(pointPartial);
+    CAPTURE(pointDark);
+    CAPTURE(areaPartial);
+    CAPTURE(areaDark);
+    CHECK(pointDark > 200);
+    CHECK(areaPartial > 3 * pointPartial);
+  }
+
+  TEST_CASE("the camera and mirrors see a light's surface at its radiance") {
+    // A quad light facing the camera, and behind the camera a second
+    // camera's view of the same light in a perfect mirror.
+    Scene direct = wallScene(32);
+    const float intensity = 2.0f;
+    const float side = 1.0f;
+    addAreaLight(direct,
+                 Quad{{-side / 2, -side / 2, 2}, {side / 2, -side / 2, 2}, {side / 2, side / 2, 2},
+                      {-side / 2, side / 2, 2}},
+                 intensity, 1);
+    // Seen head on: pi * I * lightScale / A (README "Area lights"), twice
+    // that when Lambertian.
+    const float expected = kPi * intensity / (4 * kPi) / (side * side);
+    CHECK(pixel(render(direct, standardShading(4)), 16, 16).x ==
+          doctest::Approx(expected).epsilon(1e-3));
+    direct.areaLights[0].profile = EmissionProfile::Lambertian;
+    CHECK(pixel(render(direct, standardShading(4)), 16, 16).x ==
+          doctest::Approx(2 * expected).epsilon(1e-3));
+
+    Scene mirrored = wallScene(32);
+    Material mirror = diffuse(glm::vec3(0), 0);
+    mirror.reflectivity = 1;
+    mirrored.materials[mirrored.shapes[0].material] = mirror;
+    addAreaLight(mirrored,
+                 Quad{{-side / 2, -side / 2, 6}, {side / 2, -side / 2, 6}, {side / 2, side / 2, 6},
+                      {-side / 2, side / 2, 6}},
+                 intensity, 1);
+    CHECK(pixel(render(mirrored, standardShading(4)), 16, 16).x ==
+          doctest::Approx(expected).epsilon(1e-3));
+  }
+}
+
+TEST_SUITE("path tracer and distributed bounces") {
+  TEST_CASE("white furnace: a diffuse sphere under a uniform sky reflects its albedo") {
+    Scene scene = wallScene(32);
+    scene.shapes.clear();
+    scene.materials.clear();
+    scene.family = SceneFamily::Rendering;
+    scene.backgroundColor = glm::vec3(1);
+    addShape(scene, Sphere{{0, 0, 0}, 1.0f}, diffuse({0.5f, 0.25f, 1.0f}, 0.8f));
+    scene.settings.mode = RenderMode::PathTracer;
+    scene.settings.maxBounces = 3;
+    const ImageF image = renderScene(scene, 64);
+    // Every bounce off a convex sphere escapes to the sky: exactly kd * colour.
+    for (uint32_t y = 12; y <= 20; ++y) {
+      for (uint32_t x = 12; x <= 20; ++x) {
+        glm::vec3 value = pixel(image, x, y);
+        CHECK(value.x == doctest::Approx(0.4).epsilon(1e-4));
+        CHECK(value.y == doctest::Approx(0.2).epsilon(1e-4));
+        CHECK(value.z == doctest::Approx(0.8).epsilon(1e-4));
+      }
+    }
+    // Paths of length 0 see only emitted and direct light: none.
+    scene.settings.maxBounces = 0;
+    CHECK(pixel(renderScene(scene, 4), 16, 16) == glm::vec3(0));
+  }
+
+  TEST_CASE("with nothing to bounce off, the path tracer equals the mixed mode's direct light") {
+    // A flat wall lit by an area and a point light: every bounce leaves
+    // to the black sky or reaches the light, whose emission next-event
+    // estimation already counted. Counting it twice would brighten the wall.
+    Scene scene = wallScene(32);
+    scene.pointLights.push_back({{1, 1, 2}, glm::vec3(4), glm::vec3(4)});
+    addAreaLight(scene, Quad{{-1, 2.5f, 0.5f}, {1, 2.5f, 0.5f}, {1, 2.5f, 1.5f}, {-1, 2.5f, 1.5f}},
+                 8.0f, 2);
+    const ImageF phong = render(scene, standardShading(64));
+    scene.settings.mode = RenderMode::PathTracer;
+    const ImageF traced = render(scene, standardShading(64));
+    CHECK(maxRelativeDifference(traced, phong, 1e-3f) < 1e-4);
+  }
+
+  TEST_CASE("glass focuses an area light into a caustic only where paths are sampled") {
+    // A glass ball over the floor, a lamp above it out of view; the camera
+    // looks down at the floor under the ball from the side.
+    Scene bare = wallScene(48);
+    bare.camera.position = {0, -4, 3};
+    bare.camera.forward = glm::normalize(glm::vec3(0, 4, -3));
+    bare.camera.up = {0, 0, 1};
+    bare.settings.maxBounces = 6;
+    addAreaLight(bare, Sphere{{0, 0, 3}, 0.3f}, 40.0f, 1);
+    Scene scene = bare;
+    Material glass = diffuse(glm::vec3(0), 0);
+    glass.transmission = 1;
+    glass.ior = 1.5f;
+    addShape(scene, Sphere{{0, 0, 1.1f}, 0.5f}, glass);
+    const float lit = meanAround(render(bare, standardShading(16)), 24, 24, 1);
+    const float whitted = meanAround(render(scene, standardShading(16)), 24, 24, 1);
+    scene.settings.mode = RenderMode::PathTracer;
+    const ImageF traced = render(scene, standardShading(512));
+    test::savePng(toneMap(traced, ToneMapping{}), "caustic-pathtraced.png");
+    const float caustic = meanAround(traced, 24, 24, 1);
+    CAPTURE(lit);
+    CAPTURE(whitted);
+    CAPTURE(caustic);
+    // Straight shadow rays through glass can only lose light; the focused
+    // paths bring several times the direct light to the spot.
+    CHECK(whitted < lit);
+    CHECK(whitted > 0.5f * lit);
+    CHECK(caustic > 2 * lit);
+  }
+
+  TEST_CASE("a distributed diffuse bounce bleeds a wall's colour onto the floor") {
+    Scene scene = wallScene(32);
+    // A red wall standing on the white one, to the image's right.
+    addShape(scene, Quad{{0.5f, -3, 0}, {0.5f, 3, 0}, {0.5f, 3, 3}, {0.5f, -3, 3}},
+             diffuse({1, 0, 0}));
+    scene.pointLights.push_back({{-1, 0, 3}, glm::vec3(30), glm::vec3(30)});
+    const ImageF direct = render(scene, standardShading(16));
+    scene.settings.distributedBounces = 1;
+    const ImageF bounced = render(scene, standardShading(64));
+    const glm::vec3 floorDirect = pixel(direct, 10, 16);
+    const glm::vec3 floorBounced = pixel(bounced, 10, 16);
+    CHECK(floorDirect.x == doctest::Approx(floorDirect.y));
+    CHECK(floorBounced.x > floorBounced.y * 1.05f);
+    CHECK(floorBounced.y == doctest::Approx(floorDirect.y).epsilon(0.02));
+  }
+
+  TEST_CASE("the student renders with area lights and thin lenses match their authors'") {
+    const auto shared = test::sharedDir();
+    if (!shared) {
+      MESSAGE("skipped: ../shared not found");
+      return;
+    }
+    const auto folder = *shared / "scene-format/student/TsFreddie__RayTracer";
+    for (const char* name : {"softshadow", "dof"}) {
+      CAPTURE(name);
+      const Scene scene = loadScene(folder / "examples" / (std::string(name) + "_test.json"));
+      RenderOptions options;
+      options.samplesPerPixel = 256;
+      options.sampler = scene.settings.sampler;
+      const Image8 ours = toneMap(render(scene, options), toneMappingFor(scene));
+      const Image8 theirs = readImage8(folder / name / "ref.png");
+      test::savePng(ours, std::string("student-") + name + ".png");
+      CHECK(test::psnr(ours, theirs) > 36.0);
+    }
+  }
+}
