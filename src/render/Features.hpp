@@ -22,7 +22,12 @@ struct ShaderFeatures {
   bool thinLens = false;
   bool vertices = false;  // per-vertex normals / UVs on triangles
   bool textures = false;
-  bool countRays = false;         // benchmark instrumentation
+  bool countRays = false;  // benchmark instrumentation
+  // Binary mode: a sample is one closest-hit query; no shading code is built.
+  bool binaryOnly = false;
+  // The pixel sampler (RT_SAMPLER_*) when one is fixed for the kernel's life,
+  // so only its code is built; -1: chosen per dispatch (samplerKind).
+  int samplerKind = -1;
   uint32_t whittedStackSize = 1;  // pending rays of the ray tree
 
   ShaderDefines defines() const;
