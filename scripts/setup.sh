@@ -13,6 +13,7 @@ PACKAGES=(
   xvfb xauth
   # clang with its sanitizer and libFuzzer runtimes (scripts/build-sanitized.sh)
   clang-14 libclang-rt-14-dev
+  clang-format
 )
 
 missing=()

@@ -2,7 +2,10 @@
 #ifndef RT_BINDINGS_GLSL
 #define RT_BINDINGS_GLSL
 
-layout(std430, set = 0, binding = RT_BINDING_SCENE_INFO) readonly buffer SceneInfoBuffer {
+// A uniform block: GpuSceneInfo has only vec3 + scalar pairs and scalars, so
+// its std140 layout is its std430 one. (CPU drivers read storage buffers
+// lane by lane inside loops and branches, even at a shared index.)
+layout(std140, set = 0, binding = RT_BINDING_SCENE_INFO) uniform SceneInfoBlock {
   GpuSceneInfo sceneInfo;
 };
 // Primitives and BVH nodes are read through texel buffers (RGBA32F, records

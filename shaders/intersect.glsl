@@ -64,19 +64,6 @@ ShearedRay shearRay(vec3 direction) {
   return ShearedRay(axis, vec3(-d.x / d.z, -d.y / d.z, 1.0 / d.z));
 }
 
-// The frame of the last ray seen: traversal tests many triangles against one
-// ray, and the frame costs a division and a few selects to build.
-vec3 rtShearedDirection = vec3(0.0);
-ShearedRay rtShearedRay = ShearedRay(2u, vec3(0.0, 0.0, 1.0));
-
-ShearedRay shearedRayFor(vec3 direction) {
-  if (direction != rtShearedDirection) {
-    rtShearedDirection = direction;
-    rtShearedRay = shearRay(direction);
-  }
-  return rtShearedRay;
-}
-
 // The vertex relative to the ray origin in the sheared frame; z unscaled.
 vec3 shearVertex(vec3 vertex, vec3 origin, ShearedRay frame) {
   precise vec3 v = permuteDominantLast(vertex - origin, frame.dominantAxis);
@@ -94,7 +81,9 @@ float edgeFunction(vec3 from, vec3 to) {
 // the weights of v1 and v2.
 bool intersectTriangle(vec3 v0, vec3 v1, vec3 v2, Ray ray, float tMin, inout float tMax,
                        out vec3 normal, out vec2 barycentric) {
-  ShearedRay frame = shearedRayFor(ray.direction);
+  // Built per test: a cache of the last ray's frame saved nothing on CPU
+  // drivers, which run the refill branch for every lane anyway.
+  ShearedRay frame = shearRay(ray.direction);
   vec3 a = shearVertex(v0, ray.origin, frame);
   vec3 b = shearVertex(v1, ray.origin, frame);
   vec3 c = shearVertex(v2, ray.origin, frame);

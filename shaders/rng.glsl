@@ -57,7 +57,11 @@ uint permuteIndex(uint index, uint n, uint key) {
   mask |= mask >> 8u;
   mask |= mask >> 16u;
   uint v = index;
-  do {
+  // n > mask / 2, so from a value inside [0, n) the walk meets the next one
+  // within mask / 2 + 1 steps: the bound never cuts a walk short, and a
+  // loop of known trip count can be dropped by the compiler when its result
+  // is unused.
+  for (uint step = 0u; step <= mask / 2u; ++step) {
     v ^= key & mask;
     v = (v * 0x2c1b3c6du) & mask;  // odd multiplier: bijective modulo 2^k
     v ^= (v & mask) >> 3u;
@@ -65,7 +69,8 @@ uint permuteIndex(uint index, uint n, uint key) {
     v ^= (v >> 5u) ^ ((key >> 16u) & mask);
     v = (v * 0x8ebc6af1u) & mask;
     v ^= v >> 7u;
-  } while (v >= n);
+    if (v < n) break;
+  }
   return v;
 }
 
@@ -163,7 +168,13 @@ uint replicateSamples(uint samplerKind, uint samplesTotal, uint replicate) {
 // seed, sampler) and, for jittered, the totals.
 vec2 sampleSubPair(uint samplerKind, uint pixel, uint sampleIndex, uint sub, uint subCount,
                    uint samplesTotal, uint dimension, uint seed) {
+#ifdef RT_SAMPLER_KIND
+  // Fixed by the host for the kernel's life: the other samplers' code is not
+  // built (CPU drivers run every branch of an `if` for all lanes).
+  const uint kind = RT_SAMPLER_KIND;
+#else
   uint kind = samplerKind & ~RT_SAMPLER_REPLICATES;
+#endif
   uvec2 replicated = replicateAndIndex(samplerKind, sampleIndex);
   uint replicate = replicated.x;
   uint local = replicated.y * subCount + sub;

@@ -10,13 +10,12 @@ layout(local_size_x = RT_WORKGROUP_SIZE_X, local_size_y = RT_WORKGROUP_SIZE_Y) i
 
 layout(push_constant) uniform FrameParamsBlock { GpuFrameParams frame; };
 
-layout(std430, set = 0, binding = RT_BINDING_ACCUMULATION) buffer AccumulationBuffer {
-  vec4 accumulation[];  // rgb: sum of sample radiance, a: number of samples
-};
-
-layout(std430, set = 0, binding = RT_BINDING_ACCUMULATION_ODD) buffer OddAccumulationBuffer {
-  vec4 oddAccumulation[];  // the same over odd sample indices only
-};
+// Storage texel buffers (one RGBA32F texel per pixel): CPU drivers read a
+// storage buffer lane by lane, an image with one gather.
+layout(rgba32f, set = 0, binding = RT_BINDING_ACCUMULATION) uniform restrict imageBuffer
+    accumulation;  // rgb: sum of sample radiance, a: number of samples
+layout(rgba32f, set = 0, binding = RT_BINDING_ACCUMULATION_ODD) uniform restrict imageBuffer
+    oddAccumulation;  // the same over odd sample indices only
 
 #ifdef RT_COUNT_RAYS
 layout(std430, set = 0, binding = RT_BINDING_RAY_COUNTER) buffer RayCounterBuffer {
@@ -36,6 +35,7 @@ layout(std430, set = 0, binding = RT_BINDING_RAY_COUNTER) buffer RayCounterBuffe
 #include "lights.glsl"
 #include "shading.glsl"
 #include "integrator.glsl"
+#include "binary.glsl"
 
 void main() {
   uvec2 local = gl_GlobalInvocationID.xy;
@@ -44,21 +44,25 @@ void main() {
   uint pixelIndex = pixel.y * sceneInfo.width + pixel.x;
   // Samples are added one by one in index order, so the sum is the same
   // however the sample range is split over dispatches.
-  vec4 sum = accumulation[pixelIndex];
-  vec4 oddSum = oddAccumulation[pixelIndex];
+  vec4 sum = imageLoad(accumulation, int(pixelIndex));
+  vec4 oddSum = imageLoad(oddAccumulation, int(pixelIndex));
   for (uint s = frame.sampleBegin; s < frame.sampleBegin + frame.sampleCount; ++s) {
     vec2 jitter = samplePair(frame.samplerKind, pixelIndex, s, frame.samplesTotal, RT_DIM_PIXEL,
                              frame.seed);
     vec2 lens = samplePair(frame.samplerKind, pixelIndex, s, frame.samplesTotal, RT_DIM_LENS,
                            frame.seed);
     Ray ray = cameraRay(vec2(pixel) + jitter, lens);
+#ifdef RT_BINARY_ONLY
+    vec3 radiance = binaryRadiance(ray);
+#else
     vec3 radiance = traceRadiance(ray, uvec2(pixelIndex, s));
+#endif
     vec4 contribution = vec4(finiteOrZero(radiance), 1.0);
     sum += contribution;
     if ((s & 1u) == 1u) oddSum += contribution;
   }
-  accumulation[pixelIndex] = sum;
-  oddAccumulation[pixelIndex] = oddSum;
+  imageStore(accumulation, int(pixelIndex), sum);
+  imageStore(oddAccumulation, int(pixelIndex), oddSum);
 #ifdef RT_COUNT_RAYS
   atomicAdd(rayCounter[0], raysTraced);
 #endif

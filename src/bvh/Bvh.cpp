@@ -8,7 +8,6 @@
 namespace rt {
 namespace {
 
-constexpr float kTraversalCost = 1.0f;  // relative to one primitive test
 constexpr uint32_t kMaxBins = 32;
 // Ranges at least this large are split with several threads binning them,
 // and their two halves may be built on two threads.
@@ -323,7 +322,7 @@ class Builder {
       leftCount += binned[b].count;
       if (leftCount == 0 || rightCount[b + 1] == 0) continue;
       float cost =
-          kTraversalCost +
+          options_.traversalCost +
           (left.surfaceArea() * static_cast<float>(leftCount) + rightCost[b + 1]) / parentArea;
       if (cost < best.cost) {
         best.cost = cost;

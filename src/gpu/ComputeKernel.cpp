@@ -34,6 +34,7 @@ ComputeKernel::ComputeKernel(VulkanContext& context, const std::vector<uint32_t>
     std::vector<VkDescriptorSetLayoutBinding> bindings;
     std::vector<VkDescriptorPoolSize> poolSizes;
     for (const KernelBinding& binding : kernelBindings) {
+      declared_.push_back(binding);
       bindings.push_back({binding.binding, binding.type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
       poolSizes.push_back({binding.type, 1});
     }
@@ -108,9 +109,17 @@ void ComputeKernel::writeDescriptor(uint32_t binding, VkDescriptorType type,
   vkUpdateDescriptorSets(context_.device(), 1, &write, 0, nullptr);
 }
 
+VkDescriptorType ComputeKernel::declaredType(uint32_t binding, VkDescriptorType fallback) const {
+  for (const KernelBinding& declared : declared_) {
+    if (declared.binding == binding) return declared.type;
+  }
+  return fallback;
+}
+
 void ComputeKernel::bind(uint32_t binding, const Buffer& buffer) {
   VkDescriptorBufferInfo bufferInfo{buffer.handle(), 0, VK_WHOLE_SIZE};
-  writeDescriptor(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bufferInfo, nullptr);
+  writeDescriptor(binding, declaredType(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), &bufferInfo,
+                  nullptr);
 }
 
 void ComputeKernel::bindTexels(uint32_t binding, const Buffer& buffer, VkFormat format) {
@@ -121,7 +130,8 @@ void ComputeKernel::bindTexels(uint32_t binding, const Buffer& buffer, VkFormat 
   VkBufferView view = VK_NULL_HANDLE;
   vkCheck(vkCreateBufferView(context_.device(), &viewInfo, nullptr, &view), "vkCreateBufferView");
   views_.push_back(view);
-  writeDescriptor(binding, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, nullptr, &view);
+  writeDescriptor(binding, declaredType(binding, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER), nullptr,
+                  &view);
 }
 
 void ComputeKernel::recordDispatch(VkCommandBuffer commands, const void* pushConstants,

@@ -15,7 +15,9 @@ class VulkanContext;
 // One binding of descriptor set 0.
 struct KernelBinding {
   uint32_t binding = 0;
-  VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;  // or UNIFORM_TEXEL_BUFFER
+  // or UNIFORM_BUFFER (bound with bind), UNIFORM_TEXEL_BUFFER or
+  // STORAGE_TEXEL_BUFFER (bound with bindTexels)
+  VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 };
 
 class ComputeKernel {
@@ -29,9 +31,10 @@ class ComputeKernel {
   ComputeKernel(const ComputeKernel&) = delete;
   ComputeKernel& operator=(const ComputeKernel&) = delete;
 
-  // Points a storage-buffer binding at a buffer; only while no dispatch is in flight.
+  // Points a storage- or uniform-buffer binding at a buffer; only while no
+  // dispatch is in flight.
   void bind(uint32_t binding, const Buffer& buffer);
-  // Points a uniform-texel-buffer binding at a buffer read as `format` texels.
+  // Points a uniform- or storage-texel-buffer binding at a buffer seen as `format` texels.
   void bindTexels(uint32_t binding, const Buffer& buffer, VkFormat format);
 
   // Records a dispatch followed by a barrier that makes its writes visible to
@@ -41,6 +44,7 @@ class ComputeKernel {
 
  private:
   void destroy();
+  VkDescriptorType declaredType(uint32_t binding, VkDescriptorType fallback) const;
   void writeDescriptor(uint32_t binding, VkDescriptorType type,
                        const VkDescriptorBufferInfo* bufferInfo, const VkBufferView* texelView);
 
@@ -53,6 +57,7 @@ class ComputeKernel {
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   std::vector<VkBufferView> views_;  // owned, one per bindTexels call
+  std::vector<KernelBinding> declared_;
 };
 
 }  // namespace rt

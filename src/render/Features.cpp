@@ -31,6 +31,7 @@ void addGeometryFeatures(const Shape& shape, ShaderFeatures& features) {
 ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat) {
   ShaderFeatures features;
   for (const Shape& shape : scene.shapes) addGeometryFeatures(shape, features);
+  features.binaryOnly = scene.settings.mode == RenderMode::Binary;
   bool shaded = scene.settings.mode != RenderMode::Binary && scene.settings.maxBounces > 0;
   for (const Shape& shape : scene.shapes) {
     const Material& material = scene.materials.at(shape.material);
@@ -79,6 +80,8 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(diffuseBounces, "RT_FEATURE_DIFFUSE_BOUNCES");
   flag(pathTracer, "RT_FEATURE_PATH_TRACER");
   flag(countRays, "RT_COUNT_RAYS");
+  flag(binaryOnly, "RT_BINARY_ONLY");
+  if (samplerKind >= 0) result.emplace_back("RT_SAMPLER_KIND", std::to_string(samplerKind) + "u");
   result.emplace_back("RT_WHITTED_STACK_SIZE", std::to_string(whittedStackSize));
   return result;
 }

@@ -25,7 +25,12 @@ struct ShaderFeatures {
   bool areaLights = false;
   bool diffuseBounces = false;  // sampled diffuse bounces (distributed bounces, path tracer)
   bool pathTracer = false;      // one continuation per hit
-  bool countRays = false;         // benchmark instrumentation
+  bool countRays = false;       // benchmark instrumentation
+  // Binary mode: a sample is one closest-hit query; no shading code is built.
+  bool binaryOnly = false;
+  // The pixel sampler (RT_SAMPLER_*) when one is fixed for the kernel's life,
+  // so only its code is built; -1: chosen per dispatch (samplerKind).
+  int samplerKind = -1;
   uint32_t whittedStackSize = 1;  // pending rays of the ray tree
 
   ShaderDefines defines() const;

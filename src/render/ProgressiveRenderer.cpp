@@ -13,6 +13,11 @@ namespace {
 
 uint32_t divideRoundUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 
+// Accumulation buffers: texels to the render kernel, a storage buffer to the
+// viewer's display pass, and cleared and read back by transfers.
+constexpr VkBufferUsageFlags kAccumulationUsage =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;
+
 // The largest memory heap: no single allocation can exceed it.
 VkDeviceSize largestHeap(const VulkanContext& context) {
   VkPhysicalDeviceMemoryProperties memory;
@@ -38,8 +43,12 @@ uint32_t gpuSamplerKind(SamplerKind kind) {
 
 VkDeviceSize accumulationBytes(VulkanContext& context, const FlatScene& flat) {
   const VkDeviceSize bytes = VkDeviceSize(flat.info.width) * flat.info.height * sizeof(glm::vec4);
-  const VkDeviceSize limit =
-      std::min<VkDeviceSize>(context.limits().maxStorageBufferRange, largestHeap(context));
+  // The render kernel sees it as RGBA32F texels, the viewer's display pass
+  // as a storage buffer.
+  const VkDeviceSize limit = std::min<VkDeviceSize>(
+      {VkDeviceSize(context.limits().maxStorageBufferRange),
+       VkDeviceSize(context.limits().maxTexelBufferElements) * sizeof(glm::vec4),
+       largestHeap(context)});
   if (bytes > limit) {
     throw Error(fmt::format(
         "image {}x{} is too large for this device: its accumulation buffer needs {} MiB "
@@ -54,6 +63,7 @@ ShaderFeatures featuresFor(const Scene& scene, const FlatScene& flat,
                            const ProgressiveOptions& options) {
   ShaderFeatures features = detectFeatures(scene, flat);
   features.countRays = options.countRays;
+  features.samplerKind = static_cast<int>(gpuSamplerKind(options.sampler));
   return features;
 }
 
@@ -70,8 +80,8 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
       height_(flat_.info.height),
       sceneBuffers_(context, flat_),
       region_(resolveRegion(options.region, width_, height_)),
-      accumulation_(context, accumulationBytes(context, flat_), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
-      oddAccumulation_(context, accumulation_.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
+      accumulation_(context, accumulationBytes(context, flat_), kAccumulationUsage),
+      oddAccumulation_(context, accumulation_.size(), kAccumulationUsage) {
   accumulation_.fillZero();
   oddAccumulation_.fillZero();
   samplesDone_ = options.firstSample;
@@ -82,17 +92,21 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
   kernel_ = buildKernel();
 }
 
-std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
+std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(bool countRays) {
   std::vector<KernelBinding> bindings = SceneBuffers::bindings();
-  bindings.push_back({RT_BINDING_ACCUMULATION});
-  bindings.push_back({RT_BINDING_ACCUMULATION_ODD});
-  if (rayCounter_) bindings.push_back({RT_BINDING_RAY_COUNTER});
+  bindings.push_back({RT_BINDING_ACCUMULATION, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER});
+  bindings.push_back({RT_BINDING_ACCUMULATION_ODD, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER});
+  if (countRays) bindings.push_back({RT_BINDING_RAY_COUNTER});
+  return bindings;
+}
+
+std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
   auto kernel = std::make_unique<ComputeKernel>(
-      context_, compiler_.compile("trace.comp", features_.defines()), bindings,
-      static_cast<uint32_t>(sizeof(gpu::GpuFrameParams)));
+      context_, compiler_.compile("trace.comp", features_.defines()),
+      kernelBindings(rayCounter_.has_value()), static_cast<uint32_t>(sizeof(gpu::GpuFrameParams)));
   sceneBuffers_.bindTo(*kernel);
-  kernel->bind(RT_BINDING_ACCUMULATION, accumulation_);
-  kernel->bind(RT_BINDING_ACCUMULATION_ODD, oddAccumulation_);
+  kernel->bindTexels(RT_BINDING_ACCUMULATION, accumulation_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  kernel->bindTexels(RT_BINDING_ACCUMULATION_ODD, oddAccumulation_, VK_FORMAT_R32G32B32A32_SFLOAT);
   if (rayCounter_) kernel->bind(RT_BINDING_RAY_COUNTER, *rayCounter_);
   return kernel;
 }

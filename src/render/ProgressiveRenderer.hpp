@@ -78,6 +78,8 @@ class ProgressiveRenderer {
   void releaseRetiredKernels() { retired_.clear(); }
 
   const Buffer& accumulation() const { return accumulation_; }
+  // Descriptor bindings of the render kernel (trace.comp).
+  static std::vector<KernelBinding> kernelBindings(bool countRays);
   // Mean radiance per pixel; alpha = the pixel's sample count.
   ImageF resolve();
   // The accumulation sums of all and of the odd-indexed samples.

@@ -46,7 +46,7 @@ Buffer makeTexels(VulkanContext& context, const SceneBufferLimits& limits,
 
 SceneBuffers::SceneBuffers(VulkanContext& context, const FlatScene& scene,
                            const SceneBufferLimits& limits)
-    : info_(makeStorage(context, limits, std::vector<gpu::GpuSceneInfo>{scene.info}, "scene info")),
+    : info_(context, sizeof(gpu::GpuSceneInfo), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
       primitives_(makeTexels(context, limits, scene.primitives, "primitives")),
       bvhNodes_(makeTexels(context, limits, scene.bvhNodes, "BVH nodes")),
       items_(makeTexels(context, limits, scene.items, "BVH leaf items")),
@@ -56,7 +56,9 @@ SceneBuffers::SceneBuffers(VulkanContext& context, const FlatScene& scene,
       emitters_(makeStorage(context, limits, scene.emitters, "area light surfaces")),
       vertices_(makeStorage(context, limits, scene.vertices, "vertices")),
       textureInfos_(makeStorage(context, limits, scene.textureInfos, "texture table")),
-      texels_(makeStorage(context, limits, scene.texels, "texture texels")) {}
+      texels_(makeStorage(context, limits, scene.texels, "texture texels")) {
+  info_.upload(&scene.info, sizeof(scene.info));
+}
 
 void SceneBuffers::bindTo(ComputeKernel& kernel) const {
   kernel.bind(RT_BINDING_SCENE_INFO, info_);
@@ -74,7 +76,10 @@ void SceneBuffers::bindTo(ComputeKernel& kernel) const {
 
 std::vector<KernelBinding> SceneBuffers::bindings() {
   constexpr VkDescriptorType kTexels = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-  return {{RT_BINDING_SCENE_INFO},
+  // Scene constants are a uniform buffer: CPU drivers read a storage buffer
+  // one lane at a time, even at an index every lane shares, once the read is
+  // inside a loop or branch.
+  return {{RT_BINDING_SCENE_INFO, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
           {RT_BINDING_PRIMITIVES, kTexels},
           {RT_BINDING_BVH_NODES, kTexels},
           {RT_BINDING_ITEMS, kTexels},

@@ -6,6 +6,7 @@
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu_types.h"
 #include "render/Features.hpp"
+#include "render/ProgressiveRenderer.hpp"
 #include "render/SceneBuffers.hpp"
 #include "support/TestSupport.hpp"
 
@@ -58,9 +59,7 @@ TEST_SUITE("shader-compiler") {
       std::vector<KernelBinding> bindings;
       uint32_t pushBytes;
     };
-    std::vector<KernelBinding> render = SceneBuffers::bindings();
-    render.push_back({RT_BINDING_ACCUMULATION});
-    render.push_back({RT_BINDING_ACCUMULATION_ODD});
+    std::vector<KernelBinding> render = ProgressiveRenderer::kernelBindings(false);
     std::vector<KernelBinding> batch = SceneBuffers::bindings();
     batch.push_back({RT_BINDING_RAYS});
     batch.push_back({RT_BINDING_HITS});
