@@ -513,6 +513,21 @@ Geometry readAreaLightGeometry(JsonObject& light) {
                            "and v, position with radius or size, or the id of a shape");
 }
 
+// Area of a light's own surface (spheres, triangles, quads).
+float surfaceArea(const Geometry& geometry) {
+  const auto triangleArea = [](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+    return 0.5f * glm::length(glm::cross(b - a, c - a));
+  };
+  if (const auto* t = std::get_if<Triangle>(&geometry)) return triangleArea(t->v0, t->v1, t->v2);
+  if (const auto* q = std::get_if<Quad>(&geometry)) {
+    return triangleArea(q->v0, q->v1, q->v2) + triangleArea(q->v0, q->v2, q->v3);
+  }
+  if (const auto* sphere = std::get_if<Sphere>(&geometry)) {
+    return 4.0f * 3.14159265f * sphere->radius * sphere->radius;
+  }
+  return 1.0f;
+}
+
 // A light source in the file, kept until the shapes are read (area lights
 // may name a shape by its id).
 struct PendingAreaLight {
@@ -544,7 +559,10 @@ void readAreaLight(JsonObject& light, LightList& lights) {
   }
   readLightSampler(light, lights.sampler);
   pending.shapeId = light.optionalOneOf({"shape", "shapeid", "shapeId", "shape_id"});
-  if (!pending.shapeId) pending.geometry = readAreaLightGeometry(light);
+  if (!pending.shapeId) {
+    pending.geometry = readAreaLightGeometry(light);
+    if (!(surfaceArea(*pending.geometry) > 0.0f)) light.fail("area light has no area");
+  }
   lights.areaLights.push_back(std::move(pending));
 }
 

@@ -185,6 +185,19 @@ if [[ -d "$SHARED/assets/gltf-invalid" ]]; then
   expect_error "glTF: infinite positions" 'BoxWithInfinites\.glb: meshes\[0\].*not finite' "$invalid/assimp-testmodels-deb/glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb" "$SCRATCH/out.png"
 fi
 
+# --- area lights and the path tracer ----------------------------------------
+AREA=${GOOD/\"lightsources\":\[/\"lightsources\":[{\"type\":\"arealight\",\"v0\":[-1,2,-2],\"v1\":[1,2,-2],\"v2\":[1,2,-4],\"v3\":[-1,2,-4],\"intensity\":[20,20,20],\"samples\":4\},}
+write area.json "$AREA"
+"$RAYTRACER" "$SCRATCH/area.json" "$SCRATCH/area.png" --spp 2 -q && [[ -s "$SCRATCH/area.png" ]] && pass || fail "area light render"
+write traced.json "${AREA/\{\"nbounces\":2/\{\"rendermode\":\"pathtracer\",\"nbounces\":3}"
+"$RAYTRACER" "$SCRATCH/traced.json" "$SCRATCH/traced.png" --spp 2 -q && [[ -s "$SCRATCH/traced.png" ]] && pass || fail "path tracer render"
+write area-bad.json "${AREA/\"samples\":4/\"samples\":0}"
+expect_error "area light: zero samples" 'area-bad\.json: scene\.lightsources\[0\]\.samples' "$SCRATCH/area-bad.json" "$SCRATCH/out.png"
+write area-noshape.json "${AREA/\"v0\":\[-1,2,-2\],/\"shape\":\"lamp\",}"
+expect_error "area light: unknown shape" "area-noshape\.json: scene\.lightsources\[0\]\.shape: no shape has the id 'lamp'" "$SCRATCH/area-noshape.json" "$SCRATCH/out.png"
+write area-zero.json "${AREA/\"v0\":\[-1,2,-2\],\"v1\":\[1,2,-2\],\"v2\":\[1,2,-4\],\"v3\":\[-1,2,-4\]/\"v0\":[0,2,0],\"v1\":[0,2,0],\"v2\":[0,2,0]}"
+expect_error "area light: no area" 'area-zero\.json: scene\.lightsources\[0\]: area light has no area' "$SCRATCH/area-zero.json" "$SCRATCH/out.png"
+
 # --- official scenes load and render (small) -------------------------------
 if [[ -d "$SHARED/scene-format/official" ]]; then
   while IFS= read -r scene; do

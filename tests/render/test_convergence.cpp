@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include "io/Plot.hpp"
 #include "render/Convergence.hpp"
@@ -42,12 +43,18 @@ ImageF render(const Scene& scene, const RenderOptions& options, RenderStats* sta
   return image;
 }
 
-// The thin-lens study scene at 48x36, 1024 Sobol samples (another seed).
-const ImageF& thinLensTruth() {
-  static const ImageF truth =
-      render(studyScene("study-thinlens.json"), smallRender(SamplerKind::Sobol, 1024, 999));
-  return truth;
+// A study scene at 48x36, 1024 Sobol samples (another seed).
+const ImageF& studyTruth(const std::string& name) {
+  static std::map<std::string, ImageF> truths;
+  auto found = truths.find(name);
+  if (found == truths.end()) {
+    found = truths.emplace(name, render(studyScene(name), smallRender(SamplerKind::Sobol, 1024, 999)))
+                .first;
+  }
+  return found->second;
 }
+
+const ImageF& thinLensTruth() { return studyTruth("study-thinlens.json"); }
 
 ImageF uniformImage(uint32_t width, uint32_t height, float value) {
   ImageF image{width, height, std::vector<float>(size_t(width) * height * 4, value)};
@@ -83,20 +90,23 @@ TEST_SUITE("convergence") {
   }
 
   TEST_CASE("the error estimate is within 25% of the true error for every sampler") {
-    Scene scene = studyScene("study-thinlens.json");
-    ToneMapping mapping = toneMappingFor(scene);
-    const ImageF& truth = thinLensTruth();
-    for (SamplerKind sampler : {SamplerKind::Random, SamplerKind::Jittered, SamplerKind::Sobol}) {
-      for (uint32_t samples : {9u, 24u}) {
-        RenderOptions options = smallRender(sampler, samples);
-        options.estimateError = true;
-        RenderStats stats;
-        double trueRmse = displayRmse(render(scene, options, &stats), truth, mapping);
-        CAPTURE(std::string(samplerKindName(sampler)));
-        CAPTURE(samples);
-        CAPTURE(trueRmse);
-        REQUIRE(stats.rmseEstimate);
-        CHECK(*stats.rmseEstimate == doctest::Approx(trueRmse).epsilon(0.25));
+    for (const char* name : {"study-thinlens.json", "study-arealight.json"}) {
+      CAPTURE(name);
+      Scene scene = studyScene(name);
+      ToneMapping mapping = toneMappingFor(scene);
+      const ImageF& truth = studyTruth(name);
+      for (SamplerKind sampler : {SamplerKind::Random, SamplerKind::Jittered, SamplerKind::Sobol}) {
+        for (uint32_t samples : {9u, 24u}) {
+          RenderOptions options = smallRender(sampler, samples);
+          options.estimateError = true;
+          RenderStats stats;
+          double trueRmse = displayRmse(render(scene, options, &stats), truth, mapping);
+          CAPTURE(std::string(samplerKindName(sampler)));
+          CAPTURE(samples);
+          CAPTURE(trueRmse);
+          REQUIRE(stats.rmseEstimate);
+          CHECK(*stats.rmseEstimate == doctest::Approx(trueRmse).epsilon(0.25));
+        }
       }
     }
   }
