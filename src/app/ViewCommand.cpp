@@ -82,8 +82,9 @@ int runViewCommand(int argc, char** argv) {
                "Enable the Vulkan validation layer; any message fails the run");
   app.add_option("--device", cli.device, "Number of the Vulkan device to use");
   app.add_option("--seed", options.seed, "Random seed (as the render command)");
-  app.add_option("--sampler", cli.sampler, "Pixel sampler (default: the scene's, else jittered)")
-      ->check(CLI::IsMember({"random", "jittered"}));
+  app.add_option("--sampler", cli.sampler,
+                 "Sampler of every random dimension (default: the scene's, else jittered)")
+      ->check(CLI::IsMember({"random", "jittered", "sobol"}));
   app.add_option("--shading", cli.shading, "Shading model (as the render command)")
       ->check(CLI::IsMember({"standard", "coursework"}));
   app.add_option("--exposure", options.exposure, "Extra exposure factor")

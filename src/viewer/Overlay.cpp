@@ -34,8 +34,9 @@ void showStatistics(const OverlayStats& stats) {
 
 void editRenderSettings(OverlaySettings& settings, OverlayActions& actions) {
   ImGui::Separator();
-  const char* samplers[] = {"random", "jittered"};
-  actions.samplerChanged = ImGui::Combo("sampler", &settings.sampler, samplers, 2);
+  // In SamplerKind order.
+  const char* samplers[] = {"random", "jittered", "sobol"};
+  actions.samplerChanged = ImGui::Combo("sampler", &settings.sampler, samplers, 3);
   bool stepped = ImGui::InputInt("target spp", &settings.samplesTarget, 1, 16,
                                  ImGuiInputTextFlags_EnterReturnsTrue);
   settings.samplesTarget = std::clamp(settings.samplesTarget, 1, kMaxSamplesTarget);

@@ -119,7 +119,7 @@ void Viewer::initialiseSettings() {
       options_.samplesTarget ? *options_.samplesTarget : (fromScene ? fromScene : kDefaultSamples));
   settings_.bounces = static_cast<int>(scene_.settings.maxBounces);
   SamplerKind sampler = options_.sampler.value_or(scene_.settings.sampler);
-  settings_.sampler = sampler == SamplerKind::Random ? 0 : 1;
+  settings_.sampler = static_cast<int>(sampler);
   settings_.exposure = toneMappingFor(scene_).exposure * options_.exposure;
   settings_.apertureRadius = camera_.camera().apertureRadius;
   settings_.focusDistance = camera_.camera().focusDistance;
@@ -162,7 +162,7 @@ void Viewer::startWatching() {
 }
 
 SamplerKind Viewer::samplerSetting() const {
-  return settings_.sampler == 0 ? SamplerKind::Random : SamplerKind::Jittered;
+  return static_cast<SamplerKind>(std::clamp(settings_.sampler, 0, 2));
 }
 
 std::unique_ptr<ProgressiveRenderer> Viewer::makeRenderer(glm::uvec2 size) const {
