@@ -32,9 +32,9 @@ struct RangeBounds {
   }
 };
 
+// Child centroid bounds come from the partition pass, so bins hold boxes only.
 struct Bin {
   Aabb bounds;
-  Aabb centroids;
   uint32_t count = 0;
 };
 
@@ -44,18 +44,22 @@ struct Split {
   int axis = -1;
   uint32_t bin = 0;  // first bin of the right side
   float cost = std::numeric_limits<float>::max();
-  RangeBounds left;  // of the two sides, from the bins
+  RangeBounds left;  // of the two sides: boxes from the bins, centroids from the partition
   RangeBounds right;
 };
 
-// Maps a centroid coordinate to its bin along one axis.
+// Maps a centroid to its bin along each axis.
 struct BinMapping {
   glm::vec3 origin;
   glm::vec3 scale;
   uint32_t bins;
-  uint32_t operator()(const PrimRef& ref, int axis) const {
-    float position = (centroid(ref)[axis] - origin[axis]) * scale[axis];
+  uint32_t operator()(const glm::vec3& doubledCentroid, int axis) const {
+    float position = (doubledCentroid[axis] - origin[axis]) * scale[axis];
     return std::min(bins - 1, static_cast<uint32_t>(std::max(position, 0.0f)));
+  }
+  glm::uvec3 all(const glm::vec3& doubledCentroid) const {
+    glm::vec3 position = glm::max((doubledCentroid - origin) * scale, glm::vec3(0.0f));
+    return glm::min(glm::uvec3(position), glm::uvec3(bins - 1));
   }
 };
 
@@ -204,6 +208,11 @@ class Builder {
     node.firstIndex = begin;
     node.count = count;
     if (count == 1 || depth >= options_.maxDepth) return end;
+    // A split costs at least the node visit: no range up to that size is
+    // worth binning when it may be a leaf.
+    if (count <= options_.maxLeafSize && static_cast<float>(count) <= options_.traversalCost) {
+      return end;
+    }
     split = findSplit(begin, end, bounds);
     bool leafIsCheaper = split.axis < 0 || split.cost >= static_cast<float>(count);
     if (count <= options_.maxLeafSize && leafIsCheaper) return end;
@@ -214,12 +223,30 @@ class Builder {
       split.right = rangeBounds(middle, end);
       return middle;
     }
-    BinMapping mapping = mappingFor(bounds, count);
-    auto first = refs_.begin() + begin;
-    auto middle = std::partition(first, refs_.begin() + end, [&](const PrimRef& ref) {
-      return mapping(ref, split.axis) < split.bin;
-    });
-    return static_cast<uint32_t>(middle - refs_.begin());
+    return partition(begin, end, mappingFor(bounds, count), split);
+  }
+
+  // Moves the range's left-side references before its right-side ones (in
+  // one sweep from both ends) and gathers each side's centroid bounds.
+  uint32_t partition(uint32_t begin, uint32_t end, const BinMapping& mapping, Split& split) {
+    uint32_t low = begin;
+    uint32_t high = end;
+    Aabb leftCentroids;
+    Aabb rightCentroids;
+    while (low < high) {
+      glm::vec3 c = centroid(refs_[low]);
+      if (mapping(c, split.axis) < split.bin) {
+        leftCentroids.grow(c);
+        ++low;
+      } else {
+        --high;
+        std::swap(refs_[low], refs_[high]);
+        rightCentroids.grow(c);
+      }
+    }
+    split.left.centroids = leftCentroids;
+    split.right.centroids = rightCentroids;
+    return low;
   }
 
   RangeBounds rangeBounds(uint32_t begin, uint32_t end) const {
@@ -253,11 +280,10 @@ class Builder {
   void binRange(uint32_t from, uint32_t to, const BinMapping& mapping, AxisBins& bins) const {
     for (uint32_t i = from; i < to; ++i) {
       const PrimRef& ref = refs_[i];
-      glm::vec3 c = centroid(ref);
+      glm::uvec3 index = mapping.all(centroid(ref));
       for (int axis = 0; axis < 3; ++axis) {
-        Bin& bin = bins[axis][mapping(ref, axis)];
+        Bin& bin = bins[axis][index[axis]];
         bin.bounds.grow(ref.box);
-        bin.centroids.grow(c);
         bin.count++;
       }
     }
@@ -284,7 +310,6 @@ class Builder {
         for (int axis = 0; axis < 3; ++axis) {
           for (uint32_t b = 0; b < mapping.bins; ++b) {
             bins[axis][b].bounds.grow(part[axis][b].bounds);
-            bins[axis][b].centroids.grow(part[axis][b].centroids);
             bins[axis][b].count += part[axis][b].count;
           }
         }
@@ -335,9 +360,7 @@ class Builder {
     best.left = {};
     best.right = {};
     for (uint32_t b = 0; b < bins; ++b) {
-      RangeBounds& side = b < best.bin ? best.left : best.right;
-      side.boxes.grow(binned[b].bounds);
-      side.centroids.grow(binned[b].centroids);
+      (b < best.bin ? best.left : best.right).boxes.grow(binned[b].bounds);
     }
   }
 
