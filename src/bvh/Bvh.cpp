@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cstring>
 #include <thread>
 
 namespace rt {
@@ -32,10 +33,28 @@ struct RangeBounds {
   }
 };
 
-// Child centroid bounds come from the partition pass, so bins hold boxes only.
+// Four floats in one vector register (GCC/Clang vector extension): the
+// binning loop grows a box with two vector min/max instead of six scalar ones.
+using Float4 = float __attribute__((vector_size(16)));
+
+Float4 load4(const float* p) {
+  Float4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
+Float4 max4(Float4 a, Float4 b) { return a > b ? a : b; }
+
+// Child centroid bounds come from the partition pass, so bins hold boxes
+// only, in lanes x, y, z (w unused).
 struct Bin {
-  Aabb bounds;
+  Float4 min = {std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
+                std::numeric_limits<float>::max(), 0.0f};
+  Float4 max = {-std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
+                -std::numeric_limits<float>::max(), 0.0f};
   uint32_t count = 0;
+
+  Aabb bounds() const { return {{min[0], min[1], min[2]}, {max[0], max[1], max[2]}}; }
 };
 
 using AxisBins = std::array<std::array<Bin, kMaxBins>, 3>;
@@ -56,10 +75,6 @@ struct BinMapping {
   uint32_t operator()(const glm::vec3& doubledCentroid, int axis) const {
     float position = (doubledCentroid[axis] - origin[axis]) * scale[axis];
     return std::min(bins - 1, static_cast<uint32_t>(std::max(position, 0.0f)));
-  }
-  glm::uvec3 all(const glm::vec3& doubledCentroid) const {
-    glm::vec3 position = glm::max((doubledCentroid - origin) * scale, glm::vec3(0.0f));
-    return glm::min(glm::uvec3(position), glm::uvec3(bins - 1));
   }
 };
 
@@ -231,21 +246,22 @@ class Builder {
   uint32_t partition(uint32_t begin, uint32_t end, const BinMapping& mapping, Split& split) {
     uint32_t low = begin;
     uint32_t high = end;
-    Aabb leftCentroids;
-    Aabb rightCentroids;
+    Bin sides[2];  // centroid bounds of the left and right side
     while (low < high) {
-      glm::vec3 c = centroid(refs_[low]);
-      if (mapping(c, split.axis) < split.bin) {
-        leftCentroids.grow(c);
+      Float4 c = load4(&refs_[low].box.min.x) + load4(&refs_[low].box.max.x);
+      bool left = mapping(glm::vec3(c[0], c[1], c[2]), split.axis) < split.bin;
+      Bin& side = sides[left ? 0 : 1];
+      side.min = min4(side.min, c);
+      side.max = max4(side.max, c);
+      if (left) {
         ++low;
       } else {
         --high;
         std::swap(refs_[low], refs_[high]);
-        rightCentroids.grow(c);
       }
     }
-    split.left.centroids = leftCentroids;
-    split.right.centroids = rightCentroids;
+    split.left.centroids = sides[0].bounds();
+    split.right.centroids = sides[1].bounds();
     return low;
   }
 
@@ -278,12 +294,20 @@ class Builder {
   }
 
   void binRange(uint32_t from, uint32_t to, const BinMapping& mapping, AxisBins& bins) const {
+    const Float4 origin = {mapping.origin.x, mapping.origin.y, mapping.origin.z, 0.0f};
+    const Float4 scale = {mapping.scale.x, mapping.scale.y, mapping.scale.z, 0.0f};
+    const Float4 zero = {0.0f, 0.0f, 0.0f, 0.0f};
+    const float last = static_cast<float>(mapping.bins - 1);
     for (uint32_t i = from; i < to; ++i) {
       const PrimRef& ref = refs_[i];
-      glm::uvec3 index = mapping.all(centroid(ref));
+      // min.xyz then max.x, and max.xyz then the index: only lanes x..z are used.
+      Float4 low = load4(&ref.box.min.x);
+      Float4 high = load4(&ref.box.max.x);
+      Float4 position = max4((low + high - origin) * scale, zero);
       for (int axis = 0; axis < 3; ++axis) {
-        Bin& bin = bins[axis][index[axis]];
-        bin.bounds.grow(ref.box);
+        Bin& bin = bins[axis][static_cast<uint32_t>(std::min(position[axis], last))];
+        bin.min = min4(bin.min, low);
+        bin.max = max4(bin.max, high);
         bin.count++;
       }
     }
@@ -309,7 +333,8 @@ class Builder {
       for (const AxisBins& part : partial) {
         for (int axis = 0; axis < 3; ++axis) {
           for (uint32_t b = 0; b < mapping.bins; ++b) {
-            bins[axis][b].bounds.grow(part[axis][b].bounds);
+            bins[axis][b].min = min4(bins[axis][b].min, part[axis][b].min);
+            bins[axis][b].max = max4(bins[axis][b].max, part[axis][b].max);
             bins[axis][b].count += part[axis][b].count;
           }
         }
@@ -325,30 +350,40 @@ class Builder {
     return best;
   }
 
+  // Surface area of a box in bin lanes; only called on boxes that hold
+  // something (an empty one would give inf or NaN).
+  static float surfaceArea(Float4 min, Float4 max) {
+    Float4 d = max - min;
+    return 2.0f * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
+  }
+
   // SAH sweep over one axis's bins; the winner's two sides get their
   // bounds merged from the bins once, after the sweep.
   void evaluateBins(const std::array<Bin, kMaxBins>& binned, uint32_t bins, int axis,
                     float parentArea, Split& best) const {
     thread_local std::array<float, kMaxBins> rightCost;
     thread_local std::array<uint32_t, kMaxBins> rightCount;
-    Aabb right;
-    uint32_t rightTotal = 0;
+    Bin right;
     for (uint32_t b = bins - 1; b > 0; --b) {
-      right.grow(binned[b].bounds);
-      rightTotal += binned[b].count;
-      rightCost[b] = right.surfaceArea() * static_cast<float>(rightTotal);
-      rightCount[b] = rightTotal;
+      right.min = min4(right.min, binned[b].min);
+      right.max = max4(right.max, binned[b].max);
+      right.count += binned[b].count;
+      rightCount[b] = right.count;
+      if (right.count > 0) {
+        rightCost[b] = surfaceArea(right.min, right.max) * static_cast<float>(right.count);
+      }
     }
-    Aabb left;
-    uint32_t leftCount = 0;
+    Bin left;
     int bestBin = -1;
     for (uint32_t b = 0; b + 1 < bins; ++b) {
-      left.grow(binned[b].bounds);
-      leftCount += binned[b].count;
-      if (leftCount == 0 || rightCount[b + 1] == 0) continue;
-      float cost =
-          options_.traversalCost +
-          (left.surfaceArea() * static_cast<float>(leftCount) + rightCost[b + 1]) / parentArea;
+      left.min = min4(left.min, binned[b].min);
+      left.max = max4(left.max, binned[b].max);
+      left.count += binned[b].count;
+      if (left.count == 0 || rightCount[b + 1] == 0) continue;
+      float cost = options_.traversalCost +
+                   (surfaceArea(left.min, left.max) * static_cast<float>(left.count) +
+                    rightCost[b + 1]) /
+                       parentArea;
       if (cost < best.cost) {
         best.cost = cost;
         bestBin = static_cast<int>(b + 1);
@@ -357,11 +392,14 @@ class Builder {
     if (bestBin < 0) return;
     best.axis = axis;
     best.bin = static_cast<uint32_t>(bestBin);
-    best.left = {};
-    best.right = {};
+    Bin sides[2];
     for (uint32_t b = 0; b < bins; ++b) {
-      (b < best.bin ? best.left : best.right).boxes.grow(binned[b].bounds);
+      Bin& side = sides[b < best.bin ? 0 : 1];
+      side.min = min4(side.min, binned[b].min);
+      side.max = max4(side.max, binned[b].max);
     }
+    best.left = {sides[0].bounds(), {}};
+    best.right = {sides[1].bounds(), {}};
   }
 
   std::vector<PrimRef> refs_;
