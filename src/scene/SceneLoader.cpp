@@ -615,9 +615,27 @@ fs::path resolveTexture(const JsonNode& node, const fs::path& sceneDir) {
   return resolveRelative(node, sceneDir, "texture");
 }
 
-// Family A: `kr`. Family B: `reflectivity`, which counts only when `isreflective` is true.
+// TsFreddie's files may name a texture ("checkerboard") where a weight belongs.
+std::optional<JsonNode> withoutTextureWeight(std::optional<JsonNode> node) {
+  if (node && node->raw().is_string()) {
+    node->warn("ignored: a texture as a weight is not supported");
+    return std::nullopt;
+  }
+  return node;
+}
+
+// One of two alias keys, the second of which may be a texture name (ignored).
+std::optional<JsonNode> weightOrAlias(JsonObject& material, const char* key, const char* alias) {
+  std::optional<JsonNode> node = material.optional(key);
+  std::optional<JsonNode> other = withoutTextureWeight(material.optional(alias));
+  if (node && other) other->fail("conflicts with '" + node->path() + "': give only one of these aliases");
+  return node ? node : other;
+}
+
+// Family A: `kr` (TsFreddie: `metallic`). Family B: `reflectivity`, which
+// counts only when `isreflective` is true.
 float readReflectivity(JsonObject& material) {
-  const std::optional<JsonNode> kr = material.optionalOneOf({"kr", "metallic"});
+  const std::optional<JsonNode> kr = weightOrAlias(material, "kr", "metallic");
   const std::optional<JsonNode> isReflective = material.optional("isreflective");
   const std::optional<JsonNode> reflectivity = material.optional("reflectivity");
   if (kr && (isReflective || reflectivity)) {
@@ -632,7 +650,7 @@ float readReflectivity(JsonObject& material) {
 
 // Family A: `kt` weight. Family B: `isrefractive` means fully transmissive.
 void readRefraction(JsonObject& material, Material& out) {
-  const std::optional<JsonNode> kt = material.optionalOneOf({"kt", "transmit"});
+  const std::optional<JsonNode> kt = weightOrAlias(material, "kt", "transmit");
   const std::optional<JsonNode> isRefractive = material.optional("isrefractive");
   if (kt && isRefractive) kt->fail("conflicts with 'isrefractive': give one transmission weight");
   if (kt) out.transmission = kt->floatInRange(0.0f, 1.0f);
