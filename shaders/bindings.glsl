@@ -41,11 +41,38 @@ vec4 itemRow(uint index, uint row) {
   return texelFetch(itemTexels, int(index * RT_TEXELS_PER_ITEM + row));
 }
 
-layout(std430, set = 0, binding = RT_BINDING_MATERIALS) readonly buffer MaterialBuffer {
-  GpuMaterial materials[];
-};
-layout(std430, set = 0, binding = RT_BINDING_POINT_LIGHTS) readonly buffer PointLightBuffer {
-  GpuPointLight pointLights[];
-};
+// Materials and point lights: texel buffers too (read at every hit and for
+// every light).
+layout(set = 0, binding = RT_BINDING_MATERIALS) uniform usamplerBuffer materialTexels;
+layout(set = 0, binding = RT_BINDING_POINT_LIGHTS) uniform samplerBuffer pointLightTexels;
+
+// Texel `row` (0..4) of material `index` (see GpuMaterial).
+uvec4 materialRow(uint index, uint row) {
+  return texelFetch(materialTexels, int(index * RT_TEXELS_PER_MATERIAL + row));
+}
+
+GpuMaterial loadMaterial(uint index) {
+  vec4 diffuse = uintBitsToFloat(materialRow(index, 0u));
+  vec4 specular = uintBitsToFloat(materialRow(index, 1u));
+  vec4 emission = uintBitsToFloat(materialRow(index, 2u));
+  uvec4 optics = materialRow(index, 3u);
+  uvec4 profile = materialRow(index, 4u);
+  return GpuMaterial(diffuse.xyz, diffuse.w, specular.xyz, specular.w, emission.xyz, emission.w,
+                     uintBitsToFloat(optics.x), uintBitsToFloat(optics.y),
+                     uintBitsToFloat(optics.z), int(optics.w), profile.x, profile.y, profile.z,
+                     profile.w);
+}
+
+// Texel `row` (0..2) of point light `index` (see GpuPointLight).
+vec4 pointLightRow(uint index, uint row) {
+  return texelFetch(pointLightTexels, int(index * RT_TEXELS_PER_POINT_LIGHT + row));
+}
+
+GpuPointLight loadPointLight(uint index) {
+  vec4 position = pointLightRow(index, 0u);
+  vec4 diffuse = pointLightRow(index, 1u);
+  vec4 specular = pointLightRow(index, 2u);
+  return GpuPointLight(position.xyz, position.w, diffuse.xyz, diffuse.w, specular.xyz, specular.w);
+}
 
 #endif
