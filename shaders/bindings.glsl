@@ -6,8 +6,44 @@
 // its std140 layout is its std430 one. (CPU drivers read storage buffers
 // lane by lane inside loops and branches, even at a shared index.)
 layout(std140, set = 0, binding = RT_BINDING_SCENE_INFO) uniform SceneInfoBlock {
-  GpuSceneInfo sceneInfo;
+  GpuSceneInfo sceneInfoBlock;
 };
+
+// Uniform and push-constant values never decide a branch or a loop count
+// directly. Lavapipe (Mesa 22.x) "inlines" such values: it bakes them into
+// a recompiled kernel each time they may have changed, which is at every
+// dispatch (push constants are set and descriptor sets bound each time):
+// 20-30 ms of driver work per dispatch while the worker threads wait, and on
+// a scene's first render a full compile per dispatch. Passed through
+// opaqueZero(), which is 0 in every invocation but nothing a compiler can
+// fold, they are out of its reach, and the kernel compiles once, when its
+// pipeline is created. The bits are unchanged, so results are too.
+uint opaqueZero() { return min(gl_NumWorkGroups.z, 1u) - 1u; }  // a dispatch has >= 1 group
+
+uint opaqueUint(uint value, uint zero) { return value + zero; }
+uvec2 opaqueUint(uvec2 value, uint zero) { return value + zero; }
+float opaqueFloat(float value, uint zero) { return uintBitsToFloat(floatBitsToUint(value) + zero); }
+vec3 opaqueFloat(vec3 value, uint zero) { return uintBitsToFloat(floatBitsToUint(value) + zero); }
+
+// The scene constants every function reads: sceneInfoBlock through
+// opaqueZero(). Every kernel's main() calls loadSceneInfo() first.
+GpuSceneInfo sceneInfo;
+
+void loadSceneInfo() {
+  uint z = opaqueZero();
+  GpuSceneInfo b = sceneInfoBlock;
+  sceneInfo = GpuSceneInfo(
+      opaqueFloat(b.cameraPosition, z), opaqueFloat(b.tanHalfFovY, z),
+      opaqueFloat(b.cameraRight, z), opaqueFloat(b.aspect, z), opaqueFloat(b.cameraUp, z),
+      opaqueFloat(b.apertureRadius, z), opaqueFloat(b.cameraForward, z),
+      opaqueFloat(b.focusDistance, z), opaqueFloat(b.backgroundColor, z),
+      opaqueUint(b.maxBounces, z), opaqueFloat(b.binaryHitColor, z), opaqueUint(b.renderMode, z),
+      opaqueUint(b.width, z), opaqueUint(b.height, z), opaqueUint(b.pointLightCount, z),
+      opaqueUint(b.primitiveCount, z), opaqueUint(b.bvhNodeCount, z),
+      opaqueUint(b.lightFalloff, z), opaqueFloat(b.lightScale, z), opaqueUint(b.shadingModel, z),
+      opaqueUint(b.sphereUvPole, z), opaqueUint(b.textureCount, z),
+      opaqueUint(b.areaLightCount, z), opaqueUint(b.distributedBounces, z));
+}
 // Primitives and BVH nodes are read through texel buffers (RGBA32F, records
 // of whole texels): CPU drivers such as lavapipe gather texels with vector
 // loads but read storage buffers at divergent indices one lane at a time,
