@@ -20,12 +20,20 @@ vec3 srgbToLinear(vec3 c) {
   return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
 }
 
+// Repeat wrapping of a texel coordinate in [-size, 2 size): what
+// ((x % size) + size) % size gives, without integer division (CPU drivers
+// divide vectors one lane at a time). sampleTexture's coordinates are in
+// [-1, size]; anything else (NaN texture coordinates) stays inside the
+// texture.
+uint wrapTexel(int x, int size) {
+  x = x < 0 ? x + size : x;
+  x = x >= size ? x - size : x;
+  return uint(clamp(x, 0, size - 1));
+}
+
 vec3 fetchTexel(GpuTextureInfo info, int x, int y) {
-  // Repeat wrapping; the double modulo keeps negative coordinates in range.
-  int w = int(info.width);
-  int h = int(info.height);
-  uint tx = uint(((x % w) + w) % w);
-  uint ty = uint(((y % h) + h) % h);
+  uint tx = wrapTexel(x, int(info.width));
+  uint ty = wrapTexel(y, int(info.height));
   return srgbToLinear(unpackUnorm4x8(textureTexel(info.firstTexel + ty * info.width + tx)).rgb);
 }
 
