@@ -151,19 +151,26 @@ LightPoint pointOnCylinder(GpuEmitter piece, vec2 u) {
   return LightPoint(p, error, capSign * axis, -1.0, 1.0);
 }
 
+// Which kinds of emitter pieces the scene has (bits 1 << RT_PRIM_*, set by
+// the host): the others' code is not built, since CPU drivers run every
+// branch for all lanes.
+#ifndef RT_EMITTER_KINDS
+#define RT_EMITTER_KINDS ((1u << RT_PRIM_SPHERE) | (1u << RT_PRIM_TRIANGLE) | (1u << RT_PRIM_CYLINDER))
+#endif
+
+bool emitterKindBuilt(uint kind) { return (RT_EMITTER_KINDS & (1u << kind)) != 0u; }
+
 // A point on `light` for shading point p; u is the sample's 2D point.
 // falloffDistance < 0 means: the distance to the point itself.
 LightPoint samplePointOnLight(GpuAreaLight light, vec3 p, vec2 u) {
   GpuEmitter piece = loadEmitter(pickEmitter(light, u));
-  if (piece.kind == RT_PRIM_SPHERE && light.emitterCount == 1u) {
-    return pointOnSphere(piece.a.xyz, piece.a.w, p, u);
-  }
-  LightPoint point;
-  if (piece.kind == RT_PRIM_SPHERE) {
-    point = pointOnSphereByArea(piece.a.xyz, piece.a.w, u);
-  } else if (piece.kind == RT_PRIM_CYLINDER) {
-    point = pointOnCylinder(piece, u);
-  } else {
+  bool sphere = emitterKindBuilt(RT_PRIM_SPHERE) && piece.kind == RT_PRIM_SPHERE;
+  bool cylinder = emitterKindBuilt(RT_PRIM_CYLINDER) && piece.kind == RT_PRIM_CYLINDER;
+  if (sphere && light.emitterCount == 1u) return pointOnSphere(piece.a.xyz, piece.a.w, p, u);
+  LightPoint point = LightPoint(piece.a.xyz, 0.0, vec3(0.0, 0.0, 1.0), -1.0, 0.0);
+  if (sphere) point = pointOnSphereByArea(piece.a.xyz, piece.a.w, u);
+  if (cylinder) point = pointOnCylinder(piece, u);
+  if (emitterKindBuilt(RT_PRIM_TRIANGLE) && !sphere && !cylinder) {
     point = pointOnTriangle(piece, u);
   }
   // A Lambertian light of the same power sends 2 |cos| as much as the
