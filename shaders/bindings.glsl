@@ -6,8 +6,44 @@
 // its std140 layout is its std430 one. (CPU drivers read storage buffers
 // lane by lane inside loops and branches, even at a shared index.)
 layout(std140, set = 0, binding = RT_BINDING_SCENE_INFO) uniform SceneInfoBlock {
-  GpuSceneInfo sceneInfo;
+  GpuSceneInfo sceneInfoBlock;
 };
+
+// Uniform and push-constant values never decide a branch or a loop count
+// directly. Lavapipe (Mesa 22.x) "inlines" such values: it bakes them into
+// a recompiled kernel each time they may have changed, which is at every
+// dispatch (push constants are set and descriptor sets bound each time):
+// 20-30 ms of driver work per dispatch while the worker threads wait, and on
+// a scene's first render a full compile per dispatch. Passed through
+// opaqueZero(), which is 0 in every invocation but nothing a compiler can
+// fold, they are out of its reach, and the kernel compiles once, when its
+// pipeline is created. The bits are unchanged, so results are too.
+uint opaqueZero() { return min(gl_NumWorkGroups.z, 1u) - 1u; }  // a dispatch has >= 1 group
+
+uint opaqueUint(uint value, uint zero) { return value + zero; }
+uvec2 opaqueUint(uvec2 value, uint zero) { return value + zero; }
+float opaqueFloat(float value, uint zero) { return uintBitsToFloat(floatBitsToUint(value) + zero); }
+vec3 opaqueFloat(vec3 value, uint zero) { return uintBitsToFloat(floatBitsToUint(value) + zero); }
+
+// The scene constants every function reads: sceneInfoBlock through
+// opaqueZero(). Every kernel's main() calls loadSceneInfo() first.
+GpuSceneInfo sceneInfo;
+
+void loadSceneInfo() {
+  uint z = opaqueZero();
+  GpuSceneInfo b = sceneInfoBlock;
+  sceneInfo = GpuSceneInfo(
+      opaqueFloat(b.cameraPosition, z), opaqueFloat(b.tanHalfFovY, z),
+      opaqueFloat(b.cameraRight, z), opaqueFloat(b.aspect, z), opaqueFloat(b.cameraUp, z),
+      opaqueFloat(b.apertureRadius, z), opaqueFloat(b.cameraForward, z),
+      opaqueFloat(b.focusDistance, z), opaqueFloat(b.backgroundColor, z),
+      opaqueUint(b.maxBounces, z), opaqueFloat(b.binaryHitColor, z), opaqueUint(b.renderMode, z),
+      opaqueUint(b.width, z), opaqueUint(b.height, z), opaqueUint(b.pointLightCount, z),
+      opaqueUint(b.primitiveCount, z), opaqueUint(b.bvhNodeCount, z),
+      opaqueUint(b.lightFalloff, z), opaqueFloat(b.lightScale, z), opaqueUint(b.shadingModel, z),
+      opaqueUint(b.sphereUvPole, z), opaqueUint(b.textureCount, z),
+      opaqueUint(b.areaLightCount, z), opaqueUint(b.distributedBounces, z));
+}
 // Primitives and BVH nodes are read through texel buffers (RGBA32F, records
 // of whole texels): CPU drivers such as lavapipe gather texels with vector
 // loads but read storage buffers at divergent indices one lane at a time,
@@ -41,11 +77,38 @@ vec4 itemRow(uint index, uint row) {
   return texelFetch(itemTexels, int(index * RT_TEXELS_PER_ITEM + row));
 }
 
-layout(std430, set = 0, binding = RT_BINDING_MATERIALS) readonly buffer MaterialBuffer {
-  GpuMaterial materials[];
-};
-layout(std430, set = 0, binding = RT_BINDING_POINT_LIGHTS) readonly buffer PointLightBuffer {
-  GpuPointLight pointLights[];
-};
+// Materials and point lights: texel buffers too (read at every hit and for
+// every light).
+layout(set = 0, binding = RT_BINDING_MATERIALS) uniform usamplerBuffer materialTexels;
+layout(set = 0, binding = RT_BINDING_POINT_LIGHTS) uniform samplerBuffer pointLightTexels;
+
+// Texel `row` (0..4) of material `index` (see GpuMaterial).
+uvec4 materialRow(uint index, uint row) {
+  return texelFetch(materialTexels, int(index * RT_TEXELS_PER_MATERIAL + row));
+}
+
+GpuMaterial loadMaterial(uint index) {
+  vec4 diffuse = uintBitsToFloat(materialRow(index, 0u));
+  vec4 specular = uintBitsToFloat(materialRow(index, 1u));
+  vec4 emission = uintBitsToFloat(materialRow(index, 2u));
+  uvec4 optics = materialRow(index, 3u);
+  uvec4 profile = materialRow(index, 4u);
+  return GpuMaterial(diffuse.xyz, diffuse.w, specular.xyz, specular.w, emission.xyz, emission.w,
+                     uintBitsToFloat(optics.x), uintBitsToFloat(optics.y),
+                     uintBitsToFloat(optics.z), int(optics.w), profile.x, profile.y, profile.z,
+                     profile.w);
+}
+
+// Texel `row` (0..2) of point light `index` (see GpuPointLight).
+vec4 pointLightRow(uint index, uint row) {
+  return texelFetch(pointLightTexels, int(index * RT_TEXELS_PER_POINT_LIGHT + row));
+}
+
+GpuPointLight loadPointLight(uint index) {
+  vec4 position = pointLightRow(index, 0u);
+  vec4 diffuse = pointLightRow(index, 1u);
+  vec4 specular = pointLightRow(index, 2u);
+  return GpuPointLight(position.xyz, position.w, diffuse.xyz, diffuse.w, specular.xyz, specular.w);
+}
 
 #endif

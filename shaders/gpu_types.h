@@ -1,6 +1,6 @@
 // The one definition of every structure the host shares with the shaders.
 // Included by C++ (src/render, src/gpu, tests) and by GLSL (shaders/*.comp).
-// Layout rule: std430 everywhere (storage buffers and push constants); every
+// Layout rule: std430 everywhere (buffers and push constants); every
 // vec3 starts on a 16-byte boundary and is followed by a 4-byte scalar, so the
 // C++ (glm, 4-byte aligned) and GLSL layouts coincide. The size asserts below
 // catch any drift at compile time.
@@ -22,8 +22,12 @@ using uint = uint32_t;
   static_assert(sizeof(T) % 16 == 0 || sizeof(T) < 16, #T               \
                 ": array stride must be a multiple of "                 \
                 "16")
+// A record read from a texel buffer as `texels` RGBA32 texels.
+#define RT_ASSERT_TEXELS(T, texels) \
+  static_assert(sizeof(T) == (texels) * 16, #T ": not a whole number of RGBA32 texels")
 #else
 #define RT_ASSERT_STD430_SIZE(T, bytes)
+#define RT_ASSERT_TEXELS(T, texels)
 #endif
 
 // Descriptor set 0 bindings of the render and intersection kernels.
@@ -101,6 +105,7 @@ struct GpuPrimitive {
 };
 RT_ASSERT_STD430_SIZE(GpuPrimitive, 64);
 #define RT_TEXELS_PER_PRIMITIVE 4u  // read as RGBA32F texels (bindings.glsl)
+RT_ASSERT_TEXELS(GpuPrimitive, RT_TEXELS_PER_PRIMITIVE);
 
 // ---- Acceleration structure (src/render/FlatScene, shaders/traverse.glsl) ----
 // Two levels: a top-level BVH whose leaves are single items (a shape's
@@ -131,6 +136,7 @@ struct GpuBvhNode {
 };
 RT_ASSERT_STD430_SIZE(GpuBvhNode, 32);
 #define RT_TEXELS_PER_BVH_NODE 2u
+RT_ASSERT_TEXELS(GpuBvhNode, RT_TEXELS_PER_BVH_NODE);
 #define RT_REF_LEAF 0x80000000u
 #define RT_REF_COUNT_SHIFT 27u
 #define RT_REF_MAX_LEAF_SIZE 15u
@@ -149,6 +155,7 @@ struct GpuItem {
 };
 RT_ASSERT_STD430_SIZE(GpuItem, 48);
 #define RT_TEXELS_PER_ITEM 3u
+RT_ASSERT_TEXELS(GpuItem, RT_TEXELS_PER_ITEM);
 
 // GpuPrimitive of kind RT_PRIM_INSTANCE (shading data of a mesh instance):
 // a, b, c are the rows of the world-to-object matrix; flags holds
@@ -177,6 +184,11 @@ struct GpuMaterial {
   uint pad2;
 };
 RT_ASSERT_STD430_SIZE(GpuMaterial, 80);
+// Read as RGBA32UI texels (bindings.glsl loadMaterial): rows diffuse/kd,
+// specular/ks, emission/exponent, reflectivity/transmission/ior/texture,
+// profile/pads.
+#define RT_TEXELS_PER_MATERIAL 5u
+RT_ASSERT_TEXELS(GpuMaterial, RT_TEXELS_PER_MATERIAL);
 
 // How an area light's surface emits (GpuMaterial::emissionProfile,
 // GpuAreaLight::profile). Spheres are always lamps (Lambertian).
@@ -202,6 +214,8 @@ struct GpuAreaLight {
   uint pad0;
 };
 RT_ASSERT_STD430_SIZE(GpuAreaLight, 48);
+#define RT_TEXELS_PER_AREA_LIGHT 3u  // RGBA32UI texels (lights.glsl loadAreaLight)
+RT_ASSERT_TEXELS(GpuAreaLight, RT_TEXELS_PER_AREA_LIGHT);
 
 // GpuEmitter::kind (the RT_PRIM_* numbers)
 //   sphere:   a = (center, radius)
@@ -217,6 +231,8 @@ struct GpuEmitter {
   uint pad0;
 };
 RT_ASSERT_STD430_SIZE(GpuEmitter, 64);
+#define RT_TEXELS_PER_EMITTER 4u  // RGBA32UI texels (lights.glsl loadEmitter)
+RT_ASSERT_TEXELS(GpuEmitter, RT_TEXELS_PER_EMITTER);
 // ---- end of area lights ----
 
 // Per-vertex shading data of triangles (meshes, and quads/triangles for UVs).
@@ -229,9 +245,11 @@ struct GpuVertex {
   float pad2;
 };
 RT_ASSERT_STD430_SIZE(GpuVertex, 32);
+#define RT_TEXELS_PER_VERTEX 2u  // RGBA32F texels (surface.glsl loadVertex)
+RT_ASSERT_TEXELS(GpuVertex, RT_TEXELS_PER_VERTEX);
 
 // Where one texture's texels start in the texel buffer (RGBA8, sRGB, one uint
-// per texel, rows top to bottom).
+// per texel, rows top to bottom; read as an R32UI texel buffer).
 struct GpuTextureInfo {
   uint firstTexel;
   uint width;
@@ -239,6 +257,8 @@ struct GpuTextureInfo {
   uint pad0;
 };
 RT_ASSERT_STD430_SIZE(GpuTextureInfo, 16);
+#define RT_TEXELS_PER_TEXTURE_INFO 1u  // one RGBA32UI texel (textures.glsl)
+RT_ASSERT_TEXELS(GpuTextureInfo, RT_TEXELS_PER_TEXTURE_INFO);
 
 struct GpuPointLight {
   vec3 position;
@@ -249,6 +269,8 @@ struct GpuPointLight {
   float pad2;
 };
 RT_ASSERT_STD430_SIZE(GpuPointLight, 48);
+#define RT_TEXELS_PER_POINT_LIGHT 3u  // RGBA32F texels (bindings.glsl loadPointLight)
+RT_ASSERT_TEXELS(GpuPointLight, RT_TEXELS_PER_POINT_LIGHT);
 
 // Per-scene constants (one record in a storage buffer).
 struct GpuSceneInfo {

@@ -148,7 +148,7 @@ DepthLimits depthLimits() {
 // Everything a path does at a hit: emitted and direct light, continuations.
 void shadeHit(inout RayStack stack, inout vec3 radiance, PendingRay job, SurfaceHit hit,
               uvec2 pixelSample, DepthLimits limits) {
-  GpuMaterial material = materials[hitMaterial(hit)];
+  GpuMaterial material = loadMaterial(hitMaterial(hit));
   SurfacePoint surface = surfaceAt(job.ray, hit);
   bool entering = dot(job.ray.direction, surface.geometricNormal) < 0.0;
   faceViewer(surface, -job.ray.direction);

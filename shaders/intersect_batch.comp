@@ -17,6 +17,7 @@ layout(std430, set = 0, binding = RT_BINDING_HITS) writeonly buffer HitBuffer { 
 #include "traverse.glsl"
 
 void main() {
+  loadSceneInfo();
   uint index = gl_GlobalInvocationID.x;
   if (index >= batch.rayCount) return;
   GpuRay query = rays[index];

@@ -5,12 +5,37 @@
 #define RT_LIGHTS_GLSL
 
 #ifdef RT_FEATURE_AREA_LIGHTS
-layout(std430, set = 0, binding = RT_BINDING_AREA_LIGHTS) readonly buffer AreaLightBuffer {
-  GpuAreaLight areaLights[];
-};
-layout(std430, set = 0, binding = RT_BINDING_EMITTERS) readonly buffer EmitterBuffer {
-  GpuEmitter emitters[];
-};
+// Texel buffers (RGBA32UI), read per light sample.
+layout(set = 0, binding = RT_BINDING_AREA_LIGHTS) uniform usamplerBuffer areaLightTexels;
+layout(set = 0, binding = RT_BINDING_EMITTERS) uniform usamplerBuffer emitterTexels;
+
+// Texel `row` (0..2) of area light `index` (see GpuAreaLight).
+uvec4 areaLightRow(uint index, uint row) {
+  return texelFetch(areaLightTexels, int(index * RT_TEXELS_PER_AREA_LIGHT + row));
+}
+
+GpuAreaLight loadAreaLight(uint index) {
+  uvec4 diffuse = areaLightRow(index, 0u);
+  uvec4 specular = areaLightRow(index, 1u);
+  uvec4 rest = areaLightRow(index, 2u);
+  return GpuAreaLight(uintBitsToFloat(diffuse.xyz), diffuse.w, uintBitsToFloat(specular.xyz),
+                      specular.w, uintBitsToFloat(rest.x), rest.y, rest.z, rest.w);
+}
+
+// Texel `row` (0..3) of emitter `index` (see GpuEmitter): a, b, c, then
+// kind/cdfEnd/area.
+uvec4 emitterRow(uint index, uint row) {
+  return texelFetch(emitterTexels, int(index * RT_TEXELS_PER_EMITTER + row));
+}
+
+float emitterCdfEnd(uint index) { return uintBitsToFloat(emitterRow(index, 3u).y); }
+
+GpuEmitter loadEmitter(uint index) {
+  uvec4 info = emitterRow(index, 3u);
+  return GpuEmitter(uintBitsToFloat(emitterRow(index, 0u)), uintBitsToFloat(emitterRow(index, 1u)),
+                    uintBitsToFloat(emitterRow(index, 2u)), info.x, uintBitsToFloat(info.y),
+                    uintBitsToFloat(info.z), info.w);
+}
 
 // A point on a light seen from a shading point, standing for a point light
 // whose share of the light's intensity is `weight` times that of a point
@@ -31,14 +56,14 @@ uint pickEmitter(GpuAreaLight light, inout vec2 u) {
   uint high = light.firstEmitter + light.emitterCount - 1u;
   while (low < high) {
     uint middle = (low + high) / 2u;
-    if (u.x < emitters[middle].cdfEnd) {
+    if (u.x < emitterCdfEnd(middle)) {
       high = middle;
     } else {
       low = middle + 1u;
     }
   }
-  float start = low == light.firstEmitter ? 0.0 : emitters[low - 1u].cdfEnd;
-  float width = emitters[low].cdfEnd - start;
+  float start = low == light.firstEmitter ? 0.0 : emitterCdfEnd(low - 1u);
+  float width = emitterCdfEnd(low) - start;
   u.x = width > 0.0 ? clamp((u.x - start) / width, 0.0, 0.99999994) : 0.0;
   return low;
 }
@@ -126,19 +151,26 @@ LightPoint pointOnCylinder(GpuEmitter piece, vec2 u) {
   return LightPoint(p, error, capSign * axis, -1.0, 1.0);
 }
 
+// Which kinds of emitter pieces the scene has (bits 1 << RT_PRIM_*, set by
+// the host): the others' code is not built, since CPU drivers run every
+// branch for all lanes.
+#ifndef RT_EMITTER_KINDS
+#define RT_EMITTER_KINDS ((1u << RT_PRIM_SPHERE) | (1u << RT_PRIM_TRIANGLE) | (1u << RT_PRIM_CYLINDER))
+#endif
+
+bool emitterKindBuilt(uint kind) { return (RT_EMITTER_KINDS & (1u << kind)) != 0u; }
+
 // A point on `light` for shading point p; u is the sample's 2D point.
 // falloffDistance < 0 means: the distance to the point itself.
 LightPoint samplePointOnLight(GpuAreaLight light, vec3 p, vec2 u) {
-  GpuEmitter piece = emitters[pickEmitter(light, u)];
-  if (piece.kind == RT_PRIM_SPHERE && light.emitterCount == 1u) {
-    return pointOnSphere(piece.a.xyz, piece.a.w, p, u);
-  }
-  LightPoint point;
-  if (piece.kind == RT_PRIM_SPHERE) {
-    point = pointOnSphereByArea(piece.a.xyz, piece.a.w, u);
-  } else if (piece.kind == RT_PRIM_CYLINDER) {
-    point = pointOnCylinder(piece, u);
-  } else {
+  GpuEmitter piece = loadEmitter(pickEmitter(light, u));
+  bool sphere = emitterKindBuilt(RT_PRIM_SPHERE) && piece.kind == RT_PRIM_SPHERE;
+  bool cylinder = emitterKindBuilt(RT_PRIM_CYLINDER) && piece.kind == RT_PRIM_CYLINDER;
+  if (sphere && light.emitterCount == 1u) return pointOnSphere(piece.a.xyz, piece.a.w, p, u);
+  LightPoint point = LightPoint(piece.a.xyz, 0.0, vec3(0.0, 0.0, 1.0), -1.0, 0.0);
+  if (sphere) point = pointOnSphereByArea(piece.a.xyz, piece.a.w, u);
+  if (cylinder) point = pointOnCylinder(piece, u);
+  if (emitterKindBuilt(RT_PRIM_TRIANGLE) && !sphere && !cylinder) {
     point = pointOnTriangle(piece, u);
   }
   // A Lambertian light of the same power sends 2 |cos| as much as the

@@ -27,7 +27,7 @@ float shadowTransmittance(Ray ray, float tMax) {
   for (int crossing = 0; crossing < RT_MAX_SHADOW_CROSSINGS; ++crossing) {
     SurfaceHit hit;
     if (!closestHit(ray, 0.0, tMax - travelled, hit)) return transmittance;
-    GpuMaterial blocker = materials[hitMaterial(hit)];
+    GpuMaterial blocker = loadMaterial(hitMaterial(hit));
     float cosine = dot(ray.direction, hit.normal);
     float eta = cosine < 0.0 ? 1.0 / blocker.ior : blocker.ior;
     float cosTransmitted;
@@ -108,7 +108,7 @@ vec3 pointLighting(ShadingContext context, bool throughGlass) {
   vec3 p = context.surface.position;
   vec3 radiance = vec3(0.0);
   for (uint i = 0u; i < sceneInfo.pointLightCount; ++i) {
-    GpuPointLight light = pointLights[i];
+    GpuPointLight light = loadPointLight(i);
     vec3 toLight = light.position - p;
     float distance = length(toLight);
     if (!(distance > 0.0)) continue;
@@ -128,7 +128,7 @@ vec3 pointLighting(ShadingContext context, bool throughGlass) {
 // sample, each lighting like a point light with its share of the intensity.
 vec3 areaLighting(ShadingContext context, uint lightIndex, uvec2 pixelSample, uint vertexDepth,
                   bool throughGlass) {
-  GpuAreaLight light = areaLights[lightIndex];
+  GpuAreaLight light = loadAreaLight(lightIndex);
   vec3 p = context.surface.position;
   uint dimension = vertexDimension(vertexDepth, RT_VERTEX_DIM_LIGHTS + 2u * lightIndex);
   vec3 radiance = vec3(0.0);

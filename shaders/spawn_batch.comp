@@ -32,6 +32,7 @@ GpuHit record(bool found, SurfaceHit hit) {
 }
 
 void main() {
+  loadSceneInfo();
   uint probe = gl_GlobalInvocationID.x;
   if (probe >= batch.rayCount) return;
   GpuRay first = rays[2u * probe];

@@ -3,9 +3,18 @@
 #define RT_SURFACE_GLSL
 
 #ifdef RT_FEATURE_VERTICES
-layout(std430, set = 0, binding = RT_BINDING_VERTICES) readonly buffer VertexBuffer {
-  GpuVertex vertices[];
-};
+layout(set = 0, binding = RT_BINDING_VERTICES) uniform samplerBuffer vertexTexels;
+
+// Texel `row` (0..1) of vertex `index` (see GpuVertex): normal/u, then v.
+vec4 vertexRow(uint index, uint row) {
+  return texelFetch(vertexTexels, int(index * RT_TEXELS_PER_VERTEX + row));
+}
+
+GpuVertex loadVertex(uint index) {
+  vec4 normalU = vertexRow(index, 0u);
+  vec4 rest = vertexRow(index, 1u);
+  return GpuVertex(normalU.xyz, normalU.w, rest.x, rest.y, rest.z, rest.w);
+}
 #endif
 
 struct SurfacePoint {
@@ -52,9 +61,9 @@ vec2 cylinderUv(vec3 p, vec4 centerRadius, vec4 axisHalfHeight) {
 // `normalMatrix` takes vertex normals to world space.
 void interpolateVertices(uvec3 indices, bool smoothNormals, mat3 normalMatrix, vec2 barycentric,
                          inout SurfacePoint surface) {
-  GpuVertex v0 = vertices[indices.x];
-  GpuVertex v1 = vertices[indices.y];
-  GpuVertex v2 = vertices[indices.z];
+  GpuVertex v0 = loadVertex(indices.x);
+  GpuVertex v1 = loadVertex(indices.y);
+  GpuVertex v2 = loadVertex(indices.z);
   vec3 weights = vec3(1.0 - barycentric.x - barycentric.y, barycentric);
   surface.uv = weights.x * vec2(v0.u, v0.v) + weights.y * vec2(v1.u, v1.v) +
                weights.z * vec2(v2.u, v2.v);

@@ -4,28 +4,41 @@
 #define RT_TEXTURES_GLSL
 
 #ifdef RT_FEATURE_TEXTURES
-layout(std430, set = 0, binding = RT_BINDING_TEXTURE_INFO) readonly buffer TextureInfoBuffer {
-  GpuTextureInfo textureInfos[];
-};
-layout(std430, set = 0, binding = RT_BINDING_TEXELS) readonly buffer TexelBuffer {
-  uint texels[];  // RGBA8, sRGB-encoded
-};
+// Texel buffers: the table (RGBA32UI, one GpuTextureInfo a texel) and every
+// texture's texels (R32UI, each a packed RGBA8 sRGB-encoded texel).
+layout(set = 0, binding = RT_BINDING_TEXTURE_INFO) uniform usamplerBuffer textureInfoTexels;
+layout(set = 0, binding = RT_BINDING_TEXELS) uniform usamplerBuffer textureTexels;
+
+GpuTextureInfo loadTextureInfo(int index) {
+  uvec4 info = texelFetch(textureInfoTexels, index * int(RT_TEXELS_PER_TEXTURE_INFO));
+  return GpuTextureInfo(info.x, info.y, info.z, info.w);
+}
+
+uint textureTexel(uint index) { return texelFetch(textureTexels, int(index)).x; }
 
 vec3 srgbToLinear(vec3 c) {
   return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
 }
 
+// Repeat wrapping of a texel coordinate in [-size, 2 size): what
+// ((x % size) + size) % size gives, without integer division (CPU drivers
+// divide vectors one lane at a time). sampleTexture's coordinates are in
+// [-1, size]; anything else (NaN texture coordinates) stays inside the
+// texture.
+uint wrapTexel(int x, int size) {
+  x = x < 0 ? x + size : x;
+  x = x >= size ? x - size : x;
+  return uint(clamp(x, 0, size - 1));
+}
+
 vec3 fetchTexel(GpuTextureInfo info, int x, int y) {
-  // Repeat wrapping; the double modulo keeps negative coordinates in range.
-  int w = int(info.width);
-  int h = int(info.height);
-  uint tx = uint(((x % w) + w) % w);
-  uint ty = uint(((y % h) + h) % h);
-  return srgbToLinear(unpackUnorm4x8(texels[info.firstTexel + ty * info.width + tx]).rgb);
+  uint tx = wrapTexel(x, int(info.width));
+  uint ty = wrapTexel(y, int(info.height));
+  return srgbToLinear(unpackUnorm4x8(textureTexel(info.firstTexel + ty * info.width + tx)).rgb);
 }
 
 vec3 sampleTexture(int index, vec2 uv) {
-  GpuTextureInfo info = textureInfos[index];
+  GpuTextureInfo info = loadTextureInfo(index);
   // Keep coordinates small before scaling so float precision holds far from 0.
   vec2 wrapped = uv - floor(uv);
   vec2 pixel = wrapped * vec2(info.width, info.height) - 0.5;

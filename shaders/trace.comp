@@ -8,7 +8,9 @@
 
 layout(local_size_x = RT_WORKGROUP_SIZE_X, local_size_y = RT_WORKGROUP_SIZE_Y) in;
 
-layout(push_constant) uniform FrameParamsBlock { GpuFrameParams frame; };
+layout(push_constant) uniform FrameParamsBlock { GpuFrameParams frameBlock; };
+// frameBlock through opaqueZero() (see bindings.glsl), set first in main().
+GpuFrameParams frame;
 
 // Storage texel buffers (one RGBA32F texel per pixel): CPU drivers read a
 // storage buffer lane by lane, an image with one gather.
@@ -37,7 +39,18 @@ layout(std430, set = 0, binding = RT_BINDING_RAY_COUNTER) buffer RayCounterBuffe
 #include "integrator.glsl"
 #include "binary.glsl"
 
+void loadFrameParams() {
+  uint z = opaqueZero();
+  GpuFrameParams b = frameBlock;
+  frame = GpuFrameParams(opaqueUint(b.tileOrigin, z), opaqueUint(b.tileSize, z),
+                         opaqueUint(b.sampleBegin, z), opaqueUint(b.sampleCount, z),
+                         opaqueUint(b.samplesTotal, z), opaqueUint(b.seed, z),
+                         opaqueUint(b.samplerKind, z), 0u, 0u, 0u);
+}
+
 void main() {
+  loadSceneInfo();
+  loadFrameParams();
   uvec2 local = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(local, frame.tileSize))) return;
   uvec2 pixel = frame.tileOrigin + local;

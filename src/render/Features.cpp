@@ -46,9 +46,13 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat) {
       scene.camera.type == CameraType::ThinLens && scene.camera.apertureRadius > 0.0f;
   bool lit = scene.settings.mode != RenderMode::Binary;
   features.areaLights = lit && !flat.areaLights.empty();
+  if (features.areaLights) {
+    for (const gpu::GpuEmitter& emitter : flat.emitters)
+      features.emitterKinds |= 1u << emitter.kind;
+  }
   features.pathTracer = scene.settings.mode == RenderMode::PathTracer;
-  features.diffuseBounces = features.pathTracer ? scene.settings.maxBounces > 0
-                                                : lit && flat.info.distributedBounces > 0;
+  features.diffuseBounces =
+      features.pathTracer ? scene.settings.maxBounces > 0 : lit && flat.info.distributedBounces > 0;
   if (features.pathTracer) {
     features.whittedStackSize = 1;  // one path: each hit follows one continuation
   } else if (features.diffuseBounces) {
@@ -82,6 +86,9 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(countRays, "RT_COUNT_RAYS");
   flag(binaryOnly, "RT_BINARY_ONLY");
   if (samplerKind >= 0) result.emplace_back("RT_SAMPLER_KIND", std::to_string(samplerKind) + "u");
+  if (emitterKinds != 0) {
+    result.emplace_back("RT_EMITTER_KINDS", std::to_string(emitterKinds) + "u");
+  }
   result.emplace_back("RT_WHITTED_STACK_SIZE", std::to_string(whittedStackSize));
   return result;
 }

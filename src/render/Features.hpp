@@ -31,6 +31,9 @@ struct ShaderFeatures {
   // The pixel sampler (RT_SAMPLER_*) when one is fixed for the kernel's life,
   // so only its code is built; -1: chosen per dispatch (samplerKind).
   int samplerKind = -1;
+  // Kinds of area-light pieces (bits 1 << RT_PRIM_*), so that only their
+  // sampling code is built; 0: no area lights.
+  uint32_t emitterKinds = 0;
   uint32_t whittedStackSize = 1;  // pending rays of the ray tree
 
   ShaderDefines defines() const;

@@ -9,35 +9,21 @@
 namespace rt {
 namespace {
 
-// A storage buffer holding `items`; never empty (Vulkan forbids zero-sized
-// buffers), and checked against the device's storage buffer range.
-template <typename T>
-Buffer makeStorage(VulkanContext& context, const SceneBufferLimits& limits,
-                   const std::vector<T>& items, const char* what) {
-  VkDeviceSize bytes = std::max<VkDeviceSize>(sizeof(T), items.size() * sizeof(T));
-  VkDeviceSize limit =
-      limits.storageBytes ? limits.storageBytes : context.limits().maxStorageBufferRange;
-  if (bytes > limit) {
-    throw Error(fmt::format("scene too large: {} need {} MiB, the device allows {} MiB per buffer",
-                            what, bytes >> 20, limit >> 20));
-  }
-  Buffer buffer(context, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  if (!items.empty()) buffer.upload(items.data(), items.size() * sizeof(T));
-  return buffer;
-}
-
-// Records read as RGBA32 texels (see shaders/bindings.glsl).
-template <typename T>
+// Records read as texels of `TexelBytes` bytes each: RGBA32 for the structs
+// of gpu_types.h (see shaders/bindings.glsl), R32 for packed texture texels.
+// Never empty (Vulkan forbids zero-sized buffers), and checked against the
+// device's texel buffer limit.
+template <size_t TexelBytes = 16, typename T>
 Buffer makeTexels(VulkanContext& context, const SceneBufferLimits& limits,
                   const std::vector<T>& items, const char* what) {
-  static_assert(sizeof(T) % 16 == 0, "texel records are whole RGBA32 texels");
-  VkDeviceSize texels = std::max<VkDeviceSize>(1, items.size()) * (sizeof(T) / 16);
+  static_assert(sizeof(T) % TexelBytes == 0, "texel records are whole texels");
+  VkDeviceSize texels = std::max<VkDeviceSize>(1, items.size()) * (sizeof(T) / TexelBytes);
   VkDeviceSize limit = limits.texels ? limits.texels : context.limits().maxTexelBufferElements;
   if (texels > limit) {
     throw Error(fmt::format("scene too large: {} need {} texels, the device allows {}", what,
                             texels, limit));
   }
-  Buffer buffer(context, texels * 16, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+  Buffer buffer(context, texels * TexelBytes, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
   if (!items.empty()) buffer.upload(items.data(), items.size() * sizeof(T));
   return buffer;
 }
@@ -50,13 +36,13 @@ SceneBuffers::SceneBuffers(VulkanContext& context, const FlatScene& scene,
       primitives_(makeTexels(context, limits, scene.primitives, "primitives")),
       bvhNodes_(makeTexels(context, limits, scene.bvhNodes, "BVH nodes")),
       items_(makeTexels(context, limits, scene.items, "BVH leaf items")),
-      materials_(makeStorage(context, limits, scene.materials, "materials")),
-      pointLights_(makeStorage(context, limits, scene.pointLights, "point lights")),
-      areaLights_(makeStorage(context, limits, scene.areaLights, "area lights")),
-      emitters_(makeStorage(context, limits, scene.emitters, "area light surfaces")),
-      vertices_(makeStorage(context, limits, scene.vertices, "vertices")),
-      textureInfos_(makeStorage(context, limits, scene.textureInfos, "texture table")),
-      texels_(makeStorage(context, limits, scene.texels, "texture texels")) {
+      materials_(makeTexels(context, limits, scene.materials, "materials")),
+      pointLights_(makeTexels(context, limits, scene.pointLights, "point lights")),
+      areaLights_(makeTexels(context, limits, scene.areaLights, "area lights")),
+      emitters_(makeTexels(context, limits, scene.emitters, "area light surfaces")),
+      vertices_(makeTexels(context, limits, scene.vertices, "vertices")),
+      textureInfos_(makeTexels(context, limits, scene.textureInfos, "texture table")),
+      texels_(makeTexels<sizeof(uint32_t)>(context, limits, scene.texels, "texture texels")) {
   info_.upload(&scene.info, sizeof(scene.info));
 }
 
@@ -65,38 +51,39 @@ void SceneBuffers::bindTo(ComputeKernel& kernel) const {
   kernel.bindTexels(RT_BINDING_PRIMITIVES, primitives_, VK_FORMAT_R32G32B32A32_SFLOAT);
   kernel.bindTexels(RT_BINDING_BVH_NODES, bvhNodes_, VK_FORMAT_R32G32B32A32_UINT);
   kernel.bindTexels(RT_BINDING_ITEMS, items_, VK_FORMAT_R32G32B32A32_SFLOAT);
-  kernel.bind(RT_BINDING_MATERIALS, materials_);
-  kernel.bind(RT_BINDING_POINT_LIGHTS, pointLights_);
-  kernel.bind(RT_BINDING_AREA_LIGHTS, areaLights_);
-  kernel.bind(RT_BINDING_EMITTERS, emitters_);
-  kernel.bind(RT_BINDING_VERTICES, vertices_);
-  kernel.bind(RT_BINDING_TEXTURE_INFO, textureInfos_);
-  kernel.bind(RT_BINDING_TEXELS, texels_);
+  kernel.bindTexels(RT_BINDING_MATERIALS, materials_, VK_FORMAT_R32G32B32A32_UINT);
+  kernel.bindTexels(RT_BINDING_POINT_LIGHTS, pointLights_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  kernel.bindTexels(RT_BINDING_AREA_LIGHTS, areaLights_, VK_FORMAT_R32G32B32A32_UINT);
+  kernel.bindTexels(RT_BINDING_EMITTERS, emitters_, VK_FORMAT_R32G32B32A32_UINT);
+  kernel.bindTexels(RT_BINDING_VERTICES, vertices_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  kernel.bindTexels(RT_BINDING_TEXTURE_INFO, textureInfos_, VK_FORMAT_R32G32B32A32_UINT);
+  kernel.bindTexels(RT_BINDING_TEXELS, texels_, VK_FORMAT_R32_UINT);
 }
 
 std::vector<KernelBinding> SceneBuffers::bindings() {
   constexpr VkDescriptorType kTexels = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-  // Scene constants are a uniform buffer: CPU drivers read a storage buffer
-  // one lane at a time, even at an index every lane shares, once the read is
-  // inside a loop or branch.
+  // Scene constants are a uniform buffer, everything else texel buffers: CPU
+  // drivers read a storage buffer one lane at a time, even at an index every
+  // lane shares, once the read is inside a loop or branch.
   return {{RT_BINDING_SCENE_INFO, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
           {RT_BINDING_PRIMITIVES, kTexels},
           {RT_BINDING_BVH_NODES, kTexels},
           {RT_BINDING_ITEMS, kTexels},
-          {RT_BINDING_MATERIALS},
-          {RT_BINDING_POINT_LIGHTS},
-          {RT_BINDING_AREA_LIGHTS},
-          {RT_BINDING_EMITTERS},
-          {RT_BINDING_VERTICES},
-          {RT_BINDING_TEXTURE_INFO},
-          {RT_BINDING_TEXELS}};
+          {RT_BINDING_MATERIALS, kTexels},
+          {RT_BINDING_POINT_LIGHTS, kTexels},
+          {RT_BINDING_AREA_LIGHTS, kTexels},
+          {RT_BINDING_EMITTERS, kTexels},
+          {RT_BINDING_VERTICES, kTexels},
+          {RT_BINDING_TEXTURE_INFO, kTexels},
+          {RT_BINDING_TEXELS, kTexels}};
 }
 
 void SceneBuffers::updateInfo(const gpu::GpuSceneInfo& info) { info_.upload(&info, sizeof(info)); }
 
 size_t SceneBuffers::bytes() const {
   return info_.size() + primitives_.size() + bvhNodes_.size() + items_.size() + materials_.size() +
-         pointLights_.size() + areaLights_.size() + emitters_.size() + vertices_.size() + textureInfos_.size() + texels_.size();
+         pointLights_.size() + areaLights_.size() + emitters_.size() + vertices_.size() +
+         textureInfos_.size() + texels_.size();
 }
 
 }  // namespace rt

@@ -1,5 +1,5 @@
-// A FlatScene uploaded to GPU storage buffers, bindable to any kernel that
-// includes shaders/bindings.glsl.
+// A FlatScene uploaded to GPU texel buffers (and a uniform buffer for its
+// constants), bindable to any kernel that includes shaders/bindings.glsl.
 #pragma once
 
 #include <vector>
@@ -14,8 +14,7 @@ class VulkanContext;
 
 // Largest buffers a scene may use; 0: the device's limit (tests set less).
 struct SceneBufferLimits {
-  VkDeviceSize storageBytes = 0;  // per storage buffer (maxStorageBufferRange)
-  VkDeviceSize texels = 0;        // per texel buffer (maxTexelBufferElements)
+  VkDeviceSize texels = 0;  // per texel buffer (maxTexelBufferElements)
 };
 
 class SceneBuffers {
