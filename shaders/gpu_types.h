@@ -162,8 +162,8 @@ RT_ASSERT_TEXELS(GpuItem, RT_TEXELS_PER_ITEM);
 // RT_PRIM_HAS_VERTICES / RT_PRIM_SMOOTH of its mesh.
 #define RT_PRIM_INSTANCE 3u
 
-// Traversal stack: both levels, plus the leaves a lane parks while its leaf
-// cursor is busy.
+// Traversal stack: the farther children waiting at both levels, plus the
+// marker that ends a mesh instance (traverse.glsl).
 #define RT_BVH_STACK_SIZE (2 * RT_BVH_MAX_DEPTH + 8)
 // ---- end of acceleration structure ----
 

@@ -77,19 +77,17 @@ float edgeFunction(vec3 from, vec3 to) {
   return value;
 }
 
-// Two-sided. The normal follows the winding (v0, v1, v2); `barycentric` is
-// the weights of v1 and v2.
-bool intersectTriangle(vec3 v0, vec3 v1, vec3 v2, Ray ray, float tMin, inout float tMax,
-                       out vec3 normal, out vec2 barycentric) {
-  // Built per test: a cache of the last ray's frame saved nothing on CPU
-  // drivers, which run the refill branch for every lane anyway.
-  ShearedRay frame = shearRay(ray.direction);
-  vec3 a = shearVertex(v0, ray.origin, frame);
-  vec3 b = shearVertex(v1, ray.origin, frame);
-  vec3 c = shearVertex(v2, ray.origin, frame);
+// Two-sided, against a ray frame built once per ray (shearRay): `barycentric`
+// is the weights of v1 and v2. The normal is left to the caller.
+bool intersectTriangleSheared(vec3 v0, vec3 v1, vec3 v2, vec3 origin, ShearedRay frame,
+                              float tMin, inout float tMax, out vec2 barycentric) {
+  vec3 a = shearVertex(v0, origin, frame);
+  vec3 b = shearVertex(v1, origin, frame);
+  vec3 c = shearVertex(v2, origin, frame);
   float u = edgeFunction(b, c);
   float v = edgeFunction(c, a);
   float w = edgeFunction(a, b);
+  barycentric = vec2(0.0);
   if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return false;
   float det = u + v + w;
   if (det == 0.0) return false;  // the ray lies in the triangle's plane
@@ -97,9 +95,17 @@ bool intersectTriangle(vec3 v0, vec3 v1, vec3 v2, Ray ray, float tMin, inout flo
   float t = scaledT / det;
   if (!(t > tMin && t < tMax)) return false;
   tMax = t;
-  normal = normalize(cross(v1 - v0, v2 - v0));
   barycentric = vec2(v, w) / det;
   return true;
+}
+
+// Two-sided. The normal follows the winding (v0, v1, v2); `barycentric` is
+// the weights of v1 and v2.
+bool intersectTriangle(vec3 v0, vec3 v1, vec3 v2, Ray ray, float tMin, inout float tMax,
+                       out vec3 normal, out vec2 barycentric) {
+  normal = normalize(cross(v1 - v0, v2 - v0));
+  return intersectTriangleSheared(v0, v1, v2, ray.origin, shearRay(ray.direction), tMin, tMax,
+                                  barycentric);
 }
 #endif
 
