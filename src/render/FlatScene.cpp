@@ -21,20 +21,33 @@ namespace {
 // The colour of hit pixels in `rendermode: binary` (misses show the background).
 constexpr glm::vec3 kBinaryHitColor{1.0f, 0.0f, 0.0f};
 
+// The one corner layout of every triangle record, GpuPrimitive (a, b, c)
+// and mesh GpuItem rows alike: the corners themselves (watertight
+// intersection needs the shared floats), each with its GpuVertex index as
+// float bits in w.
+gpu::GpuItem triangleRows(const glm::vec3& v0, const glm::vec3& v1, const glm::vec3& v2,
+                          glm::uvec3 vertices = glm::uvec3(0)) {
+  return {glm::vec4(v0, glm::uintBitsToFloat(vertices.x)),
+          glm::vec4(v1, glm::uintBitsToFloat(vertices.y)),
+          glm::vec4(v2, glm::uintBitsToFloat(vertices.z))};
+}
+
+void setTriangleRows(gpu::GpuPrimitive& prim, const gpu::GpuItem& rows) {
+  prim.a = rows.row0;
+  prim.b = rows.row1;
+  prim.c = rows.row2;
+}
+
 gpu::GpuPrimitive makeTriangle(const glm::vec3& v0, const glm::vec3& v1, const glm::vec3& v2) {
   gpu::GpuPrimitive prim{};
   prim.kind = RT_PRIM_TRIANGLE;
-  prim.a = glm::vec4(v0, 0.0f);
-  prim.b = glm::vec4(v1, 0.0f);
-  prim.c = glm::vec4(v2, 0.0f);
+  setTriangleRows(prim, triangleRows(v0, v1, v2));
   return prim;
 }
 
-// Points a triangle at three GpuVertex records (indices stored as float bits).
+// Points a triangle at three GpuVertex records.
 void attachVertices(gpu::GpuPrimitive& prim, glm::uvec3 indices, bool smooth) {
-  prim.a.w = glm::uintBitsToFloat(indices.x);
-  prim.b.w = glm::uintBitsToFloat(indices.y);
-  prim.c.w = glm::uintBitsToFloat(indices.z);
+  setTriangleRows(prim, triangleRows(prim.a, prim.b, prim.c, indices));
   prim.flags |= RT_PRIM_HAS_VERTICES | (smooth ? RT_PRIM_SMOOTH : 0u);
 }
 
@@ -199,9 +212,7 @@ class MeshBuilder {
       glm::vec3 v1 = points[face.y];
       glm::vec3 v2 = points[face.z];
       glm::uvec3 corners = needsVertices ? glm::uvec3(base) + face : glm::uvec3(0);
-      triangles.push_back({glm::vec4(v0, glm::uintBitsToFloat(corners.x)),
-                           glm::vec4(v1, glm::uintBitsToFloat(corners.y)),
-                           glm::vec4(v2, glm::uintBitsToFloat(corners.z))});
+      triangles.push_back(triangleRows(v0, v1, v2, corners));
       Aabb box;
       box.grow(v0);
       box.grow(v1);
