@@ -9,28 +9,10 @@ SHARED=$2
 SCRATCH=$3
 rm -rf "$SCRATCH"
 mkdir -p "$SCRATCH"
-passed=0
-failed=0
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
-pass() { passed=$((passed + 1)); }
-fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
-
-# expect_error NAME PATTERN ARGS...: exits non-zero, prints exactly one line
-# on stderr matching PATTERN, and leaves no output file.
-expect_error() {
-  local name=$1 pattern=$2
-  shift 2
-  rm -f "$SCRATCH/out.png"
-  "$RAYTRACER" "$@" >"$SCRATCH/stdout" 2>"$SCRATCH/stderr"
-  local status=$?
-  local lines
-  lines=$(grep -vc '^warning: ' "$SCRATCH/stderr")
-  if [[ $status -eq 0 ]]; then fail "$name: exit status 0"; return; fi
-  if [[ $lines -ne 1 ]]; then fail "$name: expected one error line, got $lines: $(cat "$SCRATCH/stderr")"; return; fi
-  if ! grep -Eq -- "$pattern" "$SCRATCH/stderr"; then fail "$name: '$(cat "$SCRATCH/stderr")' does not match '$pattern'"; return; fi
-  if ls "$SCRATCH" | grep -q '^out\.png'; then fail "$name: an output file was left behind"; return; fi
-  pass
-}
+# expect_error NAME PATTERN ARGS...: one error line, and no out.png left.
+expect_error() { expect_failure out.png "$@"; }
 
 write() { printf '%s' "$2" >"$SCRATCH/$1"; }
 
@@ -218,5 +200,4 @@ else
   echo "skipped official scenes: $SHARED not found"
 fi
 
-echo "$passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish "cli tests"

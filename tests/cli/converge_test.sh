@@ -9,11 +9,7 @@ SCENES=$2
 SCRATCH=$3
 rm -rf "$SCRATCH"
 mkdir -p "$SCRATCH"
-passed=0
-failed=0
-
-pass() { passed=$((passed + 1)); }
-fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 SCENE="$SCENES/study-thinlens.json"
 COMMON=(--size 64x48 --region 8,28,24,16)
@@ -53,18 +49,8 @@ else
 fi
 
 # --- errors: one line, non-zero status, no files -------------------------
-expect_error() {
-  local name=$1 pattern=$2
-  shift 2
-  rm -f "$SCRATCH"/bad*
-  "$RAYTRACER" "$@" >/dev/null 2>"$SCRATCH/stderr"
-  local status=$?
-  if [[ $status -eq 0 ]]; then fail "$name: exit status 0"; return; fi
-  if [[ $(wc -l <"$SCRATCH/stderr") -ne 1 ]]; then fail "$name: $(cat "$SCRATCH/stderr")"; return; fi
-  if ! grep -Eq -- "$pattern" "$SCRATCH/stderr"; then fail "$name: '$(cat "$SCRATCH/stderr")'"; return; fi
-  if ls "$SCRATCH" | grep -q '^bad'; then fail "$name: files left behind"; return; fi
-  pass
-}
+# expect_error NAME PATTERN ARGS...: one error line, and no bad* files left.
+expect_error() { expect_failure bad "$@"; }
 expect_error "unknown sampler" "sampler" converge "$SCENE" --samplers random,halton --out "$SCRATCH/bad"
 expect_error "region outside" "region 60,40,10,10 does not fit in the 64x48 image" \
   converge "$SCENE" --size 64x48 --region 60,40,10,10 --out "$SCRATCH/bad"
@@ -90,5 +76,4 @@ fi
   grep -q 'at 4 spp' "$SCRATCH/stderr" && ! grep -q 'target reached' "$SCRATCH/stderr" && pass ||
   fail "--spp with --target-rmse: $(cat "$SCRATCH/stderr")"
 
-echo "converge tests: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish "converge tests"
