@@ -76,17 +76,7 @@ Scene meshScene(bool flattened, uint32_t instances = 3) {
 }
 
 std::vector<gpu::GpuRay> randomRays(size_t count, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-  std::vector<gpu::GpuRay> rays;
-  while (rays.size() < count) {
-    glm::vec3 from(unit(rng), unit(rng), unit(rng));
-    if (glm::length(from) < 0.1f || glm::length(from) > 1.0f) continue;
-    from = 6.0f * glm::normalize(from);
-    glm::vec3 to = 2.0f * glm::vec3(unit(rng), unit(rng), unit(rng));
-    rays.push_back({from, 0.0f, glm::normalize(to - from), 1e30f});
-  }
-  return rays;
+  return test::raysTowardsOrigin(count, seed, 2.0f);
 }
 
 struct Differences {

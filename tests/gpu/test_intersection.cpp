@@ -97,20 +97,8 @@ Scene sceneOf(std::vector<Geometry> geometries) {
   return scene;
 }
 
-// Rays from a sphere of radius 6 around the origin towards random points of
-// a box of half-size `targetExtent` round the origin, so many hit and many graze.
 std::vector<gpu::GpuRay> randomRays(size_t count, uint32_t seed, float targetExtent = 1.5f) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-  std::vector<gpu::GpuRay> rays;
-  while (rays.size() < count) {
-    glm::vec3 from(unit(rng), unit(rng), unit(rng));
-    if (glm::length(from) < 0.1f || glm::length(from) > 1.0f) continue;
-    from = 6.0f * glm::normalize(from);
-    glm::vec3 to = targetExtent * glm::vec3(unit(rng), unit(rng), unit(rng));
-    rays.push_back({from, 0.0f, glm::normalize(to - from), 1e30f});
-  }
-  return rays;
+  return test::raysTowardsOrigin(count, seed, targetExtent);
 }
 
 struct Agreement {

@@ -3,9 +3,25 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <memory>
+#include <random>
 
 namespace rt::test {
+
+std::vector<gpu::GpuRay> raysTowardsOrigin(size_t count, uint32_t seed, float targetExtent) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::vector<gpu::GpuRay> rays;
+  while (rays.size() < count) {
+    glm::vec3 from(unit(rng), unit(rng), unit(rng));
+    if (glm::length(from) < 0.1f || glm::length(from) > 1.0f) continue;
+    from = 6.0f * glm::normalize(from);
+    glm::vec3 to = targetExtent * glm::vec3(unit(rng), unit(rng), unit(rng));
+    rays.push_back({from, 0.0f, glm::normalize(to - from), 1e30f});
+  }
+  return rays;
+}
 
 std::optional<std::filesystem::path> sharedDir() {
   std::filesystem::path dir = RT_SHARED_DIR;

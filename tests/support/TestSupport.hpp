@@ -2,11 +2,14 @@
 // context with the validation layer on, and the shader compiler.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <vector>
 
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
+#include "gpu_types.h"
 #include "io/Image.hpp"
 
 namespace rt::test {
@@ -31,5 +34,10 @@ void savePng(const Image8& image, const std::string& name);
 
 // Box-filter downscale to the given size (for comparing with small figures).
 Image8 downscale(const Image8& image, uint32_t width, uint32_t height);
+
+// Rays from random points of a sphere of radius 6 round the origin towards
+// random points of a box of half-size `targetExtent` round the origin, so
+// that many hit and many graze whatever a test scene holds there.
+std::vector<gpu::GpuRay> raysTowardsOrigin(size_t count, uint32_t seed, float targetExtent);
 
 }  // namespace rt::test
