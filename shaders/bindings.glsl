@@ -42,7 +42,8 @@ void loadSceneInfo() {
       opaqueUint(b.primitiveCount, z), opaqueUint(b.bvhNodeCount, z),
       opaqueUint(b.lightFalloff, z), opaqueFloat(b.lightScale, z), opaqueUint(b.shadingModel, z),
       opaqueUint(b.sphereUvPole, z), opaqueUint(b.textureCount, z),
-      opaqueUint(b.areaLightCount, z), opaqueUint(b.distributedBounces, z));
+      opaqueUint(b.areaLightCount, z), opaqueUint(b.distributedBounces, z),
+      opaqueFloat(b.indirectClamp, z), 0u, 0u, 0u);
 }
 // Primitives and BVH nodes are read through texel buffers (RGBA32F, records
 // of whole texels): CPU drivers such as lavapipe gather texels with vector

@@ -24,7 +24,7 @@ using uint = uint32_t;
                 "16")
 // A record read from a texel buffer as `texels` RGBA32 texels.
 #define RT_ASSERT_TEXELS(T, texels) \
-  static_assert(sizeof(T) == (texels) * 16, #T ": not a whole number of RGBA32 texels")
+  static_assert(sizeof(T) == (texels)*16, #T ": not a whole number of RGBA32 texels")
 #else
 #define RT_ASSERT_STD430_SIZE(T, bytes)
 #define RT_ASSERT_TEXELS(T, texels)
@@ -177,7 +177,7 @@ struct GpuMaterial {
   float reflectivity;
   float transmission;
   float ior;
-  int diffuseTexture;  // index into the texture table, -1: none
+  int diffuseTexture;    // index into the texture table, -1: none
   uint emissionProfile;  // RT_EMISSION_*: how emission depends on the view
   uint pad0;
   uint pad1;
@@ -298,8 +298,14 @@ struct GpuSceneInfo {
   uint textureCount;
   uint areaLightCount;
   uint distributedBounces;  // Phong mode: sampled diffuse bounces besides the Whitted tree
+  // Largest channel one light contribution may add after a diffuse bounce
+  // (`clampindirect`, firefly clamp; 3e38: off).
+  float indirectClamp;
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
-RT_ASSERT_STD430_SIZE(GpuSceneInfo, 144);
+RT_ASSERT_STD430_SIZE(GpuSceneInfo, 160);
 
 // Push constants of one dispatch of the render kernel.
 struct GpuFrameParams {

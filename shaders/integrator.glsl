@@ -145,6 +145,21 @@ DepthLimits depthLimits() {
 #endif
 }
 
+// A light contribution to the pixel. After a diffuse bounce its largest
+// channel is held to sceneInfo.indirectClamp (`clampindirect`, 3e38: off):
+// rare bright paths (light through glass or off a mirror onto a diffuse
+// surface) then add bounded speckles instead of fireflies, at the price of
+// darker caustics.
+vec3 clampedContribution(vec3 contribution, PendingRay job) {
+#ifdef RT_FEATURE_DIFFUSE_BOUNCES
+  float limit = job.diffuseDepth > 0u ? sceneInfo.indirectClamp : RT_FAR;
+  float largest = max(contribution.r, max(contribution.g, contribution.b));
+  return largest > limit ? contribution * (limit / largest) : contribution;
+#else
+  return contribution;
+#endif
+}
+
 // Everything a path does at a hit: emitted and direct light, continuations.
 void shadeHit(inout RayStack stack, inout vec3 radiance, PendingRay job, SurfaceHit hit,
               uvec2 pixelSample, DepthLimits limits) {
@@ -153,7 +168,9 @@ void shadeHit(inout RayStack stack, inout vec3 radiance, PendingRay job, Surface
   bool entering = dot(job.ray.direction, surface.geometricNormal) < 0.0;
   faceViewer(surface, -job.ray.direction);
 #ifdef RT_FEATURE_AREA_LIGHTS
-  if (job.countsEmission) radiance += job.weight * emittedRadiance(material, hit, job.ray.direction);
+  if (job.countsEmission) {
+    radiance += clampedContribution(job.weight * emittedRadiance(material, hit, job.ray.direction), job);
+  }
 #endif
   ShadingContext context = ShadingContext(surface, -job.ray.direction, material,
                                           diffuseColorAt(material, surface.uv),
@@ -162,7 +179,8 @@ void shadeHit(inout RayStack stack, inout vec3 radiance, PendingRay job, Surface
   // With sampled diffuse bounces, light through glass arrives along them
   // (caustics); straight shadow rays through glass would count it twice.
   bool throughGlass = limits.diffuse == 0u;
-  radiance += job.weight * directLighting(context, pixelSample, vertex, throughGlass);
+  radiance +=
+      clampedContribution(job.weight * directLighting(context, pixelSample, vertex, throughGlass), job);
 #if defined(RT_FEATURE_REFLECTION) || defined(RT_FEATURE_REFRACTION) || \
     defined(RT_FEATURE_DIFFUSE_BOUNCES)
   if (job.depth >= limits.total) return;
@@ -198,7 +216,7 @@ vec3 traceRadiance(Ray primary, uvec2 pixelSample) {
     PendingRay job = stack.entries[--stack.size];
     SurfaceHit hit;
     if (!closestHit(job.ray, 0.0, RT_FAR, hit)) {
-      radiance += job.weight * sceneInfo.backgroundColor;
+      radiance += clampedContribution(job.weight * sceneInfo.backgroundColor, job);
       continue;
     }
     if (sceneInfo.renderMode == RT_MODE_BINARY) {

@@ -26,17 +26,32 @@ std::optional<int> parse(CLI::App& app, int argc, char** argv) {
   return std::nullopt;
 }
 
-CLI::Validator positiveFiniteNumber() {
+namespace {
+
+// A finite number of at least `low` (or above it when `low` is excluded).
+CLI::Validator finiteNumberAbove(double low, bool lowAllowed, const std::string& what,
+                                 const std::string& name) {
   return CLI::Validator(
-      [](const std::string& text) -> std::string {
+      [=](const std::string& text) -> std::string {
         char* end = nullptr;
         const double value = std::strtod(text.c_str(), &end);
-        if (end == text.c_str() || *end != '\0' || !std::isfinite(value) || !(value > 0.0)) {
-          return "must be a positive, finite number, got '" + text + "'";
+        const bool inRange = lowAllowed ? value >= low : value > low;
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(value) || !inRange) {
+          return "must be a " + what + ", finite number, got '" + text + "'";
         }
         return {};
       },
-      "POSITIVE");
+      name);
+}
+
+}  // namespace
+
+CLI::Validator positiveFiniteNumber() {
+  return finiteNumberAbove(0.0, false, "positive", "POSITIVE");
+}
+
+CLI::Validator nonNegativeFiniteNumber() {
+  return finiteNumberAbove(0.0, true, "non-negative", "NON-NEGATIVE");
 }
 
 Size parseSize(const std::string& text) {

@@ -28,6 +28,8 @@ struct Size {
 // Checks that an option is a positive, finite number (CLI::PositiveNumber
 // lets NaN through and prints DBL_MAX in full).
 CLI::Validator positiveFiniteNumber();
+// The same with 0 allowed.
+CLI::Validator nonNegativeFiniteNumber();
 
 // "WIDTHxHEIGHT", each side 1..kMaxImageSide; throws rt::Error naming --size.
 Size parseSize(const std::string& text);

@@ -39,6 +39,7 @@ struct CommandLine {
   std::string device;
   std::string shaderDir;
   std::optional<float> exposure;
+  std::optional<float> indirectClamp;
   std::string sampleRange;
   std::optional<double> timeBudget;
   std::optional<double> targetRmse;
@@ -145,6 +146,7 @@ int run(const CommandLine& cli) {
   rt::Scene scene = rt::loadSceneFile(cli.scenePath);
   for (const std::string& warning : scene.warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  if (cli.indirectClamp) scene.settings.indirectClamp = *cli.indirectClamp;
   rt::RenderOptions options = renderOptions(cli, scene);
   options.displayMapping = rt::toneMappingFor(scene);
   if (cli.exposure) options.displayMapping->exposure *= *cli.exposure;
@@ -215,6 +217,11 @@ int runRenderCommand(int argc, char** argv) {
                  "Folder with the GLSL shaders (default: built-in path)");
   app.add_option("--exposure", cli.exposure, "Extra exposure factor applied before tone mapping")
       ->check(rt::cli::positiveFiniteNumber());
+  app.add_option("--clamp-indirect", cli.indirectClamp,
+                 "Firefly clamp: the largest channel one light contribution may add after a "
+                 "diffuse bounce (path tracer, distributedbounces; biased; 0 = off; overrides "
+                 "the scene's clampindirect)")
+      ->check(rt::cli::nonNegativeFiniteNumber());
   app.add_option("--samples", cli.sampleRange,
                  "Render only sample indices FROM:TO of the --spp samples (merge the pieces "
                  "with `raytracer merge`; write .exr, whose alpha holds the sample count)");

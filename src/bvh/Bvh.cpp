@@ -380,10 +380,10 @@ class Builder {
       left.max = max4(left.max, binned[b].max);
       left.count += binned[b].count;
       if (left.count == 0 || rightCount[b + 1] == 0) continue;
-      float cost = options_.traversalCost +
-                   (surfaceArea(left.min, left.max) * static_cast<float>(left.count) +
-                    rightCost[b + 1]) /
-                       parentArea;
+      float cost =
+          options_.traversalCost +
+          (surfaceArea(left.min, left.max) * static_cast<float>(left.count) + rightCost[b + 1]) /
+              parentArea;
       if (cost < best.cost) {
         best.cost = cost;
         bestBin = static_cast<int>(b + 1);

@@ -15,6 +15,28 @@ std::vector<KernelBinding> storageOnly(const std::vector<uint32_t>& bindings) {
 
 }  // namespace
 
+VkPipeline createComputePipeline(VkDevice device, const std::vector<uint32_t>& spirv,
+                                 VkPipelineLayout layout) {
+  VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  moduleInfo.codeSize = spirv.size() * sizeof(uint32_t);
+  moduleInfo.pCode = spirv.data();
+  VkShaderModule module = VK_NULL_HANDLE;
+  vkCheck(vkCreateShaderModule(device, &moduleInfo, nullptr, &module), "vkCreateShaderModule");
+
+  VkComputePipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  pipelineInfo.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  pipelineInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  pipelineInfo.stage.module = module;
+  pipelineInfo.stage.pName = "main";
+  pipelineInfo.layout = layout;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkResult result =
+      vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline);
+  vkDestroyShaderModule(device, module, nullptr);
+  vkCheck(result, "vkCreateComputePipelines");
+  return pipeline;
+}
+
 ComputeKernel::ComputeKernel(VulkanContext& context, const std::vector<uint32_t>& spirv,
                              const std::vector<uint32_t>& storageBindings,
                              uint32_t pushConstantBytes)
@@ -26,11 +48,6 @@ ComputeKernel::ComputeKernel(VulkanContext& context, const std::vector<uint32_t>
     : context_(context), pushConstantBytes_(pushConstantBytes) {
   VkDevice device = context.device();
   try {
-    VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    moduleInfo.codeSize = spirv.size() * sizeof(uint32_t);
-    moduleInfo.pCode = spirv.data();
-    vkCheck(vkCreateShaderModule(device, &moduleInfo, nullptr, &module_), "vkCreateShaderModule");
-
     std::vector<VkDescriptorSetLayoutBinding> bindings;
     std::vector<VkDescriptorPoolSize> poolSizes;
     for (const KernelBinding& binding : kernelBindings) {
@@ -53,14 +70,7 @@ ComputeKernel::ComputeKernel(VulkanContext& context, const std::vector<uint32_t>
     vkCheck(vkCreatePipelineLayout(device, &pipelineLayoutInfo, nullptr, &pipelineLayout_),
             "vkCreatePipelineLayout");
 
-    VkComputePipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    pipelineInfo.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    pipelineInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    pipelineInfo.stage.module = module_;
-    pipelineInfo.stage.pName = "main";
-    pipelineInfo.layout = pipelineLayout_;
-    vkCheck(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline_),
-            "vkCreateComputePipelines");
+    pipeline_ = createComputePipeline(device, spirv, pipelineLayout_);
 
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = 1;
@@ -88,12 +98,10 @@ void ComputeKernel::destroy() {
   if (pipeline_) vkDestroyPipeline(device, pipeline_, nullptr);
   if (pipelineLayout_) vkDestroyPipelineLayout(device, pipelineLayout_, nullptr);
   if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
-  if (module_) vkDestroyShaderModule(device, module_, nullptr);
   pool_ = VK_NULL_HANDLE;
   pipeline_ = VK_NULL_HANDLE;
   pipelineLayout_ = VK_NULL_HANDLE;
   setLayout_ = VK_NULL_HANDLE;
-  module_ = VK_NULL_HANDLE;
 }
 
 void ComputeKernel::writeDescriptor(uint32_t binding, VkDescriptorType type,

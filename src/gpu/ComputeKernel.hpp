@@ -20,6 +20,11 @@ struct KernelBinding {
   VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 };
 
+// A compute pipeline for SPIR-V whose entry point is `main`; the shader
+// module lives only while the pipeline is created. Throws on failure.
+VkPipeline createComputePipeline(VkDevice device, const std::vector<uint32_t>& spirv,
+                                 VkPipelineLayout layout);
+
 class ComputeKernel {
  public:
   ComputeKernel(VulkanContext& context, const std::vector<uint32_t>& spirv,
@@ -50,7 +55,6 @@ class ComputeKernel {
 
   VulkanContext& context_;
   uint32_t pushConstantBytes_ = 0;
-  VkShaderModule module_ = VK_NULL_HANDLE;
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
   VkPipeline pipeline_ = VK_NULL_HANDLE;

@@ -109,7 +109,7 @@ FlatAreaLights flattenAreaLights(const Scene& scene, const glm::vec3& frameOrigi
     gpuLight.emitterCount = static_cast<uint32_t>(surface.pieces.size());
     gpuLight.samples = light.samples;
     gpuLight.profile = light.profile == EmissionProfile::Lambertian ? RT_EMISSION_LAMBERTIAN
-                                                                     : RT_EMISSION_ISOTROPIC;
+                                                                    : RT_EMISSION_ISOTROPIC;
     double total = 0.0;
     for (const gpu::GpuEmitter& piece : surface.pieces) total += piece.area;
     double running = 0.0;

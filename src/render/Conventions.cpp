@@ -37,8 +37,8 @@ ToneMapping toneMappingFor(const Scene& scene) {
   ToneMapping mapping;
   // Family B's `exposure` (0.1 in every official file) belongs to its path
   // tracing mode; the Whitted modes display radiance as is.
-  bool exposed = scene.family != SceneFamily::Rendering ||
-                 scene.settings.mode == RenderMode::PathTracer;
+  bool exposed =
+      scene.family != SceneFamily::Rendering || scene.settings.mode == RenderMode::PathTracer;
   mapping.exposure = exposed ? scene.camera.exposure : 1.0f;
   mapping.curve = ToneCurve::Clamp;
   mapping.srgbEncode = false;

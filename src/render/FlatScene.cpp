@@ -489,7 +489,8 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   }
   flat.info.sphereUvPole = dominantAxis(scene.camera.up);
   LightingConventions conventions = lightingConventionsFor(scene, options.shading);
-  if (scene.settings.mode == RenderMode::PathTracer && options.shading == ShadingModel::Coursework) {
+  if (scene.settings.mode == RenderMode::PathTracer &&
+      options.shading == ShadingModel::Coursework) {
     flat.warnings.push_back("the path tracer uses the standard shading model");
   }
   // Camera-relative frame (see recenterOnCamera), known before anything moves.
@@ -508,6 +509,8 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   info.maxBounces = scene.settings.maxBounces;
   info.distributedBounces =
       scene.settings.mode == RenderMode::Phong ? scene.settings.distributedBounces : 0u;
+  // Off is the largest round float: the shader clamps without a branch.
+  info.indirectClamp = scene.settings.indirectClamp > 0.0f ? scene.settings.indirectClamp : 3.0e38f;
   info.binaryHitColor = kBinaryHitColor;
   info.renderMode = gpuRenderMode(scene.settings.mode);
   info.pointLightCount = static_cast<uint32_t>(flat.pointLights.size());

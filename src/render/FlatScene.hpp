@@ -21,11 +21,11 @@ struct FlatScene {
   std::vector<gpu::GpuPointLight> pointLights;
   std::vector<gpu::GpuAreaLight> areaLights;
   std::vector<gpu::GpuEmitter> emitters;  // pieces of the area lights' surfaces
-  std::vector<gpu::GpuVertex> vertices;  // shading data of some triangles
+  std::vector<gpu::GpuVertex> vertices;   // shading data of some triangles
   std::vector<gpu::GpuTextureInfo> textureInfos;
   std::vector<uint32_t> texels;       // RGBA8 of every texture, packed
   uint32_t bvhDepth = 0;              // top level plus the deepest mesh
-  glm::vec3 frameOrigin{0.0f};  // world point at the GPU coordinates' origin (the camera)
+  glm::vec3 frameOrigin{0.0f};        // world point at the GPU coordinates' origin (the camera)
   std::vector<std::string> warnings;  // scene features the GPU scene leaves out
 };
 

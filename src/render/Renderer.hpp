@@ -42,9 +42,9 @@ struct RenderOptions {
   bool estimateError = false;
   double targetRmse = 0;
   std::optional<ToneMapping> displayMapping;
-  double secondsPerDispatch = 0.1;  // target duration of one dispatch
-  bool countRays = false;           // compile in a ray counter (benchmarks)
-  AccelKind accel = AccelKind::Bvh;     // none: brute force, to compare against
+  double secondsPerDispatch = 0.1;   // target duration of one dispatch
+  bool countRays = false;            // compile in a ray counter (benchmarks)
+  AccelKind accel = AccelKind::Bvh;  // none: brute force, to compare against
   // Polled between dispatches; returning true ends the render early with
   // the samples accumulated so far (SIGINT, time budgets).
   std::function<bool()> shouldStop;

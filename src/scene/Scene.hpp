@@ -63,7 +63,7 @@ struct Cylinder {
 // per vertex and either empty or as long as `positions`.
 struct TriangleMesh {
   std::vector<glm::vec3> positions;
-  std::vector<glm::uvec3> faces;  // indices into positions, validated on load
+  std::vector<glm::uvec3> faces;   // indices into positions, validated on load
   std::vector<glm::vec3> normals;  // smooth shading normals (unit), optional
   std::vector<glm::vec2> uvs;      // texture coordinates, optional
 };
@@ -71,8 +71,8 @@ struct TriangleMesh {
 // A shape that places one of Scene::meshes: meshes live apart from shapes so
 // that several shapes can share one mesh (and, on the GPU, its BVH).
 struct MeshInstance {
-  uint32_t mesh = 0;                  // index into Scene::meshes
-  glm::mat4 objectToWorld{1.0f};      // placement (affine)
+  uint32_t mesh = 0;              // index into Scene::meshes
+  glm::mat4 objectToWorld{1.0f};  // placement (affine)
 };
 
 using Geometry = std::variant<Sphere, Triangle, Quad, Cylinder, MeshInstance>;
@@ -100,10 +100,10 @@ struct PointLight {
 enum class EmissionProfile { Isotropic, Lambertian };
 
 struct AreaLight {
-  uint32_t shape = 0;                 // index into Scene::shapes: the emitting surface
-  glm::vec3 diffuseIntensity{1.0f};   // like PointLight
+  uint32_t shape = 0;                // index into Scene::shapes: the emitting surface
+  glm::vec3 diffuseIntensity{1.0f};  // like PointLight
   glm::vec3 specularIntensity{1.0f};
-  uint32_t samples = 1;               // shadow rays per shading point and pixel sample
+  uint32_t samples = 1;  // shadow rays per shading point and pixel sample
   EmissionProfile profile = EmissionProfile::Isotropic;  // spheres are always Lambertian
 };
 
@@ -137,8 +137,12 @@ enum class SceneFamily { PathOfLight, Rendering };
 
 struct RenderSettings {
   RenderMode mode = RenderMode::Phong;
-  uint32_t maxBounces = 4;       // `nbounces`: Whitted depth, path length in PathTracer mode
+  uint32_t maxBounces = 4;          // `nbounces`: Whitted depth, path length in PathTracer mode
   uint32_t distributedBounces = 0;  // sampled diffuse bounces in Phong mode
+  // Firefly clamp (`clampindirect`): the largest channel one light or
+  // emitter contribution may add after a diffuse bounce; 0 = off. Biased
+  // (it darkens caustics), so off unless asked for.
+  float indirectClamp = 0.0f;
   uint32_t samplesPerPixel = 0;  // 0: not given in the file
   SamplerKind sampler = SamplerKind::Jittered;
 };

@@ -193,6 +193,11 @@ uint32_t readDistributedBounces(JsonObject& top, RenderMode mode) {
   return bounces;
 }
 
+float readIndirectClamp(JsonObject& top) {
+  const std::optional<JsonNode> node = top.optionalOneOf({"clampindirect", "clamp_indirect"});
+  return node ? node->nonNegativeFloat() : 0.0f;
+}
+
 SamplerKind parseSampler(const JsonNode& node) {
   const std::string name = node.string();
   if (std::optional<SamplerKind> kind = samplerKindNamed(name)) return *kind;
@@ -488,7 +493,8 @@ Geometry readAreaLightGeometry(JsonObject& light) {
     const glm::vec3 v0 = light.required("v0").vec3();
     const glm::vec3 v1 = light.required("v1").vec3();
     const glm::vec3 v2 = light.required("v2").vec3();
-    if (const std::optional<JsonNode> v3 = light.optional("v3")) return Quad{v0, v1, v2, v3->vec3()};
+    if (const std::optional<JsonNode> v3 = light.optional("v3"))
+      return Quad{v0, v1, v2, v3->vec3()};
     return Triangle{v0, v1, v2};
   }
   const glm::vec3 position = light.required("position").vec3();
@@ -600,9 +606,9 @@ fs::path seenFromSubfolder(const fs::path& written, const fs::path& sceneDir) {
 fs::path resolveRelative(const JsonNode& node, const fs::path& sceneDir, std::string_view kind) {
   const fs::path written = node.nonEmptyString();
   const fs::path parentDir = sceneDir.parent_path();
-  for (const fs::path& candidate : {(sceneDir / written).lexically_normal(),
-                                    (parentDir / written).lexically_normal(),
-                                    seenFromSubfolder(written, sceneDir)}) {
+  for (const fs::path& candidate :
+       {(sceneDir / written).lexically_normal(), (parentDir / written).lexically_normal(),
+        seenFromSubfolder(written, sceneDir)}) {
     std::error_code ignored;
     if (!candidate.empty() && fs::is_regular_file(candidate, ignored)) return candidate;
   }
@@ -628,7 +634,8 @@ std::optional<JsonNode> withoutTextureWeight(std::optional<JsonNode> node) {
 std::optional<JsonNode> weightOrAlias(JsonObject& material, const char* key, const char* alias) {
   std::optional<JsonNode> node = material.optional(key);
   std::optional<JsonNode> other = withoutTextureWeight(material.optional(alias));
-  if (node && other) other->fail("conflicts with '" + node->path() + "': give only one of these aliases");
+  if (node && other)
+    other->fail("conflicts with '" + node->path() + "': give only one of these aliases");
   return node ? node : other;
 }
 
@@ -826,7 +833,8 @@ TriangleMesh readInlineMesh(JsonObject& shape) {
   if (const std::optional<JsonNode> uvs = shape.optionalOneOf({"uv", "uvs"})) {
     for (const JsonNode& uv : uvs->array()) {
       const std::vector<JsonNode> pair = uv.array();
-      if (pair.size() != 2) uv.fail("expected 2 texture coordinates, got " + std::to_string(pair.size()));
+      if (pair.size() != 2)
+        uv.fail("expected 2 texture coordinates, got " + std::to_string(pair.size()));
       mesh.uvs.emplace_back(pair[0].floatValue(), pair[1].floatValue());
     }
     if (mesh.uvs.size() != mesh.positions.size()) {
@@ -991,7 +999,8 @@ glm::vec3 shapeCenter(const Shape& shape, const Scene& scene) {
           const TriangleMesh& mesh = scene.meshes.at(g.mesh);
           glm::vec3 sum(0.0f);
           for (const glm::vec3& p : mesh.positions) sum += p;
-          const glm::vec3 mean = sum / static_cast<float>(std::max<size_t>(1, mesh.positions.size()));
+          const glm::vec3 mean =
+              sum / static_cast<float>(std::max<size_t>(1, mesh.positions.size()));
           return glm::vec3(g.objectToWorld * glm::vec4(mean, 1.0f));
         }
       },
@@ -1028,6 +1037,7 @@ Scene readScene(std::string_view jsonText, const fs::path& file) {
   scene.settings.maxBounces = readBounces(top);
   scene.settings.mode = readRenderMode(top);
   scene.settings.distributedBounces = readDistributedBounces(top, scene.settings.mode);
+  scene.settings.indirectClamp = readIndirectClamp(top);
   JsonObject camera = top.required("camera").object();
   const bool defaultView = !camera.has("lookat") && !camera.has("lookAt");
   scene.camera = readCamera(camera);
@@ -1073,6 +1083,5 @@ const char* samplerKindName(SamplerKind kind) {
   }
   return "unknown";
 }
-
 
 }  // namespace rt

@@ -5,6 +5,7 @@
 
 #include "display_types.h"
 #include "gpu/Buffer.hpp"
+#include "gpu/ComputeKernel.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
 #include "util/Error.hpp"
@@ -125,27 +126,8 @@ void DisplayPass::createLayouts() {
 }
 
 VkPipeline DisplayPass::createPipeline() const {
-  VkDevice device = context_.device();
   std::vector<uint32_t> spirv = compiler_.compile("display.comp", {});
-  VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  moduleInfo.codeSize = spirv.size() * sizeof(uint32_t);
-  moduleInfo.pCode = spirv.data();
-  VkShaderModule module = VK_NULL_HANDLE;
-  vkCheck(vkCreateShaderModule(device, &moduleInfo, nullptr, &module), "vkCreateShaderModule");
-
-  VkComputePipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  pipelineInfo.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  pipelineInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  pipelineInfo.stage.module = module;
-  pipelineInfo.stage.pName = "main";
-  pipelineInfo.layout = pipelineLayout_;
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  VkResult result =
-      vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline);
-  // The module is only needed while the pipeline is created.
-  vkDestroyShaderModule(device, module, nullptr);
-  vkCheck(result, "vkCreateComputePipelines");
-  return pipeline;
+  return createComputePipeline(context_.device(), spirv, pipelineLayout_);
 }
 
 void DisplayPass::reloadShader() {

@@ -221,7 +221,9 @@ TEST_SUITE("area lights") {
     const float intensity = 2.0f;
     const float side = 1.0f;
     addAreaLight(direct,
-                 Quad{{-side / 2, -side / 2, 2}, {side / 2, -side / 2, 2}, {side / 2, side / 2, 2},
+                 Quad{{-side / 2, -side / 2, 2},
+                      {side / 2, -side / 2, 2},
+                      {side / 2, side / 2, 2},
                       {-side / 2, side / 2, 2}},
                  intensity, 1);
     // Seen head on: pi * I * lightScale / A (README "Area lights"), twice
@@ -238,7 +240,9 @@ TEST_SUITE("area lights") {
     mirror.reflectivity = 1;
     mirrored.materials[mirrored.shapes[0].material] = mirror;
     addAreaLight(mirrored,
-                 Quad{{-side / 2, -side / 2, 6}, {side / 2, -side / 2, 6}, {side / 2, side / 2, 6},
+                 Quad{{-side / 2, -side / 2, 6},
+                      {side / 2, -side / 2, 6},
+                      {side / 2, side / 2, 6},
                       {-side / 2, side / 2, 6}},
                  intensity, 1);
     CHECK(pixel(render(mirrored, standardShading(4)), 16, 16).x ==
@@ -313,6 +317,43 @@ TEST_SUITE("path tracer and distributed bounces") {
     CHECK(whitted < lit);
     CHECK(whitted > 0.5f * lit);
     CHECK(caustic > 2 * lit);
+  }
+
+  TEST_CASE("the firefly clamp bounds light after a diffuse bounce, not direct light") {
+    // Direct light only (see above): the clamp has nothing to hold back.
+    Scene wall = wallScene(32);
+    wall.settings.mode = RenderMode::PathTracer;
+    addAreaLight(wall, Quad{{-1, 2.5f, 0.5f}, {1, 2.5f, 0.5f}, {1, 2.5f, 1.5f}, {-1, 2.5f, 1.5f}},
+                 8.0f, 2);
+    const ImageF unclamped = render(wall, standardShading(16));
+    wall.settings.indirectClamp = 1e-4f;
+    CHECK(maxRelativeDifference(render(wall, standardShading(16)), unclamped, 1e-3f) == 0.0);
+
+    // The caustic above is all light after a diffuse bounce: each sample
+    // adds at most two clamped contributions per vertex, plus the sky.
+    Scene caustic = wallScene(48);
+    caustic.camera.position = {0, -4, 3};
+    caustic.camera.forward = glm::normalize(glm::vec3(0, 4, -3));
+    caustic.camera.up = {0, 0, 1};
+    caustic.settings.maxBounces = 6;
+    caustic.settings.mode = RenderMode::PathTracer;
+    addAreaLight(caustic, Sphere{{0, 0, 3}, 0.3f}, 40.0f, 1);
+    Material glass = diffuse(glm::vec3(0), 0);
+    glass.transmission = 1;
+    glass.ior = 1.5f;
+    addShape(caustic, Sphere{{0, 0, 1.1f}, 0.5f}, glass);
+    const float focused = meanAround(render(caustic, standardShading(256)), 24, 24, 1);
+    caustic.settings.indirectClamp = 1e6f;  // above every contribution: no change
+    const float highClamp = meanAround(render(caustic, standardShading(256)), 24, 24, 1);
+    const float limit = 0.02f;
+    caustic.settings.indirectClamp = limit;
+    const float clamped = meanAround(render(caustic, standardShading(256)), 24, 24, 1);
+    CAPTURE(focused);
+    CAPTURE(clamped);
+    CHECK(highClamp == focused);
+    CHECK(clamped > 0.0f);
+    CHECK(clamped < 0.5f * focused);
+    CHECK(clamped <= float(2 * caustic.settings.maxBounces + 1) * limit);
   }
 
   TEST_CASE("a distributed diffuse bounce bleeds a wall's colour onto the floor") {

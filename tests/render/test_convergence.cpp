@@ -48,8 +48,9 @@ const ImageF& studyTruth(const std::string& name) {
   static std::map<std::string, ImageF> truths;
   auto found = truths.find(name);
   if (found == truths.end()) {
-    found = truths.emplace(name, render(studyScene(name), smallRender(SamplerKind::Sobol, 1024, 999)))
-                .first;
+    found =
+        truths.emplace(name, render(studyScene(name), smallRender(SamplerKind::Sobol, 1024, 999)))
+            .first;
   }
   return found->second;
 }

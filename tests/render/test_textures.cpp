@@ -104,7 +104,7 @@ TEST_SUITE("render textures") {
     quad.geometry = Quad{{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
     scene.shapes.push_back(quad);
     checkColor(renderedAt(render(scene), 0.25f, 0.25f), {1, 0, 0});  // replaced (coursework)
-    scene.materials[0].textureTintedByColor = true;                   // glTF base colour
+    scene.materials[0].textureTintedByColor = true;                  // glTF base colour
     checkColor(renderedAt(render(scene), 0.25f, 0.25f), {0.5f, 0, 0});
   }
 }

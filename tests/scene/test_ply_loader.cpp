@@ -209,7 +209,6 @@ fs::path writeFile(const std::string& name, const std::string& bytes) {
   return file;
 }
 
-
 // ----------------------------------------------------------- shared files
 
 std::optional<fs::path> plyAssets() {

@@ -989,12 +989,19 @@ TEST_SUITE("scene loader: area lights and render modes") {
   TEST_CASE("every geometric form becomes an emitting shape") {
     Json scene = minimalScene();
     Json& lights = scene["scene"]["lightsources"];
-    lights.push_back(areaLight({{"v0", {0, 2, 0}}, {"v1", {1, 2, 0}}, {"v2", {1, 2, 1}},
-                                {"v3", {0, 2, 1}}, {"samples", 9}, {"method", "jittered"}}));
+    lights.push_back(areaLight({{"v0", {0, 2, 0}},
+                                {"v1", {1, 2, 0}},
+                                {"v2", {1, 2, 1}},
+                                {"v3", {0, 2, 1}},
+                                {"samples", 9},
+                                {"method", "jittered"}}));
     lights.push_back(areaLight({{"v0", {0, 2, 0}}, {"v1", {1, 2, 0}}, {"v2", {1, 2, 1}}}));
     lights.push_back(areaLight({{"position", {0, 3, 0}}, {"u", {2, 0, 0}}, {"v", {0, 0, 1}}}));
-    lights.push_back(areaLight(
-        {{"position", {0, 3, 0}}, {"u", {3, 0, 0}}, {"v", {0, 0, 1}}, {"width", 0.5}, {"height", 4}}));
+    lights.push_back(areaLight({{"position", {0, 3, 0}},
+                                {"u", {3, 0, 0}},
+                                {"v", {0, 0, 1}},
+                                {"width", 0.5},
+                                {"height", 4}}));
     lights.push_back(areaLight({{"position", {0, 4, 0}}, {"radius", 0.25}}));
     lights.push_back(areaLight({{"position", {0, 4, 0}}, {"size", 0.1}, {"nsamples", 4}}));
     const rt::Scene loaded = parse(scene);
@@ -1036,8 +1043,7 @@ TEST_SUITE("scene loader: area lights and render modes") {
     CHECK(loaded.shapes.size() == 1);
 
     scene["scene"]["lightsources"][1]["shape"] = "missing";
-    CHECK(errorOf(scene) ==
-          "mem.json: scene.lightsources[1].shape: no shape has the id 'missing'");
+    CHECK(errorOf(scene) == "mem.json: scene.lightsources[1].shape: no shape has the id 'missing'");
     scene["scene"]["lightsources"][1]["shape"] = "lamp";
     scene["scene"]["lightsources"].push_back(areaLight({{"shapeId", "lamp"}}));
     CHECK(errorOf(scene) ==
@@ -1060,7 +1066,8 @@ TEST_SUITE("scene loader: area lights and render modes") {
     scene["scene"]["lightsources"][1] =
         areaLight({{"position", {0, 2, 0}}, {"radius", 1}, {"samples", 1e9}});
     CHECK(contains(errorOf(scene), "scene.lightsources[1].samples:"));
-    scene["scene"]["lightsources"][1] = {{"type", "arealight"}, {"radius", 1}, {"position", {0, 0, 0}}};
+    scene["scene"]["lightsources"][1] = {
+        {"type", "arealight"}, {"radius", 1}, {"position", {0, 0, 0}}};
     CHECK(contains(errorOf(scene), "scene.lightsources[1].intensity: missing"));
   }
 
@@ -1080,6 +1087,20 @@ TEST_SUITE("scene loader: area lights and render modes") {
     CHECK(hasWarning(parse(scene), "distributedbounces: ignored"));
   }
 
+  TEST_CASE("the firefly clamp: off unless given, a non-negative number") {
+    Json scene = minimalScene();
+    CHECK(parse(scene).settings.indirectClamp == 0.0f);
+    scene["clampindirect"] = 2.5;
+    CHECK(parse(scene).settings.indirectClamp == 2.5f);
+    scene["clampindirect"] = -1;
+    CHECK(contains(errorOf(scene), "clampindirect:"));
+    scene["clampindirect"] = "high";
+    CHECK(contains(errorOf(scene), "clampindirect:"));
+    scene.erase("clampindirect");
+    scene["clamp_indirect"] = 0;
+    CHECK(parse(scene).settings.indirectClamp == 0.0f);
+  }
+
   TEST_CASE("TsFreddie's forms: vertices arrays, thinlen, tris and uv, checkerboard") {
     Json scene = minimalScene();
     scene["scene"]["lightsources"][0] = {
@@ -1087,17 +1108,23 @@ TEST_SUITE("scene loader: area lights and render modes") {
     scene["camera"]["type"] = "thinlen";
     scene["camera"]["size"] = 0.2;
     scene["camera"]["focusdistance"] = 2;
-    scene["scene"]["shapes"].push_back(
-        {{"type", "plane"},
-         {"vertices", {{0, 0, 0}, {2, 0, 0}, {0, 0, 3}}},
-         {"material", {{"ks", 0}, {"kd", 1}, {"specularexponent", 1}, {"diffusecolor", {1, 1, 1}},
-                       {"diffuse", "checkerboard"}, {"transmit", 0.5}, {"metallic", 0.25}}}});
+    scene["scene"]["shapes"].push_back({{"type", "plane"},
+                                        {"vertices", {{0, 0, 0}, {2, 0, 0}, {0, 0, 3}}},
+                                        {"material",
+                                         {{"ks", 0},
+                                          {"kd", 1},
+                                          {"specularexponent", 1},
+                                          {"diffusecolor", {1, 1, 1}},
+                                          {"diffuse", "checkerboard"},
+                                          {"transmit", 0.5},
+                                          {"metallic", 0.25}}}});
     scene["scene"]["shapes"].push_back(
         {{"type", "trimesh"},
          {"vertices", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
          {"tris", {{0, 1, 2}}},
          {"uv", {{0, 0}, {1, 0}, {0, 1}}},
-         {"material", {{"ks", 0}, {"kd", 1}, {"specularexponent", 1}, {"diffusecolor", {1, 1, 1}}}}});
+         {"material",
+          {{"ks", 0}, {"kd", 1}, {"specularexponent", 1}, {"diffusecolor", {1, 1, 1}}}}});
     const rt::Scene loaded = parse(scene);
     CHECK(loaded.camera.type == rt::CameraType::ThinLens);
     CHECK(loaded.camera.apertureRadius == doctest::Approx(0.1));
@@ -1122,9 +1149,12 @@ TEST_SUITE("scene loader: area lights and render modes") {
     scene["camera"].erase("lookat");
     CHECK(near(parse(scene).camera.forward, {0, 0, 1}));
     firstShape(scene)["center"] = {0, 0, -3};
-    scene["scene"]["shapes"].push_back(
-        {{"type", "plane"}, {"v0", {-9, -1, 9}}, {"v1", {9, -1, 9}}, {"v2", {9, -1, 30}},
-         {"v3", {-9, -1, 30}}, {"material", firstMaterial(scene)}});
+    scene["scene"]["shapes"].push_back({{"type", "plane"},
+                                        {"v0", {-9, -1, 9}},
+                                        {"v1", {9, -1, 9}},
+                                        {"v2", {9, -1, 30}},
+                                        {"v3", {-9, -1, 30}},
+                                        {"material", firstMaterial(scene)}});
     CHECK(near(parse(scene).camera.forward, {0, 0, -1}));  // the floor behind does not count
   }
 }
