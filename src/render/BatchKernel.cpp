@@ -1,0 +1,47 @@
+#include "render/BatchKernel.hpp"
+
+#include "gpu/Buffer.hpp"
+#include "gpu/ComputeKernel.hpp"
+#include "gpu/ShaderCompiler.hpp"
+#include "gpu/VulkanContext.hpp"
+#include "render/Features.hpp"
+#include "render/SceneBuffers.hpp"
+
+namespace rt {
+
+BatchKernel::BatchKernel(VulkanContext& context, const ShaderCompiler& compiler, const Scene& scene,
+                         const std::string& shaderName, const FlattenOptions& options)
+    : context_(context), flat_(flattenScene(scene, options)) {
+  buffers_ = std::make_unique<SceneBuffers>(context, flat_);
+  std::vector<uint32_t> spirv =
+      compiler.compile(shaderName, detectFeatures(scene, flat_).defines());
+  std::vector<KernelBinding> bindings = SceneBuffers::bindings();
+  bindings.push_back({RT_BINDING_RAYS});
+  bindings.push_back({RT_BINDING_HITS});
+  kernel_ = std::make_unique<ComputeKernel>(context, spirv, bindings,
+                                            static_cast<uint32_t>(sizeof(gpu::GpuBatchParams)));
+  buffers_->bindTo(*kernel_);
+}
+
+BatchKernel::~BatchKernel() = default;
+
+gpu::GpuRay BatchKernel::toFrame(gpu::GpuRay ray) const {
+  ray.origin -= flat_.frameOrigin;
+  return ray;
+}
+
+void BatchKernel::dispatch(const std::vector<gpu::GpuRay>& rays, size_t items, void* results,
+                           size_t resultBytes) {
+  Buffer rayBuffer(context_, rays.size() * sizeof(gpu::GpuRay), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  Buffer resultBuffer(context_, resultBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  rayBuffer.upload(rays.data(), rays.size() * sizeof(gpu::GpuRay));
+  kernel_->bind(RT_BINDING_RAYS, rayBuffer);
+  kernel_->bind(RT_BINDING_HITS, resultBuffer);
+  gpu::GpuBatchParams params{static_cast<uint32_t>(items), 0, 0, 0};
+  uint32_t groups = (params.rayCount + RT_BATCH_WORKGROUP_SIZE - 1) / RT_BATCH_WORKGROUP_SIZE;
+  context_.submitAndWait(
+      [&](VkCommandBuffer commands) { kernel_->recordDispatch(commands, &params, groups); });
+  resultBuffer.download(results, resultBytes);
+}
+
+}  // namespace rt
