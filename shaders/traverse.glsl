@@ -101,7 +101,7 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
   ShearedRay frame = shearRay(ray.direction);
 #endif
   uint hitKind = RT_PRIM_TRIANGLE;
-  uint stack[RT_BVH_STACK_SIZE];
+  uint stack[RT_BVH_STACK_SIZE + 1u];  // one spare slot above the top for branchless pushes
   uint stackSize = 0u;
 #ifdef RT_FEATURE_MESHES
   uint instance = RT_NONE;  // top-level item of the mesh the ray is in
@@ -124,14 +124,16 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
       float tRight = boxEntry(rightMin, rightMax, ray.origin, invDir, tMin, tMax);
       bool leftFirst = tLeft <= tRight;
       // Both hit: the farther child waits. Neither: the next waiting entry.
-      if (max(tLeft, tRight) != RT_FAR && stackSize < RT_BVH_STACK_SIZE) {
-        stack[stackSize++] = leftFirst ? low.y : low.x;
-      }
-      if (min(tLeft, tRight) != RT_FAR) {
-        node = leftFirst ? low.x : low.y;
-      } else {
-        node = stackSize > 0u ? stack[--stackSize] : RT_NONE;
-      }
+      // Without branches: the store above the top is always made and kept
+      // only by a push, the top is always read and used only by a pop.
+      bool push = max(tLeft, tRight) != RT_FAR && stackSize < RT_BVH_STACK_SIZE;
+      bool descend = min(tLeft, tRight) != RT_FAR;
+      stack[stackSize] = leftFirst ? low.y : low.x;
+      stackSize += push ? 1u : 0u;
+      bool pop = !descend && stackSize > 0u;
+      uint top = stack[max(stackSize, 1u) - 1u];
+      node = descend ? (leftFirst ? low.x : low.y) : (pop ? top : RT_NONE);
+      stackSize -= pop ? 1u : 0u;
     }
     if (node == RT_NONE) break;
 
