@@ -44,6 +44,10 @@ void editRenderSettings(OverlaySettings& settings, OverlayActions& actions) {
   // A new bounce count rebuilds the renderer: apply it when the drag ends.
   ImGui::SliderInt("bounces", &settings.bounces, 0, static_cast<int>(kMaxBounces));
   actions.bouncesChanged = ImGui::IsItemDeactivatedAfterEdit();
+  // The clamp is a scene constant: it also applies when the drag ends.
+  ImGui::SliderFloat("clamp indirect", &settings.indirectClamp, 0.0f, 100.0f,
+                     settings.indirectClamp > 0.0f ? "%.3f" : "off", ImGuiSliderFlags_Logarithmic);
+  actions.clampChanged = ImGui::IsItemDeactivatedAfterEdit();
   ImGui::SliderFloat("exposure", &settings.exposure, 0.01f, 100.0f, "%.3f",
                      ImGuiSliderFlags_Logarithmic);
 }

@@ -34,6 +34,7 @@ struct OverlaySettings {
   int sampler = 1;  // 0: random, 1: jittered
   int samplesTarget = 16;
   int bounces = 4;
+  float indirectClamp = 0.0f;  // firefly clamp, 0: off (RenderSettings::indirectClamp)
   float exposure = 1.0f;
   float apertureRadius = 0.0f;
   float focusDistance = 1.0f;
@@ -52,6 +53,7 @@ struct OverlayActions {
   bool samplerChanged = false;
   bool targetChanged = false;
   bool bouncesChanged = false;
+  bool clampChanged = false;
   bool lensChanged = false;
   bool save = false;
   bool resetCamera = false;

@@ -118,6 +118,7 @@ void Viewer::initialiseSettings() {
   settings_.samplesTarget = static_cast<int>(
       options_.samplesTarget ? *options_.samplesTarget : (fromScene ? fromScene : kDefaultSamples));
   settings_.bounces = static_cast<int>(scene_.settings.maxBounces);
+  settings_.indirectClamp = scene_.settings.indirectClamp;
   SamplerKind sampler = options_.sampler.value_or(scene_.settings.sampler);
   settings_.sampler = static_cast<int>(sampler);
   settings_.exposure = toneMappingFor(scene_).exposure * options_.exposure;
@@ -168,6 +169,7 @@ SamplerKind Viewer::samplerSetting() const {
 std::unique_ptr<ProgressiveRenderer> Viewer::makeRenderer(glm::uvec2 size) const {
   Scene scene = scene_;
   scene.settings.maxBounces = static_cast<uint32_t>(settings_.bounces);
+  scene.settings.indirectClamp = std::max(settings_.indirectClamp, 0.0f);
   scene.camera = camera_.camera();
   ProgressiveOptions options;
   options.width = size.x;

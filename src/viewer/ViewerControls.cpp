@@ -142,6 +142,9 @@ void Viewer::reloadScene() {
   if (fresh.settings.maxBounces != previous.settings.maxBounces) {
     settings_.bounces = static_cast<int>(fresh.settings.maxBounces);
   }
+  if (fresh.settings.indirectClamp != previous.settings.indirectClamp) {
+    settings_.indirectClamp = fresh.settings.indirectClamp;
+  }
   scene_ = std::move(fresh);
   if (!rebuildRenderer({renderer_->width(), renderer_->height()})) {
     scene_ = std::move(previous);
@@ -250,7 +253,7 @@ void Viewer::applyPathStep(const PathStep& step) {
 
 void Viewer::applyOverlayActions(const OverlayActions& actions) {
   glm::uvec2 size{renderer_->width(), renderer_->height()};
-  if (actions.bouncesChanged || actions.samplerChanged) {
+  if (actions.bouncesChanged || actions.clampChanged || actions.samplerChanged) {
     rebuildRenderer(size);
   } else if (actions.targetChanged) {
     // The jittered sampler stratifies for the target count: a new target is
