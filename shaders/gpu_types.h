@@ -273,6 +273,11 @@ RT_ASSERT_STD430_SIZE(GpuPointLight, 48);
 RT_ASSERT_TEXELS(GpuPointLight, RT_TEXELS_PER_POINT_LIGHT);
 
 // Per-scene constants (one record in a storage buffer).
+// The largest round float: the shaders' "no hit" distance (RT_FAR) and
+// "no limit" in GpuSceneInfo::indirectClamp. Finite, because a driver may
+// assume no infinities in arithmetic (fast-math).
+#define RT_FAR_VALUE 3.0e38f
+
 struct GpuSceneInfo {
   vec3 cameraPosition;
   float tanHalfFovY;
@@ -299,7 +304,7 @@ struct GpuSceneInfo {
   uint areaLightCount;
   uint distributedBounces;  // Phong mode: sampled diffuse bounces besides the Whitted tree
   // Largest channel one light contribution may add after a diffuse bounce
-  // (`clampindirect`, firefly clamp; 3e38: off).
+  // (`clampindirect`, firefly clamp; RT_FAR_VALUE: off).
   float indirectClamp;
   uint pad0;
   uint pad1;

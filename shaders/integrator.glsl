@@ -146,7 +146,7 @@ DepthLimits depthLimits() {
 }
 
 // A light contribution to the pixel. After a diffuse bounce its largest
-// channel is held to sceneInfo.indirectClamp (`clampindirect`, 3e38: off):
+// channel is held to sceneInfo.indirectClamp (`clampindirect`, RT_FAR: off):
 // rare bright paths (light through glass or off a mirror onto a diffuse
 // surface) then add bounded speckles instead of fireflies, at the price of
 // darker caustics.

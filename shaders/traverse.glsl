@@ -14,9 +14,8 @@
 #ifndef RT_TRAVERSE_GLSL
 #define RT_TRAVERSE_GLSL
 
-// "No hit" distance: the largest round float, finite because a driver may
-// assume no infinities in arithmetic (fast-math).
-const float RT_FAR = 3.0e38;
+// "No hit" distance (see RT_FAR_VALUE in gpu_types.h).
+const float RT_FAR = RT_FAR_VALUE;
 
 const uint RT_NONE = 0xffffffffu;
 

@@ -509,8 +509,9 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   info.maxBounces = scene.settings.maxBounces;
   info.distributedBounces =
       scene.settings.mode == RenderMode::Phong ? scene.settings.distributedBounces : 0u;
-  // Off is the largest round float: the shader clamps without a branch.
-  info.indirectClamp = scene.settings.indirectClamp > 0.0f ? scene.settings.indirectClamp : 3.0e38f;
+  // Off is no limit at all: the shader clamps without a branch.
+  info.indirectClamp =
+      scene.settings.indirectClamp > 0.0f ? scene.settings.indirectClamp : RT_FAR_VALUE;
   info.binaryHitColor = kBinaryHitColor;
   info.renderMode = gpuRenderMode(scene.settings.mode);
   info.pointLightCount = static_cast<uint32_t>(flat.pointLights.size());

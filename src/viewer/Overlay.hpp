@@ -31,7 +31,7 @@ struct OverlayStats {
 
 // Values the overlay shows and lets the user edit.
 struct OverlaySettings {
-  int sampler = 1;  // 0: random, 1: jittered
+  int sampler = 1;  // SamplerKind: 0 random, 1 jittered, 2 sobol
   int samplesTarget = 16;
   int bounces = 4;
   float indirectClamp = 0.0f;  // firefly clamp, 0: off (RenderSettings::indirectClamp)

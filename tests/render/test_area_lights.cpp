@@ -86,6 +86,32 @@ Scene wallScene(uint32_t size) {
   return scene;
 }
 
+// A 2x1 quad light facing down over the wall scene's plane.
+void addOverheadQuadLight(Scene& scene) {
+  addAreaLight(scene, Quad{{-1, 2.5f, 0.5f}, {1, 2.5f, 0.5f}, {1, 2.5f, 1.5f}, {-1, 2.5f, 1.5f}},
+               8.0f, 2);
+}
+
+// A lamp sphere above the floor, out of view; the camera looks down at the
+// floor under it from the side (pixel 24, 24). addGlassBall puts a ball
+// between them, which focuses the lamp into a caustic there.
+Scene causticStage() {
+  Scene scene = wallScene(48);
+  scene.camera.position = {0, -4, 3};
+  scene.camera.forward = glm::normalize(glm::vec3(0, 4, -3));
+  scene.camera.up = {0, 0, 1};
+  scene.settings.maxBounces = 6;
+  addAreaLight(scene, Sphere{{0, 0, 3}, 0.3f}, 40.0f, 1);
+  return scene;
+}
+
+void addGlassBall(Scene& scene) {
+  Material glass = diffuse(glm::vec3(0), 0);
+  glass.transmission = 1;
+  glass.ior = 1.5f;
+  addShape(scene, Sphere{{0, 0, 1.1f}, 0.5f}, glass);
+}
+
 RenderOptions standardShading(uint32_t spp) {
   RenderOptions options;
   options.samplesPerPixel = spp;
@@ -281,8 +307,7 @@ TEST_SUITE("path tracer and distributed bounces") {
     // estimation already counted. Counting it twice would brighten the wall.
     Scene scene = wallScene(32);
     scene.pointLights.push_back({{1, 1, 2}, glm::vec3(4), glm::vec3(4)});
-    addAreaLight(scene, Quad{{-1, 2.5f, 0.5f}, {1, 2.5f, 0.5f}, {1, 2.5f, 1.5f}, {-1, 2.5f, 1.5f}},
-                 8.0f, 2);
+    addOverheadQuadLight(scene);
     const ImageF phong = render(scene, standardShading(64));
     scene.settings.mode = RenderMode::PathTracer;
     const ImageF traced = render(scene, standardShading(64));
@@ -290,19 +315,9 @@ TEST_SUITE("path tracer and distributed bounces") {
   }
 
   TEST_CASE("glass focuses an area light into a caustic only where paths are sampled") {
-    // A glass ball over the floor, a lamp above it out of view; the camera
-    // looks down at the floor under the ball from the side.
-    Scene bare = wallScene(48);
-    bare.camera.position = {0, -4, 3};
-    bare.camera.forward = glm::normalize(glm::vec3(0, 4, -3));
-    bare.camera.up = {0, 0, 1};
-    bare.settings.maxBounces = 6;
-    addAreaLight(bare, Sphere{{0, 0, 3}, 0.3f}, 40.0f, 1);
+    const Scene bare = causticStage();
     Scene scene = bare;
-    Material glass = diffuse(glm::vec3(0), 0);
-    glass.transmission = 1;
-    glass.ior = 1.5f;
-    addShape(scene, Sphere{{0, 0, 1.1f}, 0.5f}, glass);
+    addGlassBall(scene);
     const float lit = meanAround(render(bare, standardShading(16)), 24, 24, 1);
     const float whitted = meanAround(render(scene, standardShading(16)), 24, 24, 1);
     scene.settings.mode = RenderMode::PathTracer;
@@ -323,25 +338,16 @@ TEST_SUITE("path tracer and distributed bounces") {
     // Direct light only (see above): the clamp has nothing to hold back.
     Scene wall = wallScene(32);
     wall.settings.mode = RenderMode::PathTracer;
-    addAreaLight(wall, Quad{{-1, 2.5f, 0.5f}, {1, 2.5f, 0.5f}, {1, 2.5f, 1.5f}, {-1, 2.5f, 1.5f}},
-                 8.0f, 2);
+    addOverheadQuadLight(wall);
     const ImageF unclamped = render(wall, standardShading(16));
     wall.settings.indirectClamp = 1e-4f;
     CHECK(maxRelativeDifference(render(wall, standardShading(16)), unclamped, 1e-3f) == 0.0);
 
     // The caustic above is all light after a diffuse bounce: each sample
     // adds at most two clamped contributions per vertex, plus the sky.
-    Scene caustic = wallScene(48);
-    caustic.camera.position = {0, -4, 3};
-    caustic.camera.forward = glm::normalize(glm::vec3(0, 4, -3));
-    caustic.camera.up = {0, 0, 1};
-    caustic.settings.maxBounces = 6;
+    Scene caustic = causticStage();
+    addGlassBall(caustic);
     caustic.settings.mode = RenderMode::PathTracer;
-    addAreaLight(caustic, Sphere{{0, 0, 3}, 0.3f}, 40.0f, 1);
-    Material glass = diffuse(glm::vec3(0), 0);
-    glass.transmission = 1;
-    glass.ior = 1.5f;
-    addShape(caustic, Sphere{{0, 0, 1.1f}, 0.5f}, glass);
     const float focused = meanAround(render(caustic, standardShading(256)), 24, 24, 1);
     caustic.settings.indirectClamp = 1e6f;  // above every contribution: no change
     const float highClamp = meanAround(render(caustic, standardShading(256)), 24, 24, 1);
