@@ -120,8 +120,9 @@ RT_ASSERT_TEXELS(GpuPrimitive, RT_TEXELS_PER_PRIMITIVE);
 // never missing anything. A child reference is a node index or, with
 // RT_REF_LEAF set, a leaf:
 //   top level:  RT_REF_LEAF | (kind + 1) << RT_REF_COUNT_SHIFT | item   (RT_PRIM_*)
-//   mesh level: RT_REF_LEAF | count << RT_REF_COUNT_SHIFT | first triangle item
-// (RT_REF_LEAF alone is the empty leaf at both levels). Node 1 + i is a copy
+//   mesh level: RT_REF_LEAF | RT_REF_MESH | count << RT_REF_COUNT_SHIFT | first triangle item
+// (RT_REF_LEAF alone is the empty leaf; a leaf tells its level, so the walk
+// keeps no level of its own). Node 1 + i is a copy
 // of the mesh root of top-level item i, for each mesh instance i (instances
 // are the first items).
 struct GpuBvhNode {
@@ -140,7 +141,8 @@ RT_ASSERT_TEXELS(GpuBvhNode, RT_TEXELS_PER_BVH_NODE);
 #define RT_REF_LEAF 0x80000000u
 #define RT_REF_COUNT_SHIFT 27u
 #define RT_REF_MAX_LEAF_SIZE 15u
-#define RT_REF_FIRST_MASK 0x07ffffffu
+#define RT_REF_MESH 0x04000000u
+#define RT_REF_FIRST_MASK 0x03ffffffu
 
 // What a leaf points at (48 bytes, three texels), by kind:
 //   triangle: v0, v1 - v0, v2 - v0; w: GpuVertex indices of the corners (bits)

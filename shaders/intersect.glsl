@@ -37,7 +37,6 @@ bool intersectSphere(vec3 center, float radius, Ray ray, float tMin, inout float
 }
 #endif
 
-#ifdef RT_FEATURE_TRIANGLES
 // Watertight ray/triangle test (Woop, Benthin and Wald, JCGT 2013). The
 // vertices move into a frame where the ray runs along +z from the origin:
 // a permutation putting the direction's largest axis last and a shear. The
@@ -64,6 +63,7 @@ ShearedRay shearRay(vec3 direction) {
   return ShearedRay(axis, vec3(-d.x / d.z, -d.y / d.z, 1.0 / d.z));
 }
 
+#ifdef RT_FEATURE_TRIANGLES
 // The vertex relative to the ray origin in the sheared frame; z unscaled.
 vec3 shearVertex(vec3 vertex, vec3 origin, ShearedRay frame) {
   precise vec3 v = permuteDominantLast(vertex - origin, frame.dominantAxis);

@@ -26,11 +26,23 @@ void addGeometryFeatures(const Shape& shape, ShaderFeatures& features) {
       shape.geometry);
 }
 
+// A mesh used once is built in world space: its instance's world-to-object
+// rows are the identity.
+bool movesRayIntoObjectSpace(const gpu::GpuPrimitive& primitive) {
+  return primitive.kind == RT_PRIM_INSTANCE &&
+         (primitive.a != glm::vec4(1, 0, 0, 0) || primitive.b != glm::vec4(0, 1, 0, 0) ||
+          primitive.c != glm::vec4(0, 0, 1, 0));
+}
+
 }  // namespace
 
 ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat) {
   ShaderFeatures features;
   for (const Shape& shape : scene.shapes) addGeometryFeatures(shape, features);
+  for (const gpu::GpuPrimitive& primitive : flat.primitives) {
+    features.looseTriangles |= primitive.kind == RT_PRIM_TRIANGLE;
+    features.instanceTransforms |= movesRayIntoObjectSpace(primitive);
+  }
   features.binaryOnly = scene.settings.mode == RenderMode::Binary;
   bool shaded = scene.settings.mode != RenderMode::Binary && scene.settings.maxBounces > 0;
   for (const Shape& shape : scene.shapes) {
@@ -75,6 +87,8 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(triangles, "RT_FEATURE_TRIANGLES");
   flag(cylinders, "RT_FEATURE_CYLINDERS");
   flag(meshes, "RT_FEATURE_MESHES");
+  flag(looseTriangles, "RT_FEATURE_LOOSE_TRIANGLES");
+  flag(instanceTransforms, "RT_FEATURE_INSTANCE_TRANSFORMS");
   flag(reflection, "RT_FEATURE_REFLECTION");
   flag(refraction, "RT_FEATURE_REFRACTION");
   flag(thinLens, "RT_FEATURE_THIN_LENS");

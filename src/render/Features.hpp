@@ -14,8 +14,12 @@ namespace rt {
 
 struct ShaderFeatures {
   bool spheres = false;
-  bool triangles = false;  // also quads and meshes
-  bool meshes = false;     // mesh instances: the two-level BVH
+  bool triangles = false;       // also quads and meshes
+  bool meshes = false;          // mesh instances: the two-level BVH
+  bool looseTriangles = false;  // triangles and quads that are top-level items, not in a mesh
+  // Some mesh instance is not in world space (a mesh placed more than once):
+  // the walk moves the ray into it.
+  bool instanceTransforms = false;
   bool cylinders = false;
   bool reflection = false;
   bool refraction = false;

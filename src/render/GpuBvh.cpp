@@ -63,7 +63,7 @@ uint32_t leafField(uint32_t first, uint32_t field) {
 uint32_t topLevelLeaf(uint32_t item, uint32_t kind) { return leafField(item, kind + 1); }
 
 uint32_t meshLeaf(uint32_t firstTriangle, uint32_t count) {
-  return leafField(firstTriangle, count);
+  return RT_REF_MESH | leafField(firstTriangle, count);
 }
 
 uint32_t appendBvhNodes(const Bvh& bvh, const LeafReference& leafReference,

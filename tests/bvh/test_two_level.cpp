@@ -8,6 +8,7 @@
 
 #include "bvh/Bvh.hpp"
 #include "render/BatchIntersector.hpp"
+#include "render/Features.hpp"
 #include "render/FlatScene.hpp"
 #include "render/Renderer.hpp"
 #include "render/SceneBuffers.hpp"
@@ -148,6 +149,26 @@ TEST_SUITE("bvh-gpu") {
                           gpuHits(meshScene(true), rays, AccelKind::Bvh)),
               rays.size());
     test::checkNoValidationMessages();
+  }
+
+  TEST_CASE("only a mesh placed more than once makes the walk move rays into object space") {
+    Scene shared = meshScene(false);
+    CHECK(detectFeatures(shared, flattenScene(shared)).instanceTransforms);
+    Scene copies = meshScene(true);  // each copy built in world space
+    ShaderFeatures features = detectFeatures(copies, flattenScene(copies));
+    CHECK(features.meshes);
+    CHECK_FALSE(features.instanceTransforms);
+    CHECK(features.looseTriangles);  // the floor quad
+    Scene meshOnly;
+    meshOnly.materials.push_back({});
+    meshOnly.meshes.push_back(bumpySphere(4, 6));
+    meshOnly.shapes.push_back(
+        {MeshInstance{0, glm::scale(glm::mat4(1.0f), glm::vec3(2.0f))}, 0, ""});
+    features = detectFeatures(meshOnly, flattenScene(meshOnly));
+    CHECK(features.triangles);
+    CHECK_FALSE(features.looseTriangles);
+    CHECK_FALSE(features.instanceTransforms);
+    CHECK_FALSE(features.spheres);
   }
 
   TEST_CASE("a shared mesh is stored once: instances cost a few hundred bytes each") {
