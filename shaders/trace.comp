@@ -62,8 +62,14 @@ void main() {
   for (uint s = frame.sampleBegin; s < frame.sampleBegin + frame.sampleCount; ++s) {
     vec2 jitter = samplePair(frame.samplerKind, pixelIndex, s, frame.samplesTotal, RT_DIM_PIXEL,
                              frame.seed);
+#ifdef RT_FEATURE_THIN_LENS
     vec2 lens = samplePair(frame.samplerKind, pixelIndex, s, frame.samplesTotal, RT_DIM_LENS,
                            frame.seed);
+#else
+    // A pinhole needs no lens point; the compiler keeps the sampler's loops
+    // even when their result is unused, so it is not drawn at all.
+    const vec2 lens = vec2(0.5);
+#endif
     Ray ray = cameraRay(vec2(pixel) + jitter, lens);
 #ifdef RT_BINARY_ONLY
     vec3 radiance = binaryRadiance(ray);

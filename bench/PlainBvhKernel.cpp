@@ -1,0 +1,158 @@
+#include "PlainBvhKernel.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#include "BenchClock.hpp"
+#include "bvh/Bvh.hpp"
+#include "gpu/Buffer.hpp"
+#include "gpu/ComputeKernel.hpp"
+#include "gpu/ShaderCompiler.hpp"
+#include "gpu/VulkanContext.hpp"
+
+namespace bench {
+namespace {
+
+constexpr uint32_t kLeafBit = 0x80000000u;
+constexpr uint32_t kCountBits = 3;  // leaf: kLeafBit | first << 3 | count (count <= 7)
+
+struct PlainParams {
+  glm::vec4 position;
+  float tanHalfFovY;
+  uint32_t width;
+  uint32_t sample;
+  uint32_t pad;
+};
+
+float bitsFloat(uint32_t bits) {
+  float value;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
+}
+
+// Nodes: (a.lo.x, a.hi.x, a.lo.y, a.hi.y), (b.lo.x, b.hi.x, b.lo.y, b.hi.y),
+// (a.lo.z, a.hi.z, b.lo.z, b.hi.z), (child a, child b, 0, 0): interior nodes only.
+std::vector<float> layoutNodes(const rt::Bvh& bvh) {
+  std::vector<uint32_t> interiorIndex(bvh.nodes.size(), 0);
+  uint32_t interiorCount = 0;
+  for (size_t i = 0; i < bvh.nodes.size(); ++i) {
+    if (bvh.nodes[i].count == 0) interiorIndex[i] = interiorCount++;
+  }
+  auto reference = [&](uint32_t child) {
+    const rt::BvhNode& node = bvh.nodes[child];
+    return node.count == 0 ? interiorIndex[child]
+                           : kLeafBit | node.firstIndex << kCountBits | node.count;
+  };
+  std::vector<float> nodes;
+  nodes.reserve(size_t(interiorCount) * 16);
+  for (const rt::BvhNode& node : bvh.nodes) {
+    if (node.count != 0) continue;
+    const rt::Aabb& a = bvh.nodes[node.firstIndex].bounds;
+    const rt::Aabb& b = bvh.nodes[node.firstIndex + 1].bounds;
+    float row[16] = {a.min.x,
+                     a.max.x,
+                     a.min.y,
+                     a.max.y,
+                     b.min.x,
+                     b.max.x,
+                     b.min.y,
+                     b.max.y,
+                     a.min.z,
+                     a.max.z,
+                     b.min.z,
+                     b.max.z,
+                     bitsFloat(reference(node.firstIndex)),
+                     bitsFloat(reference(node.firstIndex + 1)),
+                     0.0f,
+                     0.0f};
+    nodes.insert(nodes.end(), row, row + 16);
+  }
+  return nodes;
+}
+
+// Triangles in leaf order as (v0, v1 - v0, v2 - v0), one vec4 each.
+std::vector<float> layoutTriangles(const rt::TriangleMesh& mesh, const rt::Bvh& bvh) {
+  std::vector<float> triangles;
+  triangles.reserve(bvh.primitiveOrder.size() * 12);
+  for (uint32_t face : bvh.primitiveOrder) {
+    glm::uvec3 f = mesh.faces[face];
+    glm::vec3 v0 = mesh.positions[f.x];
+    glm::vec3 e1 = mesh.positions[f.y] - v0, e2 = mesh.positions[f.z] - v0;
+    float row[12] = {v0.x, v0.y, v0.z, 0.0f, e1.x, e1.y, e1.z, 0.0f, e2.x, e2.y, e2.z, 0.0f};
+    triangles.insert(triangles.end(), row, row + 12);
+  }
+  return triangles;
+}
+
+rt::Bvh buildMeshBvh(const rt::TriangleMesh& mesh) {
+  std::vector<rt::Aabb> boxes;
+  boxes.reserve(mesh.faces.size());
+  for (glm::uvec3 f : mesh.faces) {
+    rt::Aabb box;
+    for (uint32_t i : {f.x, f.y, f.z}) box.grow(mesh.positions[i]);
+    boxes.push_back(box);
+  }
+  rt::BvhBuildOptions options;  // the renderer's leaves and node cost
+  options.maxLeafSize = std::min(options.maxLeafSize, (1u << kCountBits) - 1);
+  return rt::buildBvh(boxes, options);
+}
+
+}  // namespace
+
+PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& mesh,
+                            const PlainCamera& camera, bool storageBuffers, uint32_t width,
+                            uint32_t samples) {
+  rt::Bvh bvh = buildMeshBvh(mesh);
+  std::vector<float> nodes = layoutNodes(bvh);
+  std::vector<float> triangles = layoutTriangles(mesh, bvh);
+  const VkBufferUsageFlags usage =
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+  rt::Buffer nodeBuffer(context, nodes.size() * sizeof(float), usage);
+  rt::Buffer triangleBuffer(context, triangles.size() * sizeof(float), usage);
+  rt::Buffer distances(context, size_t(width) * width * sizeof(float),
+                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  nodeBuffer.upload(nodes.data(), nodes.size() * sizeof(float));
+  triangleBuffer.upload(triangles.data(), triangles.size() * sizeof(float));
+
+  rt::ShaderCompiler compiler(RT_BENCH_SHADER_DIR, "");
+  rt::ShaderDefines defines;
+  if (storageBuffers) defines.emplace_back("PLAIN_STORAGE_BUFFERS", "1");
+  VkDescriptorType sceneType =
+      storageBuffers ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER : VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+  rt::ComputeKernel kernel(context, compiler.compile("plain_bvh.comp", defines),
+                           {{0, sceneType}, {1, sceneType}, {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                           sizeof(PlainParams));
+  if (storageBuffers) {
+    kernel.bind(0, nodeBuffer);
+    kernel.bind(1, triangleBuffer);
+  } else {
+    kernel.bindTexels(0, nodeBuffer, VK_FORMAT_R32G32B32A32_SFLOAT);
+    kernel.bindTexels(1, triangleBuffer, VK_FORMAT_R32G32B32A32_SFLOAT);
+  }
+  kernel.bind(2, distances);
+
+  PlainParams params{glm::vec4(camera.position, 0.0f), camera.tanHalfFovY, width, 0, 0};
+  PlainResult result;
+  const double rays = double(width) * width * samples;
+  for (int repetition = 0; repetition < 4; ++repetition) {  // the first one warms up
+    auto start = Clock::now();
+    double cpuStart = cpuSeconds();
+    context.submitAndWait([&](VkCommandBuffer commands) {
+      for (params.sample = 0; params.sample < samples; ++params.sample) {
+        kernel.recordDispatch(commands, &params, (width + 7) / 8, (width + 7) / 8);
+      }
+    });
+    double wall = secondsSince(start), cpu = cpuSeconds() - cpuStart;
+    if (repetition == 0) continue;
+    result.mraysPerSecond = std::max(result.mraysPerSecond, rays / wall * 1e-6);
+    result.mraysPerCpuSecond = std::max(result.mraysPerCpuSecond, rays / cpu * 1e-6);
+  }
+  std::vector<float> t(size_t(width) * width);
+  distances.download(t.data(), t.size() * sizeof(float));
+  result.hitFraction =
+      double(std::count_if(t.begin(), t.end(), [](float d) { return d > 0; })) / double(t.size());
+  return result;
+}
+
+}  // namespace bench

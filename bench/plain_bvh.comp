@@ -1,0 +1,95 @@
+#version 460
+// The plain reference kernel of PlainBvhKernel.hpp: one primary ray per
+// invocation, a stack walk of Aila and Laine's binary layout, Moller-Trumbore
+// triangles; writes the hit distance (-1: miss). Push constants only enter
+// arithmetic, never a branch: lavapipe would recompile the kernel at every
+// dispatch otherwise.
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(push_constant) uniform PlainParams {
+  vec4 position;
+  float tanHalfFovY;
+  uint width;
+  uint sampleIndex;
+  uint pad;
+} params;
+
+#ifdef PLAIN_STORAGE_BUFFERS
+layout(std430, set = 0, binding = 0) readonly buffer Nodes { vec4 nodes[]; };
+layout(std430, set = 0, binding = 1) readonly buffer Triangles { vec4 triangles[]; };
+vec4 nodeRow(uint node, uint row) { return nodes[node * 4u + row]; }
+vec4 triangleRow(uint triangle, uint row) { return triangles[triangle * 3u + row]; }
+#else
+layout(set = 0, binding = 0) uniform samplerBuffer nodeTexels;
+layout(set = 0, binding = 1) uniform samplerBuffer triangleTexels;
+vec4 nodeRow(uint node, uint row) { return texelFetch(nodeTexels, int(node * 4u + row)); }
+vec4 triangleRow(uint triangle, uint row) {
+  return texelFetch(triangleTexels, int(triangle * 3u + row));
+}
+#endif
+
+layout(std430, set = 0, binding = 2) writeonly buffer Distances { float distances[]; };
+
+const uint LEAF = 0x80000000u;
+const uint DONE = 0xffffffffu;
+
+// Entry distance into the box [lo, hi] given per axis as (lo.x, hi.x, ...),
+// or a miss (entry > exit).
+vec2 slabs(vec2 x, vec2 y, vec2 z, vec3 invDir, vec3 originTimesInv, float tMax) {
+  vec2 tx = x * invDir.x - originTimesInv.x;
+  vec2 ty = y * invDir.y - originTimesInv.y;
+  vec2 tz = z * invDir.z - originTimesInv.z;
+  float entry = max(max(min(tx.x, tx.y), min(ty.x, ty.y)), max(min(tz.x, tz.y), 0.0));
+  float exit = min(min(max(tx.x, tx.y), max(ty.x, ty.y)), min(max(tz.x, tz.y), tMax));
+  return vec2(entry, exit);
+}
+
+float closestHit(vec3 origin, vec3 direction) {
+  vec3 invDir = 1.0 / direction;
+  vec3 originTimesInv = origin * invDir;
+  float tMax = 1e30;
+  uint stack[64];
+  uint stackSize = 0u;
+  uint node = 0u;
+  while (node != DONE) {
+    while (node < LEAF) {
+      vec4 n0 = nodeRow(node, 0u), n1 = nodeRow(node, 1u);
+      vec4 n2 = nodeRow(node, 2u), n3 = nodeRow(node, 3u);
+      vec2 a = slabs(n0.xy, n0.zw, n2.xy, invDir, originTimesInv, tMax);
+      vec2 b = slabs(n1.xy, n1.zw, n2.zw, invDir, originTimesInv, tMax);
+      bool hitA = a.x <= a.y, hitB = b.x <= b.y;
+      uint childA = floatBitsToUint(n3.x), childB = floatBitsToUint(n3.y);
+      if (!hitA && !hitB) {
+        node = stackSize > 0u ? stack[--stackSize] : DONE;
+      } else {
+        bool aFirst = !hitB || (hitA && a.x <= b.x);
+        node = aFirst ? childA : childB;
+        if (hitA && hitB) stack[stackSize++] = aFirst ? childB : childA;
+      }
+    }
+    if (node == DONE) break;
+    uint first = (node & ~LEAF) >> 3u, count = node & 7u;
+    for (uint i = first; i < first + count; ++i) {
+      vec3 v0 = triangleRow(i, 0u).xyz, e1 = triangleRow(i, 1u).xyz, e2 = triangleRow(i, 2u).xyz;
+      vec3 p = cross(direction, e2);
+      float inverseDet = 1.0 / dot(e1, p);
+      vec3 toOrigin = origin - v0;
+      float u = dot(toOrigin, p) * inverseDet;
+      vec3 q = cross(toOrigin, e1);
+      float v = dot(direction, q) * inverseDet;
+      float t = dot(e2, q) * inverseDet;
+      if (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && t < tMax) tMax = t;
+    }
+    node = stackSize > 0u ? stack[--stackSize] : DONE;
+  }
+  return tMax < 1e30 ? tMax : -1.0;
+}
+
+void main() {
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  // A fixed jitter per sample (R2 sequence): every sample a new set of rays.
+  vec2 jitter = fract(0.5 + float(params.sampleIndex) * vec2(0.7548777, 0.5698403));
+  vec2 ndc = (vec2(pixel) + jitter) / float(params.width) * 2.0 - 1.0;
+  vec3 direction = normalize(vec3(ndc.x * params.tanHalfFovY, -ndc.y * params.tanHalfFovY, -1.0));
+  distances[pixel.y * params.width + pixel.x] = closestHit(params.position.xyz, direction);
+}
