@@ -86,16 +86,9 @@ std::vector<float> layoutTriangles(const rt::TriangleMesh& mesh, const rt::Bvh& 
 }
 
 rt::Bvh buildMeshBvh(const rt::TriangleMesh& mesh) {
-  std::vector<rt::Aabb> boxes;
-  boxes.reserve(mesh.faces.size());
-  for (glm::uvec3 f : mesh.faces) {
-    rt::Aabb box;
-    for (uint32_t i : {f.x, f.y, f.z}) box.grow(mesh.positions[i]);
-    boxes.push_back(box);
-  }
   rt::BvhBuildOptions options;  // the renderer's leaves and node cost
   options.maxLeafSize = std::min(options.maxLeafSize, (1u << kCountBits) - 1);
-  return rt::buildBvh(boxes, options);
+  return rt::buildBvh(rt::triangleBounds(mesh.positions, mesh.faces), options);
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include "render/FlatScene.hpp"
 #include "render/Renderer.hpp"
 #include "scene/PlyLoader.hpp"
+#include "scene/ProceduralMesh.hpp"
 #include "scene/SceneLoader.hpp"
 
 namespace {
@@ -31,27 +32,17 @@ using bench::Clock;
 using bench::cpuSeconds;
 using bench::secondsSince;
 
-// A closed bumpy sphere of about `triangles` triangles (radius about 1).
+// A closed bumpy sphere of about `triangles` triangles (radius about 1),
+// flat shaded (no vertex records: the table counts the BVH and the triangles).
 rt::TriangleMesh bumpySphere(uint32_t triangles) {
-  uint32_t rings = std::max(2u, static_cast<uint32_t>(std::sqrt(triangles / 4.0)));
-  uint32_t segments = 2 * rings;
-  rt::TriangleMesh mesh;
-  for (uint32_t r = 0; r <= rings; ++r) {
-    float theta = glm::pi<float>() * float(r) / float(rings);
-    for (uint32_t s = 0; s < segments; ++s) {
-      float phi = 2.0f * glm::pi<float>() * float(s) / float(segments);
-      glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
-                  std::sin(theta) * std::sin(phi));
-      mesh.positions.push_back((1.0f + 0.05f * std::sin(9.0f * phi) * std::sin(7.0f * theta)) * n);
-    }
-  }
-  for (uint32_t r = 0; r < rings; ++r) {
-    for (uint32_t s = 0; s < segments; ++s) {
-      uint32_t a = r * segments + s, b = r * segments + (s + 1) % segments;
-      mesh.faces.push_back({a, a + segments, b});
-      mesh.faces.push_back({b, a + segments, b + segments});
-    }
-  }
+  rt::BumpySphereShape shape;
+  shape.rings = std::max(2u, static_cast<uint32_t>(std::sqrt(triangles / 4.0)));
+  shape.segments = 2 * shape.rings;
+  shape.bump = 0.05f;
+  shape.phiWaves = 9.0f;
+  shape.thetaWaves = 7.0f;
+  rt::TriangleMesh mesh = rt::bumpySphere(shape);
+  mesh.normals.clear();
   return mesh;
 }
 
@@ -111,13 +102,7 @@ struct Row {
 Row measure(const std::string& label, rt::TriangleMesh mesh, rt::Renderer& renderer,
             rt::VulkanContext& context, const rt::ShaderCompiler& compiler) {
   Row row{label, mesh.faces.size()};
-  std::vector<rt::Aabb> boxes;
-  boxes.reserve(mesh.faces.size());
-  for (glm::uvec3 f : mesh.faces) {
-    rt::Aabb box;
-    for (uint32_t i : {f.x, f.y, f.z}) box.grow(mesh.positions[i]);
-    boxes.push_back(box);
-  }
+  std::vector<rt::Aabb> boxes = rt::triangleBounds(mesh.positions, mesh.faces);
   auto start = Clock::now();
   rt::BvhBuildOptions build;
   build.maxDepth = RT_BVH_MAX_DEPTH;

@@ -414,4 +414,16 @@ Bvh buildBvh(const std::vector<Aabb>& primitiveBounds, const BvhBuildOptions& op
   return Builder(primitiveBounds, options).build();
 }
 
+std::vector<Aabb> triangleBounds(const std::vector<glm::vec3>& positions,
+                                 const std::vector<glm::uvec3>& faces) {
+  std::vector<Aabb> boxes;
+  boxes.reserve(faces.size());
+  for (glm::uvec3 face : faces) {
+    Aabb box;
+    for (uint32_t corner : {face.x, face.y, face.z}) box.grow(positions[corner]);
+    boxes.push_back(box);
+  }
+  return boxes;
+}
+
 }  // namespace rt

@@ -65,4 +65,8 @@ struct BvhBuildOptions {
 
 Bvh buildBvh(const std::vector<Aabb>& primitiveBounds, const BvhBuildOptions& options = {});
 
+// One box per triangle (corner indices into `positions`), for buildBvh.
+std::vector<Aabb> triangleBounds(const std::vector<glm::vec3>& positions,
+                                 const std::vector<glm::uvec3>& faces);
+
 }  // namespace rt

@@ -17,6 +17,7 @@
 #include "render/Features.hpp"
 #include "render/FlatScene.hpp"
 #include "render/ImageError.hpp"
+#include "render/ImageSampling.hpp"
 #include "render/PixelRegion.hpp"
 #include "render/SceneBuffers.hpp"
 #include "scene/Scene.hpp"
@@ -26,20 +27,12 @@ namespace rt {
 class ShaderCompiler;
 class VulkanContext;
 
-struct ProgressiveOptions {
-  uint32_t width = 0;  // 0: the scene camera's size
-  uint32_t height = 0;
+struct ProgressiveOptions : ImageSampling {
   uint32_t samplesTotal = 0;  // samples the render aims for: strata of the jittered sampler
-  PixelRegion region;         // pixels rendered (empty: all); the others keep no samples
-  uint32_t seed = 0;
-  SamplerKind sampler = SamplerKind::Jittered;
-  std::optional<ShadingModel> shading;
-  bool countRays = false;
-  uint32_t firstSample = 0;  // index of the first sample added (split renders)
+  uint32_t firstSample = 0;   // index of the first sample added (split renders)
   // Even and odd samples as two independent replicates (RT_SAMPLER_REPLICATES),
   // which the error estimate needs; it costs stratified samplers accuracy.
   bool independentHalves = false;
-  AccelKind accel = AccelKind::Bvh;
 };
 
 class ProgressiveRenderer {

@@ -188,17 +188,10 @@ ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
         fmt::format("empty sample range {}:{} (of {} samples)", options.firstSample, end, total));
   }
   ProgressiveOptions progressive;
-  progressive.width = options.width;
-  progressive.height = options.height;
+  static_cast<ImageSampling&>(progressive) = options;
   progressive.samplesTotal = total;
-  progressive.region = options.region;
-  progressive.seed = options.seed;
-  progressive.sampler = options.sampler;
-  progressive.shading = options.shading;
-  progressive.countRays = options.countRays;
   progressive.firstSample = options.firstSample;
   progressive.independentHalves = options.estimateError || options.targetRmse > 0;
-  progressive.accel = options.accel;
   ProgressiveRenderer job(context_, compiler_, scene, progressive);
   s.primitives = job.flatScene().info.primitiveCount;
   s.bvhNodes = job.flatScene().info.bvhNodeCount;

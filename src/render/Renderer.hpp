@@ -11,6 +11,7 @@
 #include "io/Image.hpp"
 #include "render/Conventions.hpp"
 #include "render/Features.hpp"
+#include "render/ImageSampling.hpp"
 #include "render/PixelRegion.hpp"
 #include "scene/Scene.hpp"
 
@@ -19,18 +20,12 @@ namespace rt {
 class ShaderCompiler;
 class VulkanContext;
 
-struct RenderOptions {
-  uint32_t width = 0;  // 0: the scene camera's size
-  uint32_t height = 0;
+struct RenderOptions : ImageSampling {
   uint32_t samplesPerPixel = 16;  // the whole render's count (jittered strata)
   // Renders only sample indices [first, end) of the samplesPerPixel: pieces of
   // one render can run on several machines and be merged (`raytracer merge`).
   uint32_t firstSample = 0;
   uint32_t endSample = 0;  // 0: samplesPerPixel
-  uint32_t seed = 0;
-  SamplerKind sampler = SamplerKind::Jittered;
-  PixelRegion region;                   // pixels to render (empty: all); others get no samples
-  std::optional<ShadingModel> shading;  // default: the scene family's
   // Error estimate (ImageError.hpp): computed at checkpoints of the sample
   // count (nextRmseCheckpoint) and at the end, in the display space of
   // `displayMapping` (default: toneMappingFor(scene)). It renders even and
@@ -42,9 +37,7 @@ struct RenderOptions {
   bool estimateError = false;
   double targetRmse = 0;
   std::optional<ToneMapping> displayMapping;
-  double secondsPerDispatch = 0.1;   // target duration of one dispatch
-  bool countRays = false;            // compile in a ray counter (benchmarks)
-  AccelKind accel = AccelKind::Bvh;  // none: brute force, to compare against
+  double secondsPerDispatch = 0.1;  // target duration of one dispatch
   // Polled between dispatches; returning true ends the render early with
   // the samples accumulated so far (SIGINT, time budgets).
   std::function<bool()> shouldStop;

@@ -13,6 +13,7 @@
 #include "render/Renderer.hpp"
 #include "render/SceneBuffers.hpp"
 #include "scene/GltfLoader.hpp"
+#include "scene/ProceduralMesh.hpp"
 #include "scene/SceneLoader.hpp"
 #include "support/TestSupport.hpp"
 #include "util/Error.hpp"
@@ -21,29 +22,11 @@ using namespace rt;
 
 namespace {
 
-// A closed, bumpy sphere of 2 * rings * segments triangles, with normals.
 TriangleMesh bumpySphere(uint32_t rings, uint32_t segments) {
-  TriangleMesh mesh;
-  for (uint32_t r = 0; r <= rings; ++r) {
-    float theta = glm::pi<float>() * float(r) / float(rings);
-    for (uint32_t s = 0; s < segments; ++s) {
-      float phi = 2.0f * glm::pi<float>() * float(s) / float(segments);
-      glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
-                  std::sin(theta) * std::sin(phi));
-      float bump = 1.0f + 0.08f * std::sin(5.0f * phi) * std::sin(4.0f * theta);
-      mesh.positions.push_back(bump * n);
-      mesh.normals.push_back(n);
-    }
-  }
-  for (uint32_t r = 0; r < rings; ++r) {
-    for (uint32_t s = 0; s < segments; ++s) {
-      uint32_t a = r * segments + s, b = r * segments + (s + 1) % segments;
-      uint32_t c = a + segments, d = b + segments;
-      mesh.faces.push_back({a, c, b});
-      mesh.faces.push_back({b, c, d});
-    }
-  }
-  return mesh;
+  BumpySphereShape shape;
+  shape.rings = rings;
+  shape.segments = segments;
+  return rt::bumpySphere(shape);
 }
 
 // Placements of one mesh: rotated, non-uniformly scaled, mirrored.

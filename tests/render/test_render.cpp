@@ -24,16 +24,7 @@ ImageF renderScene(const Scene& scene, RenderOptions options) {
 // Camera on +z looking at the origin, one point light beside the camera
 // (family B conventions: no falloff, unit scale).
 Scene baseScene(uint32_t width, uint32_t height) {
-  Scene scene;
-  scene.family = SceneFamily::Rendering;
-  scene.camera.width = width;
-  scene.camera.height = height;
-  scene.camera.position = {0, 0, 5};
-  scene.camera.forward = {0, 0, -1};
-  scene.camera.fovYDegrees = 40;
-  scene.backgroundColor = {0.1f, 0.2f, 0.3f};
-  scene.pointLights.push_back({{0, 0, 50}, glm::vec3(0.8f), glm::vec3(0.8f)});
-  return scene;
+  return test::frontStage(width, height, {0, 0, 50}, 0.8f);
 }
 
 void addSphere(Scene& scene, Material material, glm::vec3 center = {0, 0, 0}, float radius = 1) {

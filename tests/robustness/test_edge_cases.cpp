@@ -13,16 +13,8 @@ namespace {
 // Camera on +z looking at the origin, one point light up and to the right
 // (family B: no falloff).
 Scene stage(uint32_t width = 40, uint32_t height = 30) {
-  Scene scene;
-  scene.family = SceneFamily::Rendering;
-  scene.camera.width = width;
-  scene.camera.height = height;
-  scene.camera.position = {0, 0, 5};
-  scene.camera.forward = {0, 0, -1};
-  scene.camera.fovYDegrees = 40;
-  scene.backgroundColor = {0.1f, 0.2f, 0.3f};
+  Scene scene = test::frontStage(width, height, {3, 4, 6}, 0.9f);
   scene.settings.maxBounces = 8;
-  scene.pointLights.push_back({{3, 4, 6}, glm::vec3(0.9f), glm::vec3(0.9f)});
   return scene;
 }
 

@@ -94,4 +94,17 @@ Image8 downscale(const Image8& image, uint32_t width, uint32_t height) {
   return out;
 }
 
+Scene frontStage(uint32_t width, uint32_t height, glm::vec3 light, float intensity) {
+  Scene scene;
+  scene.family = SceneFamily::Rendering;
+  scene.camera.width = width;
+  scene.camera.height = height;
+  scene.camera.position = {0, 0, 5};
+  scene.camera.forward = {0, 0, -1};
+  scene.camera.fovYDegrees = 40;
+  scene.backgroundColor = {0.1f, 0.2f, 0.3f};
+  scene.pointLights.push_back({light, glm::vec3(intensity), glm::vec3(intensity)});
+  return scene;
+}
+
 }  // namespace rt::test

@@ -1,5 +1,6 @@
 // Shared pieces of the test suite: where the shared data lives, one Vulkan
-// context with the validation layer on, and the shader compiler.
+// context with the validation layer on, the shader compiler, and small
+// scenes and rays several suites build on.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include "gpu/VulkanContext.hpp"
 #include "gpu_types.h"
 #include "io/Image.hpp"
+#include "scene/Scene.hpp"
 
 namespace rt::test {
 
@@ -39,5 +41,10 @@ Image8 downscale(const Image8& image, uint32_t width, uint32_t height);
 // random points of a box of half-size `targetExtent` round the origin, so
 // that many hit and many graze whatever a test scene holds there.
 std::vector<gpu::GpuRay> raysTowardsOrigin(size_t count, uint32_t seed, float targetExtent);
+
+// A family-B scene (no light falloff) with no shapes: the camera 5 units up
+// +z looking at the origin (40 degrees), a blue-grey background and one
+// white point light of `intensity` at `light`.
+Scene frontStage(uint32_t width, uint32_t height, glm::vec3 light, float intensity);
 
 }  // namespace rt::test

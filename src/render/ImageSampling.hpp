@@ -1,0 +1,26 @@
+// What both the offline renderer and the progressive one are told about the
+// image and its samples: size, pixels, sampler, shading and traversal.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "render/Conventions.hpp"
+#include "render/FlatScene.hpp"
+#include "render/PixelRegion.hpp"
+#include "scene/Scene.hpp"
+
+namespace rt {
+
+struct ImageSampling {
+  uint32_t width = 0;  // 0: the scene camera's size
+  uint32_t height = 0;
+  PixelRegion region;  // pixels rendered (empty: all); the others keep no samples
+  uint32_t seed = 0;
+  SamplerKind sampler = SamplerKind::Jittered;
+  std::optional<ShadingModel> shading;  // default: the scene family's
+  bool countRays = false;               // compile in a ray counter (benchmarks)
+  AccelKind accel = AccelKind::Bvh;     // none: brute force, to compare against
+};
+
+}  // namespace rt
