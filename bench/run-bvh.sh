@@ -3,7 +3,8 @@
 # 1k to 5M triangles and the Stanford bunny, plus the BVH on/off render-time
 # ratio on the official coursework example. Builds first; needs ../shared
 # beside the checkout (or SHARED_DIR). Extra arguments go to rt-bench-bvh
-# (e.g. --sizes 1000 10000).
+# (e.g. --sizes 1000 10000, or --plain for the plain reference kernel on the
+# bunny).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 shared=$(cd "${SHARED_DIR:-$root/../shared}" && pwd)
