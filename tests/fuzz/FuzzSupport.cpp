@@ -267,4 +267,18 @@ void checkScene(const Scene& scene) {
   }
 }
 
+std::filesystem::path prepareInputFile(std::string_view purpose,
+                                       const std::filesystem::path& inputDir,
+                                       const std::vector<std::string>& seedFolders,
+                                       uintmax_t maxLinkedBytes, const std::string& fileName) {
+  const std::filesystem::path root = makeScratchDir(purpose);
+  const std::filesystem::path placeDir = root / inputDir;
+  std::vector<std::filesystem::path> seedRoots;
+  if (const std::filesystem::path shared = sharedDir(); !shared.empty()) {
+    for (const std::string& folder : seedFolders) seedRoots.push_back(shared / folder);
+  }
+  linkReferencedFiles(seedRoots, placeDir, root, maxLinkedBytes);
+  return placeDir / fileName;
+}
+
 }  // namespace rt::fuzz

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "scene/Scene.hpp"
+#include "util/Error.hpp"
 
 namespace rt::fuzz {
 
@@ -30,6 +31,15 @@ void linkReferencedFiles(const std::vector<std::filesystem::path>& seedRoots,
                          const std::filesystem::path& placeDir,
                          const std::filesystem::path& scratchRoot, uintmax_t maxBytes);
 
+// The input file of a target whose loader reads files: `fileName` in
+// `inputDir` below a fresh scratch folder for `purpose`, with the files that
+// the seed documents under the shared folders `seedFolders` reference (at
+// most `maxLinkedBytes` each) linked around it as linkReferencedFiles does.
+std::filesystem::path prepareInputFile(std::string_view purpose,
+                                       const std::filesystem::path& inputDir,
+                                       const std::vector<std::string>& seedFolders,
+                                       uintmax_t maxLinkedBytes, const std::string& fileName);
+
 // Writes `bytes` to `file` (replacing it); aborts on failure, since a target
 // that cannot write its input would fuzz nothing.
 void writeInput(const std::filesystem::path& file, const uint8_t* bytes, size_t size);
@@ -41,5 +51,16 @@ void checkErrorMessage(std::string_view message, std::string_view file);
 // What every loaded mesh and scene must satisfy; aborts on a violation.
 void checkMesh(const TriangleMesh& mesh);
 void checkScene(const Scene& scene);
+
+// Checks what `load()` returns with `check`, or the error it throws as a
+// message naming `file`.
+template <typename Load, typename Check>
+void checkLoad(const Load& load, const Check& check, std::string_view file) {
+  try {
+    check(load());
+  } catch (const Error& error) {
+    checkErrorMessage(error.what(), file);
+  }
+}
 
 }  // namespace rt::fuzz

@@ -7,7 +7,6 @@
 
 #include "FuzzSupport.hpp"
 #include "scene/GltfLoader.hpp"
-#include "util/Error.hpp"
 
 namespace {
 
@@ -20,23 +19,15 @@ fs::path modelPath;
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  const fs::path root = rt::fuzz::makeScratchDir("gltf");
-  const fs::path modelDir = root / "models" / "model";
-  std::vector<fs::path> seedRoots;
-  if (const fs::path shared = rt::fuzz::sharedDir(); !shared.empty()) {
-    seedRoots = {shared / "assets" / "gltf", shared / "assets" / "gltf-invalid"};
-  }
-  rt::fuzz::linkReferencedFiles(seedRoots, modelDir, root, kMaxLinkedBytes);
-  modelPath = modelDir / "input.gltf";
+  modelPath = rt::fuzz::prepareInputFile("gltf", fs::path("models") / "model",
+                                         {"assets/gltf", "assets/gltf-invalid"}, kMaxLinkedBytes,
+                                         "input.gltf");
   return 0;
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   rt::fuzz::writeInput(modelPath, data, size);
-  try {
-    rt::fuzz::checkScene(rt::loadGltfScene(modelPath));
-  } catch (const rt::Error& error) {
-    rt::fuzz::checkErrorMessage(error.what(), modelPath.string());
-  }
+  rt::fuzz::checkLoad([] { return rt::loadGltfScene(modelPath); }, rt::fuzz::checkScene,
+                      modelPath.string());
   return 0;
 }

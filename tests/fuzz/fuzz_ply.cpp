@@ -6,7 +6,6 @@
 
 #include "FuzzSupport.hpp"
 #include "scene/PlyLoader.hpp"
-#include "util/Error.hpp"
 
 namespace {
 constexpr std::string_view kName = "fuzz.ply";
@@ -14,10 +13,6 @@ constexpr std::string_view kName = "fuzz.ply";
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
-  try {
-    rt::fuzz::checkMesh(rt::parsePly(bytes, kName));
-  } catch (const rt::Error& error) {
-    rt::fuzz::checkErrorMessage(error.what(), kName);
-  }
+  rt::fuzz::checkLoad([&] { return rt::parsePly(bytes, kName); }, rt::fuzz::checkMesh, kName);
   return 0;
 }

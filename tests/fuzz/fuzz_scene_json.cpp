@@ -8,7 +8,6 @@
 
 #include "FuzzSupport.hpp"
 #include "scene/SceneLoader.hpp"
-#include "util/Error.hpp"
 
 namespace {
 
@@ -22,23 +21,14 @@ fs::path scenePath;
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  const fs::path root = rt::fuzz::makeScratchDir("scene");
-  const fs::path sceneDir = root / "scenes" / "examples";
-  std::vector<fs::path> seedRoots;
-  if (const fs::path shared = rt::fuzz::sharedDir(); !shared.empty()) {
-    seedRoots.push_back(shared / "scene-format");
-  }
-  rt::fuzz::linkReferencedFiles(seedRoots, sceneDir, root, kMaxLinkedBytes);
-  scenePath = sceneDir / "fuzz.json";
+  scenePath = rt::fuzz::prepareInputFile("scene", fs::path("scenes") / "examples", {"scene-format"},
+                                         kMaxLinkedBytes, "fuzz.json");
   return 0;
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  try {
-    rt::fuzz::checkScene(rt::parseScene(text, scenePath));
-  } catch (const rt::Error& error) {
-    rt::fuzz::checkErrorMessage(error.what(), scenePath.string());
-  }
+  rt::fuzz::checkLoad([&] { return rt::parseScene(text, scenePath); }, rt::fuzz::checkScene,
+                      scenePath.string());
   return 0;
 }
