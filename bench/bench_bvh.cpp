@@ -32,6 +32,10 @@ using bench::Clock;
 using bench::cpuSeconds;
 using bench::secondsSince;
 
+// Primary rays: a square image of this width, this many samples a pixel.
+constexpr uint32_t kPrimaryWidth = 512;
+constexpr uint32_t kPrimarySamples = 8;
+
 // A closed bumpy sphere of about `triangles` triangles (radius about 1),
 // flat shaded (no vertex records: the table counts the BVH and the triangles).
 rt::TriangleMesh bumpySphere(uint32_t triangles) {
@@ -119,9 +123,9 @@ Row measure(const std::string& label, rt::TriangleMesh mesh, rt::Renderer& rende
   row.bytesPerTriangle = double(bytes) / double(row.triangles);
 
   rt::RenderOptions options;
-  options.width = 512;
-  options.height = 512;
-  options.samplesPerPixel = 8;
+  options.width = kPrimaryWidth;
+  options.height = kPrimaryWidth;
+  options.samplesPerPixel = kPrimarySamples;
   options.countRays = true;
   // Best of three renders: on a shared machine single runs vary by 30%.
   for (int repetition = 0; repetition < 3; ++repetition) {
@@ -168,12 +172,13 @@ void printPlainReference(rt::VulkanContext& context, const rt::TriangleMesh& bun
   bench::PlainCamera camera{scene.camera.position,
                             std::tan(glm::radians(scene.camera.fovYDegrees) * 0.5f)};
   std::printf(
-      "\nplain reference kernel (bench/PlainBvhKernel.hpp) on the bunny, same camera and "
-      "BVH build, 512x512, 8 samples, best of 3\n\n");
+      "\nplain reference kernel (bench/PlainBvhKernel.hpp) on the bunny, same camera, image size, "
+      "samples and BVH build, best of 3\n\n");
   std::printf("| %-28s | %15s | %14s | %12s |\n|---|---|---|---|\n", "nodes and triangles in",
               "primary Mrays/s", "primary /CPU-s", "rays hitting");
   for (bool storage : {false, true}) {
-    bench::PlainResult r = bench::measurePlainBvh(context, bunny, camera, storage, 512, 8);
+    bench::PlainResult r =
+        bench::measurePlainBvh(context, bunny, camera, storage, kPrimaryWidth, kPrimarySamples);
     std::printf("| %-28s | %15.2f | %14.2f | %11.1f%% |\n",
                 storage ? "storage buffers" : "texel buffers", r.mraysPerSecond,
                 r.mraysPerCpuSecond, 100.0 * r.hitFraction);
@@ -209,9 +214,10 @@ int main(int argc, char** argv) {
       rows.push_back(measure("Stanford bunny", bunnyMesh, renderer, context, compiler));
     }
     std::printf(
-        "device: %s; %u hardware threads; primary: 512x512, 8 spp, binary mode, best of 3; "
+        "device: %s; %u hardware threads; primary: %ux%u, %u spp, binary mode, best of 3; "
         "diffuse: 2^20 cosine rays from the surface, closest + any hit each\n\n",
-        context.description().name.c_str(), std::thread::hardware_concurrency());
+        context.description().name.c_str(), std::thread::hardware_concurrency(), kPrimaryWidth,
+        kPrimaryWidth, kPrimarySamples);
     std::printf("| %-24s | %9s | %8s | %10s | %9s | %15s | %16s | %13s | %14s |\n", "mesh",
                 "triangles", "build s", "Mtris/s", "bytes/tri", "primary Mrays/s",
                 "diffuse Mquery/s", "primary /CPU-s", "diffuse /CPU-s");

@@ -109,8 +109,9 @@ RT_ASSERT_TEXELS(GpuPrimitive, RT_TEXELS_PER_PRIMITIVE);
 
 // ---- Acceleration structure (src/render/FlatScene, shaders/traverse.glsl) ----
 // Two levels: a top-level BVH whose leaves are single items (a shape's
-// sphere, cylinder or triangle, or a mesh instance), and one object-space
-// BVH per mesh over its triangles, shared by all its instances. All nodes
+// sphere, cylinder or triangle, or a mesh instance), and one BVH per mesh
+// over its triangles, shared by all its instances (in world space when the
+// mesh is placed once, else in object space). All nodes
 // share one array (the top-level root is node 0); all leaf items share one
 // GpuItem array (top-level items first, numbered like GpuPrimitive).
 //
@@ -122,9 +123,8 @@ RT_ASSERT_TEXELS(GpuPrimitive, RT_TEXELS_PER_PRIMITIVE);
 //   top level:  RT_REF_LEAF | (kind + 1) << RT_REF_COUNT_SHIFT | item   (RT_PRIM_*)
 //   mesh level: RT_REF_LEAF | RT_REF_MESH | count << RT_REF_COUNT_SHIFT | first triangle item
 // (RT_REF_LEAF alone is the empty leaf; a leaf tells its level, so the walk
-// keeps no level of its own). Node 1 + i is a copy
-// of the mesh root of top-level item i, for each mesh instance i (instances
-// are the first items).
+// keeps no level of its own). Node 1 + i is a copy of the mesh root of
+// top-level item i, for each mesh instance i (instances are the first items).
 struct GpuBvhNode {
   uint leftRef;
   uint rightRef;
@@ -145,11 +145,12 @@ RT_ASSERT_TEXELS(GpuBvhNode, RT_TEXELS_PER_BVH_NODE);
 #define RT_REF_FIRST_MASK 0x03ffffffu
 
 // What a leaf points at (48 bytes, three texels), by kind:
-//   triangle: v0, v1 - v0, v2 - v0; w: GpuVertex indices of the corners (bits)
+//   triangle: v0, v1, v2 (the corners: the watertight test needs them exactly);
+//             w: GpuVertex indices of the corners (bits)
 //   sphere:   (center, radius), unused, unused
 //   cylinder: (center, radius), (unit axis, half height), unused
 //   instance: rows of the world-to-object matrix (3x4)
-// Mesh triangles are in their mesh's object space.
+// Mesh triangles are in their BVH's space (world or object, see above).
 struct GpuItem {
   vec4 row0;
   vec4 row1;

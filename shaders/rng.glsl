@@ -92,8 +92,7 @@ uint quotientOfSmall(uint a, uint b) {
 // the cells left out differ from pixel to pixel and no part of the square is
 // always missed) and, inside it, its own sub-column and sub-row
 // (multi-jittered), so both projections are stratified too. Works for any
-// count, not only squares.
-// s < count.
+// count, not only squares; s < count.
 vec2 jitteredPoint(uint s, uint count, uint key) {
   uint columns = uint(ceil(sqrt(float(count))));
   uint rows = quotientOfSmall(count + columns - 1u, columns);
