@@ -167,10 +167,9 @@ TEST_SUITE("bvh-gpu") {
           gpuBytes(flattenScene(meshScene(false, 6))) + 4 * triangles * sizeof(gpu::GpuItem));
   }
 
-  TEST_CASE("instanced glTF renders like its flattened copy") {
-    auto shared = test::sharedDir();
-    if (!shared) return;
-    Scene scene = loadGltfScene(*shared /
+  TEST_CASE("instanced glTF renders like its flattened copy" * test::needsShared()) {
+    const std::filesystem::path shared = test::requireShared();
+    Scene scene = loadGltfScene(shared /
                                 "assets/gltf/khronos-sample-assets/SimpleInstancing/glTF/"
                                 "SimpleInstancing.gltf");
     Scene flattened = scene;
@@ -195,10 +194,9 @@ TEST_SUITE("bvh-gpu") {
     test::checkNoValidationMessages();
   }
 
-  TEST_CASE("--accel none renders the image the BVH renders") {
-    auto shared = test::sharedDir();
-    if (!shared) return;
-    Scene scene = loadScene(*shared / "scene-format/official/cgr-2023-2024/mirror_image.json");
+  TEST_CASE("--accel none renders the image the BVH renders" * test::needsShared()) {
+    const std::filesystem::path shared = test::requireShared();
+    Scene scene = loadScene(shared / "scene-format/official/cgr-2023-2024/mirror_image.json");
     Renderer renderer(test::gpu(), test::shaderCompiler());
     RenderOptions options;
     options.width = 80;

@@ -378,13 +378,10 @@ TEST_SUITE("path tracer and distributed bounces") {
     CHECK(floorBounced.y == doctest::Approx(floorDirect.y).epsilon(0.02));
   }
 
-  TEST_CASE("the student renders with area lights and thin lenses match their authors'") {
-    const auto shared = test::sharedDir();
-    if (!shared) {
-      MESSAGE("skipped: ../shared not found");
-      return;
-    }
-    const auto folder = *shared / "scene-format/student/TsFreddie__RayTracer";
+  TEST_CASE("the student renders with area lights and thin lenses match their authors'" *
+            test::needsShared()) {
+    const std::filesystem::path shared = test::requireShared();
+    const auto folder = shared / "scene-format/student/TsFreddie__RayTracer";
     for (const char* name : {"softshadow", "dof"}) {
       CAPTURE(name);
       const Scene scene = loadScene(folder / "examples" / (std::string(name) + "_test.json"));

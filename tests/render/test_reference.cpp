@@ -37,14 +37,11 @@ Image8 renderFigure(const Scene& scene, std::optional<ShadingModel> shading) {
 }  // namespace
 
 TEST_SUITE("reference") {
-  TEST_CASE("example.json matches the official Blinn-Phong render (fig. 1e)") {
-    auto shared = test::sharedDir();
-    if (!shared) {
-      MESSAGE("../shared not found: skipped");
-      return;
-    }
-    Image8 reference = readImage8(*shared / "scene-format/reference/fig1e_step6_blinn_phong.jpg");
-    Scene scene = stepSixScene(*shared);
+  TEST_CASE("example.json matches the official Blinn-Phong render (fig. 1e)" *
+            test::needsShared()) {
+    const std::filesystem::path shared = test::requireShared();
+    Image8 reference = readImage8(shared / "scene-format/reference/fig1e_step6_blinn_phong.jpg");
+    Scene scene = stepSixScene(shared);
     Image8 ours = renderFigure(scene, std::nullopt);
     double fitted = test::psnr(ours, reference);
     MESSAGE("PSNR against fig1e, coursework shading: ", fitted, " dB");

@@ -220,14 +220,10 @@ TEST_SUITE("render") {
     CHECK(sum / double(random.rgba.size()) < 0.01);
   }
 
-  TEST_CASE("every official scene renders to a finite, non-blank image") {
-    auto shared = test::sharedDir();
-    if (!shared) {
-      MESSAGE("../shared not found: skipped");
-      return;
-    }
+  TEST_CASE("every official scene renders to a finite, non-blank image" * test::needsShared()) {
+    const std::filesystem::path shared = test::requireShared();
     for (const auto& entry :
-         std::filesystem::recursive_directory_iterator(*shared / "scene-format" / "official")) {
+         std::filesystem::recursive_directory_iterator(shared / "scene-format" / "official")) {
       if (entry.path().extension() != ".json") continue;
       CAPTURE(entry.path());
       Scene scene = loadScene(entry.path());

@@ -153,14 +153,10 @@ TEST_SUITE("robustness-watertight") {
     checkNoValidationMessages();
   }
 
-  TEST_CASE("the Stanford bunny: rays to every interior vertex and edge hit it") {
-    auto shared = sharedDir();
-    if (!shared) {
-      MESSAGE("skipped: ../shared (the bunny) not found");
-      return;
-    }
+  TEST_CASE("the Stanford bunny: rays to every interior vertex and edge hit it" * needsShared()) {
+    const std::filesystem::path shared = requireShared();
     TriangleMesh bunny =
-        loadPly(*shared / "assets/ply/stanford-bunny/bunny/reconstruction/bun_zipper.ply");
+        loadPly(shared / "assets/ply/stanford-bunny/bunny/reconstruction/bun_zipper.ply");
     std::vector<SharedPoint> points = sharedPoints(bunny);
     dvec3 center(-0.0168, 0.110, -0.0015);
     Crossings crossings = aimAt(meshScene(bunny), points, pointsAround(center, 0.3, 1009, 2));

@@ -313,18 +313,9 @@ void writeTexture(const std::string& name) {
 
 // ---------------------------------------------------------------- shared data
 
-std::optional<fs::path> assetDir(const char* sub) {
-  std::optional<fs::path> shared = rt::test::sharedDir();
-  if (shared && fs::is_directory(*shared / "assets" / sub)) return *shared / "assets" / sub;
-  MESSAGE("skipped: no shared/assets/" << sub << " folder");
-  return std::nullopt;
-}
+fs::path assetDir(const char* sub) { return rt::test::requireShared() / "assets" / sub; }
 
-std::optional<fs::path> sample(const char* relative) {
-  auto dir = assetDir("gltf/khronos-sample-assets");
-  if (!dir) return std::nullopt;
-  return *dir / relative;
-}
+fs::path sample(const char* relative) { return assetDir("gltf/khronos-sample-assets") / relative; }
 
 std::vector<fs::path> gltfFilesUnder(const fs::path& folder) {
   std::vector<fs::path> files;
@@ -1114,13 +1105,12 @@ TEST_SUITE("scene gltf errors") {
   }
 }
 
-TEST_SUITE("scene gltf samples") {
+TEST_SUITE("scene gltf samples" * rt::test::needsShared()) {
   TEST_CASE("survey: every Khronos sample file loads soundly, Draco variants are refused") {
-    auto dir = assetDir("gltf/khronos-sample-assets");
-    if (!dir) return;
+    const fs::path dir = assetDir("gltf/khronos-sample-assets");
     size_t files = 0;
-    for (const fs::path& file : gltfFilesUnder(*dir)) {
-      std::string relative = fs::relative(file, *dir).string();
+    for (const fs::path& file : gltfFilesUnder(dir)) {
+      std::string relative = fs::relative(file, dir).string();
       bool draco = contains(relative, "glTF-Draco");
       ++files;
       try {
@@ -1141,11 +1131,10 @@ TEST_SUITE("scene gltf samples") {
 
   TEST_CASE(
       "Box: .gltf, .glb and embedded variants give identical meshes, placed by the node matrix") {
-    auto gltf = sample("Box/glTF/Box.gltf");
-    if (!gltf) return;
-    rt::Scene scene = rt::loadGltfScene(*gltf);
-    CHECK(sameMeshes(scene, rt::loadGltfScene(*sample("Box/glTF-Binary/Box.glb"))));
-    CHECK(sameMeshes(scene, rt::loadGltfScene(*sample("Box/glTF-Embedded/Box.gltf"))));
+    const fs::path gltf = sample("Box/glTF/Box.gltf");
+    rt::Scene scene = rt::loadGltfScene(gltf);
+    CHECK(sameMeshes(scene, rt::loadGltfScene(sample("Box/glTF-Binary/Box.glb"))));
+    CHECK(sameMeshes(scene, rt::loadGltfScene(sample("Box/glTF-Embedded/Box.gltf"))));
     REQUIRE(scene.meshes.size() == 1);
     CHECK(scene.meshes[0].faces.size() == 12);
     CHECK(scene.meshes[0].positions.size() == 24);
@@ -1157,28 +1146,27 @@ TEST_SUITE("scene gltf samples") {
     CHECK(near(scene.materials.at(0).diffuseColor, {0.8f, 0, 0}));
     CHECK(scene.materials.at(0).kd == doctest::Approx(1.0));
     // Interleaved attributes (byte strides) give the same world-space box.
-    rt::Scene interleaved = rt::loadGltfScene(*sample("BoxInterleaved/glTF/BoxInterleaved.gltf"));
+    rt::Scene interleaved = rt::loadGltfScene(sample("BoxInterleaved/glTF/BoxInterleaved.gltf"));
     CHECK(uniqueTriangles(interleaved) == 12);
     CHECK(near(worldBounds(interleaved).lo, box.lo));
     CHECK(near(worldBounds(interleaved).hi, box.hi));
   }
 
   TEST_CASE("Triangle, TriangleWithoutIndices, SimpleSparseAccessor, MeshPrimitiveModes") {
-    auto triangle = sample("Triangle/glTF/Triangle.gltf");
-    if (!triangle) return;
-    rt::Scene indexed = rt::loadGltfScene(*triangle);
+    const fs::path triangle = sample("Triangle/glTF/Triangle.gltf");
+    rt::Scene indexed = rt::loadGltfScene(triangle);
     rt::Scene plain =
-        rt::loadGltfScene(*sample("TriangleWithoutIndices/glTF/TriangleWithoutIndices.gltf"));
+        rt::loadGltfScene(sample("TriangleWithoutIndices/glTF/TriangleWithoutIndices.gltf"));
     CHECK(indexed.meshes.at(0).positions == plain.meshes.at(0).positions);
     CHECK(indexed.meshes.at(0).faces == plain.meshes.at(0).faces);
     // Sparse values lift three vertices: the accessor's max becomes (6, 4, 0).
     rt::Scene sparse =
-        rt::loadGltfScene(*sample("SimpleSparseAccessor/glTF/SimpleSparseAccessor.gltf"));
+        rt::loadGltfScene(sample("SimpleSparseAccessor/glTF/SimpleSparseAccessor.gltf"));
     CHECK(near(worldBounds(sparse).hi, {6, 4, 0}));
     CHECK(near(worldBounds(sparse).lo, {0, 0, 0}));
     CHECK(uniqueTriangles(sparse) == 12);
     // Triangles 6, strip 4, fan 6; points and three kinds of lines skipped.
-    rt::Scene modes = rt::loadGltfScene(*sample("MeshPrimitiveModes/glTF/MeshPrimitiveModes.gltf"));
+    rt::Scene modes = rt::loadGltfScene(sample("MeshPrimitiveModes/glTF/MeshPrimitiveModes.gltf"));
     REQUIRE(modes.meshes.size() == 3);
     CHECK(modes.meshes[0].faces.size() == 6);
     CHECK(modes.meshes[1].faces.size() == 4);
@@ -1189,25 +1177,23 @@ TEST_SUITE("scene gltf samples") {
   }
 
   TEST_CASE("instancing: SimpleMeshes, CesiumMilkTruck, SimpleInstancing share their meshes") {
-    auto meshes = sample("SimpleMeshes/glTF/SimpleMeshes.gltf");
-    if (!meshes) return;
-    rt::Scene twice = rt::loadGltfScene(*meshes);
+    const fs::path meshes = sample("SimpleMeshes/glTF/SimpleMeshes.gltf");
+    rt::Scene twice = rt::loadGltfScene(meshes);
     CHECK(twice.meshes.size() == 1);
     CHECK(twice.shapes.size() == 2);
-    rt::Scene truck = rt::loadGltfScene(*sample("CesiumMilkTruck/glTF/CesiumMilkTruck.gltf"));
+    rt::Scene truck = rt::loadGltfScene(sample("CesiumMilkTruck/glTF/CesiumMilkTruck.gltf"));
     CHECK(truck.meshes.size() == 4);  // the wheels' mesh serves two nodes
     CHECK(truck.shapes.size() == 5);
     CHECK(drawnTriangles(truck) > uniqueTriangles(truck));
-    rt::Scene cubes = rt::loadGltfScene(*sample("SimpleInstancing/glTF/SimpleInstancing.gltf"));
+    rt::Scene cubes = rt::loadGltfScene(sample("SimpleInstancing/glTF/SimpleInstancing.gltf"));
     CHECK(cubes.meshes.size() == 1);
     CHECK(cubes.shapes.size() == 125);
     CHECK(drawnTriangles(cubes) == 125 * 12);
   }
 
   TEST_CASE("NegativeScaleTest: mirrored instances keep winding and normals in agreement") {
-    auto file = sample("NegativeScaleTest/glTF/NegativeScaleTest.gltf");
-    if (!file) return;
-    rt::Scene scene = rt::loadGltfScene(*file);
+    const fs::path file = sample("NegativeScaleTest/glTF/NegativeScaleTest.gltf");
+    rt::Scene scene = rt::loadGltfScene(file);
     CHECK(scene.meshes.size() == 11);  // 8 glTF meshes, 3 used mirrored and not
     size_t mirrored = 0;
     for (size_t shape = 0; shape < scene.shapes.size(); ++shape) {
@@ -1229,49 +1215,47 @@ TEST_SUITE("scene gltf samples") {
   }
 
   TEST_CASE("Cameras, MultipleScenes, TransmissionTest, BoxTextured, Duck quantized") {
-    auto cameras = sample("Cameras/glTF/Cameras.gltf");
-    if (!cameras) return;
-    rt::Scene withCamera = rt::loadGltfScene(*cameras);
+    const fs::path cameras = sample("Cameras/glTF/Cameras.gltf");
+    rt::Scene withCamera = rt::loadGltfScene(cameras);
     CHECK(withCamera.camera.fovYDegrees == doctest::Approx(glm::degrees(0.7)));
     CHECK(withCamera.camera.width == 600);
     CHECK(near(withCamera.camera.position, {0.5f, 0.5f, 3.0f}));
     CHECK(near(withCamera.camera.forward, {0, 0, -1}));
     // "scene": 1 holds the square (two triangles), scene 0 the triangle.
-    rt::Scene second = rt::loadGltfScene(*sample("MultipleScenes/glTF/MultipleScenes.gltf"));
+    rt::Scene second = rt::loadGltfScene(sample("MultipleScenes/glTF/MultipleScenes.gltf"));
     CHECK(uniqueTriangles(second) == 2);
-    rt::Scene glass = rt::loadGltfScene(*sample("TransmissionTest/glTF/TransmissionTest.gltf"));
+    rt::Scene glass = rt::loadGltfScene(sample("TransmissionTest/glTF/TransmissionTest.gltf"));
     CHECK(std::any_of(glass.materials.begin(), glass.materials.end(), [](const rt::Material& m) {
       return m.transmission == 1.0f && m.ior == 1.5f && m.kd == 0.0f;
     }));
-    rt::Scene textured = rt::loadGltfScene(*sample("BoxTextured/glTF/BoxTextured.gltf"));
+    rt::Scene textured = rt::loadGltfScene(sample("BoxTextured/glTF/BoxTextured.gltf"));
     REQUIRE(textured.textures.size() == 1);
     CHECK(textured.textures[0].image.width == 256);
     CHECK(textured.materials.at(0).diffuseTexture == 0);
     CHECK(textured.meshes.at(0).uvs.size() == 24);
-    rt::Scene glb = rt::loadGltfScene(*sample("BoxTextured/glTF-Binary/BoxTextured.glb"));
+    rt::Scene glb = rt::loadGltfScene(sample("BoxTextured/glTF-Binary/BoxTextured.glb"));
     CHECK(glb.textures.at(0).image.rgba == textured.textures[0].image.rgba);
-    rt::Scene duck = rt::loadGltfScene(*sample("Duck/glTF/Duck.gltf"));
-    rt::Scene quantized = rt::loadGltfScene(*sample("Duck/glTF-Quantized/Duck.gltf"));
+    rt::Scene duck = rt::loadGltfScene(sample("Duck/glTF/Duck.gltf"));
+    rt::Scene quantized = rt::loadGltfScene(sample("Duck/glTF-Quantized/Duck.gltf"));
     CHECK(uniqueTriangles(duck) == 4212);
     CHECK(uniqueTriangles(quantized) == 4212);
     CHECK(near(worldBounds(duck).lo, worldBounds(quantized).lo, 0.05f));
     CHECK(near(worldBounds(duck).hi, worldBounds(quantized).hi, 0.05f));
     // DamagedHelmet's metal and roughness come from a texture: its mean is used.
-    rt::Scene helmet = rt::loadGltfScene(*sample("DamagedHelmet/glTF/DamagedHelmet.gltf"));
+    rt::Scene helmet = rt::loadGltfScene(sample("DamagedHelmet/glTF/DamagedHelmet.gltf"));
     CHECK(helmet.materials.at(0).kd > 0.05f);
     CHECK(helmet.materials.at(0).kd < 0.95f);
   }
 }
 
-TEST_SUITE("scene gltf invalid") {
+TEST_SUITE("scene gltf invalid" * rt::test::needsShared()) {
   TEST_CASE(
       "every file of gltf-invalid loads or is rejected with one line, fast, without crashing") {
-    auto dir = assetDir("gltf-invalid");
-    if (!dir) return;
+    const fs::path dir = assetDir("gltf-invalid");
     std::map<std::string, std::vector<std::string>> classes;
     size_t loaded = 0, rejected = 0;
-    for (const fs::path& file : gltfFilesUnder(*dir)) {
-      std::string relative = fs::relative(file, *dir).string();
+    for (const fs::path& file : gltfFilesUnder(dir)) {
+      std::string relative = fs::relative(file, dir).string();
       Outcome outcome = loadIsolated(file, 20);
       CHECK_MESSAGE(outcome.seconds < 10.0, relative);
       switch (outcome.kind) {
@@ -1301,12 +1285,11 @@ TEST_SUITE("scene gltf invalid") {
   }
 }
 
-TEST_SUITE("scene gltf render") {
+TEST_SUITE("scene gltf render" * rt::test::needsShared()) {
   // Small renders on whatever Vulkan device the tests use (lavapipe in CI),
   // saved under the test output folder for looking at.
   TEST_CASE("sample models render to finite images that show the model") {
-    auto dir = assetDir("gltf/khronos-sample-assets");
-    if (!dir) return;
+    const fs::path dir = assetDir("gltf/khronos-sample-assets");
     const std::vector<std::pair<std::string, std::string>> models = {
         {"Box/glTF-Binary/Box.glb", "gltf-box.png"},
         {"SimpleInstancing/glTF-Binary/SimpleInstancing.glb", "gltf-instancing.png"},
@@ -1320,7 +1303,7 @@ TEST_SUITE("scene gltf render") {
       const std::string& model = entry.first;
       const std::string& output = entry.second;
       CAPTURE(model);
-      rt::Scene scene = rt::loadGltfScene(*dir / model);
+      rt::Scene scene = rt::loadGltfScene(dir / model);
       rt::RenderOptions options;
       options.width = 160;
       options.height = 120;

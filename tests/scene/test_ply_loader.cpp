@@ -211,12 +211,7 @@ fs::path writeFile(const std::string& name, const std::string& bytes) {
 
 // ----------------------------------------------------------- shared files
 
-std::optional<fs::path> plyAssets() {
-  const std::optional<fs::path> shared = rt::test::sharedDir();
-  if (shared && fs::is_directory(*shared / "assets/ply")) return *shared / "assets/ply";
-  MESSAGE("skipped: no shared/assets/ply beside the checkout");
-  return std::nullopt;
-}
+fs::path plyAssets() { return rt::test::requireShared() / "assets/ply"; }
 
 struct Expected {
   size_t vertices = 0;
@@ -354,14 +349,13 @@ void checkSameMesh(const rt::TriangleMesh& binary, const rt::TriangleMesh& ascii
 
 }  // namespace
 
-TEST_SUITE("scene ply: shared files") {
+TEST_SUITE("scene ply: shared files" * rt::test::needsShared()) {
   TEST_CASE("every file under assets/ply loads or is rejected as expected") {
-    const std::optional<fs::path> assets = plyAssets();
-    if (!assets) return;
+    const fs::path assets = plyAssets();
     const std::map<std::string, Expected> expected = expectedOutcomes();
     size_t known = 0;
-    for (const fs::path& file : plyFilesUnder(*assets)) {
-      const std::string relative = file.lexically_relative(*assets).generic_string();
+    for (const fs::path& file : plyFilesUnder(assets)) {
+      const std::string relative = file.lexically_relative(assets).generic_string();
       CAPTURE(relative);
       const auto found = expected.find(relative);
       if (found == expected.end()) {
@@ -377,10 +371,9 @@ TEST_SUITE("scene ply: shared files") {
   }
 
   TEST_CASE("the Stanford bunny: known vertex, bounds, faces") {
-    const std::optional<fs::path> assets = plyAssets();
-    if (!assets) return;
+    const fs::path assets = plyAssets();
     const rt::TriangleMesh bunny =
-        loadAsset(*assets, "stanford-bunny/bunny/reconstruction/bun_zipper.ply");
+        loadAsset(assets, "stanford-bunny/bunny/reconstruction/bun_zipper.ply");
     CHECK(bunny.positions[0] == glm::vec3(-0.0378297f, 0.12794f, 0.00447467f));
     CHECK(bunny.faces[0] == glm::uvec3(21216, 21215, 20399));
     glm::vec3 low(1e9f), high(-1e9f);
@@ -393,7 +386,7 @@ TEST_SUITE("scene ply: shared files") {
     // tinyply's copy spells the types float32/uint8/int32 and was "modified by
     // flipply": the same vertices, every face wound the other way.
     const rt::TriangleMesh flipped =
-        loadAsset(*assets, "edge-cases/tinyply-assets/assets/bunny.ply");
+        loadAsset(assets, "edge-cases/tinyply-assets/assets/bunny.ply");
     CHECK(flipped.positions == bunny.positions);
     REQUIRE(flipped.faces.size() == bunny.faces.size());
     size_t reversed = 0;
@@ -407,28 +400,26 @@ TEST_SUITE("scene ply: shared files") {
   }
 
   TEST_CASE("binary little endian, big endian and ASCII versions agree") {
-    const std::optional<fs::path> assets = plyAssets();
-    if (!assets) return;
+    const fs::path assets = plyAssets();
     const std::string happly = "edge-cases/happly-sampledata/test/sampledata/platonic_shelf";
-    const rt::TriangleMesh little = loadAsset(*assets, happly + ".ply");
-    const rt::TriangleMesh big = loadAsset(*assets, happly + "_big_endian.ply");
+    const rt::TriangleMesh little = loadAsset(assets, happly + ".ply");
+    const rt::TriangleMesh big = loadAsset(assets, happly + "_big_endian.ply");
     CHECK(little.positions == big.positions);  // bit for bit
     CHECK(little.faces == big.faces);
-    checkSameMesh(little, loadAsset(*assets, happly + "_ascii.ply"));
+    checkSameMesh(little, loadAsset(assets, happly + "_ascii.ply"));
     const std::string draco = "edge-cases/draco-testdata/testdata/test_pos_color";
-    checkSameMesh(loadAsset(*assets, draco + ".ply"), loadAsset(*assets, draco + "_ascii.ply"));
+    checkSameMesh(loadAsset(assets, draco + ".ply"), loadAsset(assets, draco + "_ascii.ply"));
     const std::string ico = "edge-cases/tinyply-assets/assets/icosahedron";
-    checkSameMesh(loadAsset(*assets, ico + ".ply"), loadAsset(*assets, ico + "_ascii.ply"));
+    checkSameMesh(loadAsset(assets, ico + ".ply"), loadAsset(assets, ico + "_ascii.ply"));
   }
 
   TEST_CASE("cubes: 8 corners, 12 triangles, quads fanned") {
-    const std::optional<fs::path> assets = plyAssets();
-    if (!assets) return;
+    const fs::path assets = plyAssets();
     for (const char* name : {"edge-cases/assimp-testmodels-deb/PLY/cube.ply",
                              "edge-cases/assimp-testmodels-deb/PLY/cube_binary.ply",
                              "edge-cases/draco-testdata/testdata/cube_quads.ply"}) {
       CAPTURE(name);
-      const rt::TriangleMesh cube = loadAsset(*assets, name);
+      const rt::TriangleMesh cube = loadAsset(assets, name);
       REQUIRE(cube.positions.size() == 8);
       CHECK(cube.faces.size() == 12);
       // The corners of the unit cube, each once.
@@ -441,19 +432,18 @@ TEST_SUITE("scene ply: shared files") {
       CHECK(corners.size() == 8);
     }
     const rt::TriangleMesh quads =
-        loadAsset(*assets, "edge-cases/draco-testdata/testdata/cube_quads.ply");
+        loadAsset(assets, "edge-cases/draco-testdata/testdata/cube_quads.ply");
     CHECK(quads.faces[0] == glm::uvec3(0, 1, 2));  // "4 0 1 2 3"
     CHECK(quads.faces[1] == glm::uvec3(0, 2, 3));
   }
 
   TEST_CASE("CR-only header: the carriage return that starts the data is data") {
-    const std::optional<fs::path> assets = plyAssets();
-    if (!assets) return;
+    const fs::path assets = plyAssets();
     // The two files differ only in the first data byte (0x99 vs 0x0D), the
     // low byte of vertex 0's x; a reader that ate the CR would misread all.
-    const rt::TriangleMesh box = loadAsset(*assets, "edge-cases/draco-testdata/testdata/Box.ply");
+    const rt::TriangleMesh box = loadAsset(assets, "edge-cases/draco-testdata/testdata/Box.ply");
     const rt::TriangleMesh delim =
-        loadAsset(*assets, "edge-cases/draco-testdata/testdata/delim_test.ply");
+        loadAsset(assets, "edge-cases/draco-testdata/testdata/delim_test.ply");
     CHECK(box.positions[0].x != delim.positions[0].x);
     CHECK(std::abs(box.positions[0].x - delim.positions[0].x) < 1e-4f);
     CHECK(std::equal(box.positions.begin() + 1, box.positions.end(), delim.positions.begin() + 1));
@@ -461,10 +451,9 @@ TEST_SUITE("scene ply: shared files") {
   }
 
   TEST_CASE("Wuson: normals are unit, (s, t) texture coordinates are read") {
-    const std::optional<fs::path> assets = plyAssets();
-    if (!assets) return;
+    const fs::path assets = plyAssets();
     const rt::TriangleMesh wuson =
-        loadAsset(*assets, "edge-cases/assimp-testmodels-deb/PLY/Wuson.ply");
+        loadAsset(assets, "edge-cases/assimp-testmodels-deb/PLY/Wuson.ply");
     CHECK(wuson.uvs[0] == glm::vec2(0.681180f, 0.275678f));
     CHECK(glm::length(wuson.normals[0] - glm::vec3(0.241919f, -0.961129f, 0.133063f)) < 1e-5f);
     CHECK(wuson.faces.back() == glm::uvec3(11181, 11182, 11183));

@@ -14,27 +14,15 @@
 
 #include "scene/SceneLoader.hpp"
 #include "support/JsonMutations.hpp"
+#include "support/TestSupport.hpp"
 #include "util/Error.hpp"
-
-// The build passes the absolute path of the shared folder; without it the
-// file-based tests are skipped, not failed.
-#ifndef RT_SHARED_DIR
-#define RT_SHARED_DIR ""
-#endif
 
 namespace {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
-fs::path sceneFormatDir() { return fs::path(RT_SHARED_DIR) / "scene-format"; }
-
-bool sharedScenesAvailable() {
-  std::error_code ignored;
-  if (fs::is_directory(sceneFormatDir(), ignored)) return true;
-  MESSAGE("skipped: no shared scene folder at '" << sceneFormatDir().string() << "'");
-  return false;
-}
+fs::path sceneFormatDir() { return rt::test::requireShared() / "scene-format"; }
 
 std::vector<fs::path> jsonFilesUnder(const fs::path& folder) {
   std::vector<fs::path> files;
@@ -143,8 +131,8 @@ class TempDir {
 }  // namespace
 
 TEST_SUITE("scene loader: official files") {
-  TEST_CASE("2019 example: camera vectors default to looking down +z from the origin") {
-    if (!sharedScenesAvailable()) return;
+  TEST_CASE("2019 example: camera vectors default to looking down +z from the origin" *
+            rt::test::needsShared()) {
     const rt::Scene scene =
         rt::loadScene(sceneFormatDir() / "official/cg-path-of-light-2019/example.json");
     CHECK(scene.family == rt::SceneFamily::PathOfLight);
@@ -168,8 +156,8 @@ TEST_SUITE("scene loader: official files") {
     }
   }
 
-  TEST_CASE("2021-2023 example: lookat is a direction, textures resolve, quads keep v0..v3") {
-    if (!sharedScenesAvailable()) return;
+  TEST_CASE("2021-2023 example: lookat is a direction, textures resolve, quads keep v0..v3" *
+            rt::test::needsShared()) {
     const rt::Scene scene = rt::loadScene(
         sceneFormatDir() / "official/cg-path-of-light-2021-2023/examples/example.json");
     CHECK(scene.family == rt::SceneFamily::PathOfLight);
@@ -198,8 +186,8 @@ TEST_SUITE("scene loader: official files") {
     CHECK(scene.warnings.empty());  // tWidth/tHeight are accepted silently
   }
 
-  TEST_CASE("family B mirror_image: lookAt is a target, isreflective gates reflectivity") {
-    if (!sharedScenesAvailable()) return;
+  TEST_CASE("family B mirror_image: lookAt is a target, isreflective gates reflectivity" *
+            rt::test::needsShared()) {
     const rt::Scene scene =
         rt::loadScene(sceneFormatDir() / "official/cgr-2023-2024/mirror_image.json");
     CHECK(scene.family == rt::SceneFamily::Rendering);
@@ -221,8 +209,8 @@ TEST_SUITE("scene loader: official files") {
     CHECK(scene.warnings.empty());
   }
 
-  TEST_CASE("family B binary_primitves: no materials, no lights, default bounces") {
-    if (!sharedScenesAvailable()) return;
+  TEST_CASE("family B binary_primitves: no materials, no lights, default bounces" *
+            rt::test::needsShared()) {
     const rt::Scene scene =
         rt::loadScene(sceneFormatDir() / "official/cgr-2023-2024/binary_primitves.json");
     CHECK(scene.family == rt::SceneFamily::Rendering);
@@ -236,8 +224,7 @@ TEST_SUITE("scene loader: official files") {
     CHECK(scene.warnings.empty());  // binary mode needs no materials
   }
 
-  TEST_CASE("family B scene.json has two lights and six shapes") {
-    if (!sharedScenesAvailable()) return;
+  TEST_CASE("family B scene.json has two lights and six shapes" * rt::test::needsShared()) {
     const rt::Scene scene = rt::loadScene(sceneFormatDir() / "official/cgr-2023-2024/scene.json");
     CHECK(scene.settings.mode == rt::RenderMode::Binary);
     CHECK(scene.pointLights.size() == 2);
@@ -245,8 +232,7 @@ TEST_SUITE("scene loader: official files") {
     CHECK(near(scene.pointLights[1].specularIntensity, glm::vec3(0.5f)));
   }
 
-  TEST_CASE("every official file loads without warnings") {
-    if (!sharedScenesAvailable()) return;
+  TEST_CASE("every official file loads without warnings" * rt::test::needsShared()) {
     const std::vector<fs::path> files = jsonFilesUnder(sceneFormatDir() / "official");
     CHECK(files.size() >= 6);
     for (const fs::path& file : files) {
@@ -286,7 +272,10 @@ TEST_SUITE("scene loader: robustness") {
                                           {"isrefractive", false},
                                           {"refractiveindex", 1}}}});
     CHECK(checkCorruptionsFailCleanly(scene) > 500);
-    if (!sharedScenesAvailable()) return;
+  }
+
+  TEST_CASE("corrupting any single value of the textured official file fails cleanly" *
+            rt::test::needsShared()) {
     // The file with textures, so the texture lookup is corrupted too.
     const fs::path official =
         sceneFormatDir() / "official/cg-path-of-light-2021-2023/examples/example.json";
@@ -296,8 +285,7 @@ TEST_SUITE("scene loader: robustness") {
 }
 
 TEST_SUITE("scene loader: student files") {
-  TEST_CASE("each student file loads or fails with one rt::Error line") {
-    if (!sharedScenesAvailable()) return;
+  TEST_CASE("each student file loads or fails with one rt::Error line" * rt::test::needsShared()) {
     const std::vector<fs::path> files = jsonFilesUnder(sceneFormatDir() / "student");
     size_t loaded = 0;
     for (const fs::path& file : files) {
@@ -316,8 +304,8 @@ TEST_SUITE("scene loader: student files") {
     MESSAGE(loaded << " of " << files.size() << " student scene files load");
   }
 
-  TEST_CASE("known student files: what loads and why the others are rejected") {
-    if (!sharedScenesAvailable()) return;
+  TEST_CASE("known student files: what loads and why the others are rejected" *
+            rt::test::needsShared()) {
     const fs::path student = sceneFormatDir() / "student";
     const auto errorOfFile = [&](const char* relative) -> std::string {
       const fs::path file = student / relative;
@@ -1254,8 +1242,7 @@ TEST_SUITE("scene loader: PLY meshes") {
     CHECK(contains(errorIn(scene), "scene.shapes[1].file: conflicts with"));
   }
 
-  TEST_CASE("student scenes with PLY meshes") {
-    if (!sharedScenesAvailable()) return;
+  TEST_CASE("student scenes with PLY meshes" * rt::test::needsShared()) {
     const fs::path student = sceneFormatDir() / "student";
     const fs::path monkeyScene = student / "TsFreddie__RayTracer/examples/monkey_bvh_test.json";
     if (fs::exists(monkeyScene)) {

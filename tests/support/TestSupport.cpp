@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <glm/geometric.hpp>
 #include <memory>
 #include <random>
@@ -24,9 +25,18 @@ std::vector<gpu::GpuRay> raysTowardsOrigin(size_t count, uint32_t seed, float ta
 }
 
 std::optional<std::filesystem::path> sharedDir() {
-  std::filesystem::path dir = RT_SHARED_DIR;
+  const char* fromEnvironment = std::getenv("RT_SHARED_DIR");
+  std::filesystem::path dir = fromEnvironment ? fromEnvironment : RT_SHARED_DIR;
   if (std::filesystem::is_directory(dir / "scene-format")) return dir;
   return std::nullopt;
+}
+
+doctest::skip needsShared() { return doctest::skip(!sharedDir().has_value()); }
+
+std::filesystem::path requireShared() {
+  std::optional<std::filesystem::path> dir = sharedDir();
+  REQUIRE_MESSAGE(dir.has_value(), "no shared folder (RT_SHARED_DIR or " RT_SHARED_DIR ")");
+  return *dir;
 }
 
 VulkanContext& gpu() {

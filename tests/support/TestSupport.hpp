@@ -3,6 +3,8 @@
 // scenes and rays several suites build on.
 #pragma once
 
+#include <doctest/doctest.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -16,9 +18,18 @@
 
 namespace rt::test {
 
-// ../shared beside the checkout, or nullopt (tests that need it then skip
-// with a message, so a clone without it still passes).
+// The shared test data: $RT_SHARED_DIR, else ../shared beside the checkout
+// (the build's RT_SHARED_DIR); nullopt when it is not there.
 std::optional<std::filesystem::path> sharedDir();
+
+// Decorator of every test case that reads ../shared: doctest skips it when
+// the folder is missing (main() says so), so a clone without it reports
+// those cases as skipped, never as passed.
+doctest::skip needsShared();
+
+// ../shared inside a test case decorated with needsShared(); fails the case
+// when the folder is missing (it only runs then under --no-skip).
+std::filesystem::path requireShared();
 
 // One context for the whole run, validation layer enabled.
 VulkanContext& gpu();
