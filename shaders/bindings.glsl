@@ -43,7 +43,8 @@ void loadSceneInfo() {
       opaqueUint(b.lightFalloff, z), opaqueFloat(b.lightScale, z), opaqueUint(b.shadingModel, z),
       opaqueUint(b.sphereUvPole, z), opaqueUint(b.textureCount, z),
       opaqueUint(b.areaLightCount, z), opaqueUint(b.distributedBounces, z),
-      opaqueFloat(b.indirectClamp, z), 0u, 0u, 0u);
+      opaqueFloat(b.indirectClamp, z), opaqueFloat(b.ambient, z),
+      opaqueUint(b.mirrorsReplaceLocalLight, z), 0u);
 }
 // Primitives and BVH nodes are read through texel buffers (RGBA32F, records
 // of whole texels): CPU drivers such as lavapipe gather texels with vector

@@ -1,8 +1,8 @@
 #version 460
 // Viewer display pass: turns the renderer's float32 accumulation buffer into
 // the 8-bit pixels shown in the window, with the same tone mapping as the PNG
-// writer (exposure, clamp to [0, 1], no gamma, round to the nearest 1/255), so
-// a screenshot of the window equals the offline render.
+// writer (exposure, clamp to [0, 1], no gamma, rounded or truncated to 1/255),
+// so a screenshot of the window equals the offline render.
 // The pixels go to a buffer in RGBA8 memory order, which the host copies into
 // an RGBA8 image: on lavapipe, imageStore to an rgba8 image costs about three
 // times as much as this whole pass.
@@ -25,7 +25,7 @@ layout(std430, set = 0, binding = RT_DISPLAY_BINDING_PIXELS) writeonly buffer Pi
 uint toneMapChannel(float value) {
   float exposed = value * params.exposure;
   float unit = exposed > 0.0 ? min(exposed, 1.0) : 0.0;
-  return uint(floor(unit * 255.0 + 0.5));
+  return uint(floor(unit * 255.0 + (params.truncate != 0u ? 0.0 : 0.5)));
 }
 
 void main() {

@@ -20,8 +20,12 @@ struct GpuDisplayParams {
   uvec2 size;      // accumulation (and display image) size in pixels
   float exposure;  // linear scale before the clamp, as rt::toneMappingFor
   uint firstRow;   // the dispatch covers rows firstRow.. (those that got samples)
+  uint truncate;   // 1: bytes are floor(255 v) (rt::Quantization::Truncate); 0: rounded
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
-RT_ASSERT_STD430_SIZE(GpuDisplayParams, 16);
+RT_ASSERT_STD430_SIZE(GpuDisplayParams, 32);
 
 #ifdef __cplusplus
 }  // namespace rt::gpu

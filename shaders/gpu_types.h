@@ -309,9 +309,12 @@ struct GpuSceneInfo {
   // Largest channel one light contribution may add after a diffuse bounce
   // (`clampindirect`, firefly clamp; RT_FAR_VALUE: off).
   float indirectClamp;
+  // Ambient light: this times the diffuse colour at every hit (family B).
+  float ambient;
+  // 1: a hit's own light is clamped to 1, then weighted by
+  // 1 - reflectivity - transmission (family B); 0: added to the reflection.
+  uint mirrorsReplaceLocalLight;
   uint pad0;
-  uint pad1;
-  uint pad2;
 };
 RT_ASSERT_STD430_SIZE(GpuSceneInfo, 160);
 

@@ -97,4 +97,19 @@ std::optional<ShadingModel> shadingNamed(const std::string& name) {
   return std::nullopt;
 }
 
+void addConventionsOption(CLI::App& app, std::string& name) {
+  app.add_option("--conventions", name,
+                 "Conventions (light falloff, shading, ambient, mirrors, image orientation): "
+                 "coursework-a, coursework-b or textbook; default: what the scene's keys say "
+                 "(README 'Conventions')")
+      ->check(CLI::IsMember({"coursework-a", "coursework-b", "textbook"}));
+}
+
+void applyConventionsOption(const std::string& name, Scene& scene) {
+  if (name.empty()) return;
+  std::optional<Conventions> conventions = conventionsNamed(name);
+  if (!conventions) throw Error(fmt::format("--conventions {}: unknown conventions", name));
+  setConventions(scene, *conventions, "--conventions");
+}
+
 }  // namespace rt::cli

@@ -43,7 +43,12 @@ SamplerKind samplerNamed(const std::string& name, SamplerKind fallback);
 // Accepts the names samplerNamed knows (a usage error otherwise).
 CLI::Validator samplerValidator();
 
-// "standard" / "coursework" / "" (the scene family's default).
+// "standard" / "coursework" / "" (the conventions' default).
 std::optional<ShadingModel> shadingNamed(const std::string& name);
+
+// --conventions NAME (coursework-a, coursework-b, textbook) into `name`.
+void addConventionsOption(CLI::App& app, std::string& name);
+// Gives a loaded scene the conventions --conventions named, if any.
+void applyConventionsOption(const std::string& name, Scene& scene);
 
 }  // namespace rt::cli

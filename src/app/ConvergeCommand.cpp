@@ -48,6 +48,7 @@ struct CommandLine {
   std::string clock = "wall";
   bool estimate = false;
   std::string shading;
+  std::string conventions;
   std::string device;
   std::string shaderDir;
   bool validation = false;
@@ -129,6 +130,7 @@ void printSummaryTable(const std::vector<rt::ConvergencePoint>& points,
 
 int run(const CommandLine& cli) {
   rt::Scene scene = rt::loadSceneFile(cli.scenePath);
+  rt::cli::applyConventionsOption(cli.conventions, scene);
   rt::ConvergenceSetup setup = convergenceSetup(cli, scene);
   std::vector<uint32_t> counts = sampleCounts(cli);
   std::vector<rt::SamplerKind> samplers;
@@ -219,8 +221,9 @@ void addOptions(CLI::App& app, CommandLine& cli) {
   app.add_flag("--estimate", cli.estimate,
                "Render as for --estimate-rmse (independent even/odd halves) and record the "
                "renderer's own RMSE estimate beside the true one");
-  app.add_option("--shading", cli.shading, "Shading model (default: the scene family's)")
+  app.add_option("--shading", cli.shading, "Shading model (default: the conventions')")
       ->check(CLI::IsMember({"standard", "coursework"}));
+  rt::cli::addConventionsOption(app, cli.conventions);
   app.add_option("--device", cli.device, "The number of the Vulkan device to use");
   app.add_flag("--validation", cli.validation, "Enable the Vulkan validation layer");
   app.add_option("--shader-dir", cli.shaderDir, "Folder with the GLSL shaders");

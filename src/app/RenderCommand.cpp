@@ -35,6 +35,7 @@ struct CommandLine {
   uint32_t seed = 0;
   std::string sampler;
   std::string shading;
+  std::string conventions;
   std::string accel;
   std::string device;
   std::string shaderDir;
@@ -125,16 +126,18 @@ std::string rmseText(const rt::RenderStats& stats) {
                      stats.reachedTarget ? " (target reached)" : "");
 }
 
-void printSummary(const rt::ImageF& image, const rt::RenderStats& stats,
+void printSummary(const rt::ImageF& image, const rt::Scene& scene, const rt::RenderStats& stats,
                   const rt::VulkanContext& context) {
   double samples = double(image.width) * image.height * stats.samplesDone;
   std::fprintf(stderr,
                "rendered %ux%u at %u spp in %.3f s (%.2f Msamples/s) on %s; "
-               "%u primitives, features: %s; setup %.3f s, %u dispatches%s\n",
+               "%u primitives, features: %s; conventions: %s (%s); setup %.3f s, "
+               "%u dispatches%s\n",
                image.width, image.height, stats.samplesDone, stats.renderSeconds,
                samples / std::max(stats.renderSeconds, 1e-9) * 1e-6,
                context.description().name.c_str(), stats.primitives,
-               stats.features.summary().c_str(), stats.setupSeconds, stats.dispatches,
+               stats.features.summary().c_str(), rt::conventionsName(scene.conventions),
+               scene.conventionsReason.c_str(), stats.setupSeconds, stats.dispatches,
                rmseText(stats).c_str());
 }
 
@@ -146,6 +149,7 @@ int run(const CommandLine& cli) {
   rt::Scene scene = rt::loadSceneFile(cli.scenePath);
   for (const std::string& warning : scene.warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  rt::cli::applyConventionsOption(cli.conventions, scene);
   if (cli.indirectClamp) scene.settings.indirectClamp = *cli.indirectClamp;
   rt::RenderOptions options = renderOptions(cli, scene);
   options.displayMapping = rt::toneMappingFor(scene);
@@ -179,7 +183,7 @@ int run(const CommandLine& cli) {
                  interrupted.load() ? "interrupted" : "time budget reached", stats.samplesDone,
                  cli.outputPath.c_str());
   }
-  if (!cli.quiet) printSummary(image, stats, context);
+  if (!cli.quiet) printSummary(image, scene, stats, context);
   if (context.validationMessageCount() > 0) {
     throw rt::Error(
         fmt::format("{} Vulkan validation message(s) reported", context.validationMessageCount()));
@@ -204,8 +208,10 @@ int runRenderCommand(int argc, char** argv) {
                  "Sobol); default: the scene's, else jittered")
       ->check(rt::cli::samplerValidator());
   app.add_option("--shading", cli.shading,
-                 "Shading model (default: coursework for Path-of-Light files, standard otherwise)")
+                 "Shading model (default: the conventions': coursework for coursework-a, "
+                 "standard otherwise)")
       ->check(CLI::IsMember({"standard", "coursework"}));
+  rt::cli::addConventionsOption(app, cli.conventions);
   app.add_option("--accel", cli.accel,
                  "Acceleration: bvh (the default) or none (every ray tests every primitive)")
       ->check(CLI::IsMember({"bvh", "none"}));

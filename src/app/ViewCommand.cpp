@@ -21,6 +21,7 @@ struct CommandLine {
   std::string size;
   std::string sampler;
   std::string shading;
+  std::string conventions;
   std::string device;
   bool noOverlay = false;
   bool noWatch = false;
@@ -36,6 +37,7 @@ void finishOptions(const CommandLine& cli, rt::viewer::ViewerOptions& options) {
   }
   if (!cli.sampler.empty()) options.sampler = rt::cli::samplerNamed(cli.sampler, {});
   if (auto shading = rt::cli::shadingNamed(cli.shading)) options.shading = shading;
+  if (!cli.conventions.empty()) options.conventions = rt::conventionsNamed(cli.conventions);
   if (!cli.device.empty()) options.deviceIndex = rt::cli::parseDeviceIndex(cli.device);
   options.overlay = !cli.noOverlay;
   options.watch = !cli.noWatch;
@@ -87,6 +89,7 @@ int runViewCommand(int argc, char** argv) {
       ->check(CLI::IsMember({"random", "jittered", "sobol"}));
   app.add_option("--shading", cli.shading, "Shading model (as the render command)")
       ->check(CLI::IsMember({"standard", "coursework"}));
+  rt::cli::addConventionsOption(app, cli.conventions);
   app.add_option("--exposure", options.exposure, "Extra exposure factor")
       ->check(rt::cli::positiveFiniteNumber());
   app.add_flag("-v,--verbose", options.verbose, "Log every frame (default: about once a second)");

@@ -36,8 +36,9 @@ float applyCurve(float value, ToneCurve curve) {
   return std::min(value, 1.0f);
 }
 
-uint8_t quantize(float unit) {
-  return static_cast<uint8_t>(std::lround(std::clamp(unit, 0.0f, 1.0f) * 255.0f));
+uint8_t quantize(float unit, Quantization quantization) {
+  float scaled = std::clamp(unit, 0.0f, 1.0f) * 255.0f;
+  return static_cast<uint8_t>(quantization == Quantization::Round ? std::round(scaled) : scaled);
 }
 
 void writePpm(const std::filesystem::path& path, const Image8& image) {
@@ -107,7 +108,8 @@ Image8 toneMap(const ImageF& image, const ToneMapping& mapping) {
   out.rgb.reserve(size_t(image.width) * image.height * 3);
   for (size_t i = 0; i < size_t(image.width) * image.height; ++i) {
     for (int c = 0; c < 3; ++c) {
-      out.rgb.push_back(quantize(displayValue(image.rgba[i * 4 + c], mapping)));
+      out.rgb.push_back(
+          quantize(displayValue(image.rgba[i * 4 + c], mapping), mapping.quantization));
     }
   }
   return out;

@@ -33,10 +33,15 @@ struct ImageRgba8 {
 // How linear radiance becomes display values (see README "Conventions").
 enum class ToneCurve { Clamp, Reinhard };
 
+// 8-bit value of a display value v in [0, 1]: round(255 v), or floor(255 v)
+// as (unsigned char)(255 * v) in many coursework renderers.
+enum class Quantization { Round, Truncate };
+
 struct ToneMapping {
   float exposure = 1.0f;  // linear scale before the curve
   ToneCurve curve = ToneCurve::Clamp;
   bool srgbEncode = false;  // sRGB transfer function after the curve
+  Quantization quantization = Quantization::Round;
 };
 
 // One linear channel value as displayed, in [0, 1] before 8-bit quantization.

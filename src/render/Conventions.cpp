@@ -3,45 +3,64 @@
 #include <glm/gtc/constants.hpp>
 
 namespace rt {
+namespace {
 
-LightingConventions lightingConventionsFor(SceneFamily family,
+// Family B's renders show shadowed surfaces at 0.4 of their diffuse colour
+// (a floor of colour (0.5, 0.8, 0.5) in shadow is (51, 81, 51)), whatever
+// the lights' intensities.
+constexpr float kCourseworkBAmbient = 0.4f;
+
+}  // namespace
+
+LightingConventions lightingConventionsFor(Conventions conventions,
                                            std::optional<ShadingModel> shading) {
-  LightingConventions conventions;
-  switch (family) {
-    case SceneFamily::PathOfLight:
+  LightingConventions lighting;
+  switch (conventions) {
+    case Conventions::CourseworkA:
       // Intensities as given, spread over the sphere: I / (4 pi d^2). Fitted
       // to the official renders to within 1% (a 1% change costs 1.5 dB).
-      conventions = {RT_FALLOFF_INVERSE_SQUARE, 1.0f / (4.0f * glm::pi<float>()),
-                     ShadingModel::Coursework};
+      lighting.falloff = RT_FALLOFF_INVERSE_SQUARE;
+      lighting.lightScale = 1.0f / (4.0f * glm::pi<float>());
+      lighting.shading = ShadingModel::Coursework;
       break;
-    case SceneFamily::Rendering:
+    case Conventions::CourseworkB:
+      lighting.ambient = kCourseworkBAmbient;
+      lighting.mirrorsReplaceLocalLight = true;
+      break;
+    case Conventions::Textbook:
       // Intensities below 1 and lights about a unit away: no falloff.
-      conventions = {RT_FALLOFF_NONE, 1.0f, ShadingModel::Standard};
       break;
   }
-  if (shading) conventions.shading = *shading;
-  return conventions;
+  if (shading) lighting.shading = *shading;
+  return lighting;
 }
 
 LightingConventions pathTracerConventions() {
-  return {RT_FALLOFF_INVERSE_SQUARE, 1.0f / (4.0f * glm::pi<float>()), ShadingModel::Standard};
+  LightingConventions lighting;
+  lighting.falloff = RT_FALLOFF_INVERSE_SQUARE;
+  lighting.lightScale = 1.0f / (4.0f * glm::pi<float>());
+  return lighting;
 }
 
 LightingConventions lightingConventionsFor(const Scene& scene,
                                            std::optional<ShadingModel> shading) {
   if (scene.settings.mode == RenderMode::PathTracer) return pathTracerConventions();
-  return lightingConventionsFor(scene.family, shading);
+  return lightingConventionsFor(scene.conventions, shading);
 }
 
 ToneMapping toneMappingFor(const Scene& scene) {
   ToneMapping mapping;
-  // Family B's `exposure` (0.1 in every official file) belongs to its path
-  // tracing mode; the Whitted modes display radiance as is.
-  bool exposed =
-      scene.family != SceneFamily::Rendering || scene.settings.mode == RenderMode::PathTracer;
-  mapping.exposure = exposed ? scene.camera.exposure : 1.0f;
   mapping.curve = ToneCurve::Clamp;
   mapping.srgbEncode = false;
+  if (scene.conventions == Conventions::CourseworkB) {
+    // Family B's `exposure` (0.1 in every official file) is not applied by
+    // its renderers (times 0.1 every image would be nearly black), and they
+    // write bytes as (unsigned char)(255 * c): the 0.25 background is 63.
+    mapping.exposure = scene.settings.mode == RenderMode::PathTracer ? scene.camera.exposure : 1.0f;
+    mapping.quantization = Quantization::Truncate;
+  } else {
+    mapping.exposure = scene.camera.exposure;
+  }
   return mapping;
 }
 

@@ -1,6 +1,10 @@
-// The lighting and display conventions of each scene family. Neither
-// coursework wrote them down; family A's were fitted to the official renders
-// (see README "Conventions" and tests/render/test_reference.cpp).
+// What each set of conventions (rt::Conventions) means for the renderer:
+// how lights fall off, the shading model, ambient light, how mirrors mix
+// with a surface's own shading, which way image right points, and how
+// radiance becomes 8-bit pixels. Neither coursework wrote them down; family
+// A's were fitted to the official renders, family B's to a student's
+// renders of the official files (README "Conventions";
+// tests/render/test_reference.cpp).
 #pragma once
 
 #include <cstdint>
@@ -18,18 +22,26 @@ struct LightingConventions {
   uint32_t falloff = RT_FALLOFF_NONE;  // RT_FALLOFF_*
   float lightScale = 1.0f;             // multiplies every light intensity
   ShadingModel shading = ShadingModel::Standard;
+  // Light every hit receives from nowhere in particular: this times the
+  // diffuse colour, added to the direct light (shadows included).
+  float ambient = 0.0f;
+  // A hit's own (ambient + direct) light is clamped to 1 per channel, then
+  // weighted by 1 - reflectivity - transmission, so a full mirror shows only
+  // what it reflects. Without: the local light is added to the reflection.
+  bool mirrorsReplaceLocalLight = false;
 };
 
-// `shading` overrides the family's shading model when given.
-LightingConventions lightingConventionsFor(SceneFamily family,
+// `shading` overrides the conventions' shading model when given.
+LightingConventions lightingConventionsFor(Conventions conventions,
                                            std::optional<ShadingModel> shading = std::nullopt);
 
-// The path tracer is physically based in both families: lights fall off as
-// I / (4 pi d^2) (I is the power, as family A has it) and shading is the
-// per-channel Blinn-Phong (the coursework model's clamp is no BRDF).
+// The path tracer is physically based under every set of conventions:
+// lights fall off as I / (4 pi d^2) (I is the power, as family A has it),
+// shading is the per-channel Blinn-Phong (the coursework model's clamp is
+// no BRDF) and there is no ambient term.
 LightingConventions pathTracerConventions();
 
-// The conventions a scene renders with: its family's, or the path tracer's.
+// The lighting a scene renders with: its conventions', or the path tracer's.
 LightingConventions lightingConventionsFor(const Scene& scene,
                                            std::optional<ShadingModel> shading = std::nullopt);
 

@@ -462,12 +462,11 @@ uint32_t dominantAxis(const glm::vec3& v) {
 
 void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuSceneInfo& info,
                 const glm::vec3& frameOrigin) {
-  glm::vec3 forward = glm::normalize(camera.forward);
-  glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
+  CameraBasis basis = cameraBasis(camera);
   info.cameraPosition = camera.position - frameOrigin;
-  info.cameraForward = forward;
-  info.cameraRight = right;
-  info.cameraUp = glm::cross(right, forward);
+  info.cameraForward = basis.forward;
+  info.cameraRight = basis.right;
+  info.cameraUp = basis.up;
   info.tanHalfFovY = std::tan(glm::radians(camera.fovYDegrees) * 0.5f);
   info.aspect = static_cast<float>(width) / static_cast<float>(height);
   info.apertureRadius = camera.type == CameraType::ThinLens ? camera.apertureRadius : 0.0f;
@@ -523,6 +522,8 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   info.textureCount = static_cast<uint32_t>(flat.textureInfos.size());
   info.shadingModel =
       conventions.shading == ShadingModel::Coursework ? RT_SHADING_COURSEWORK : RT_SHADING_STANDARD;
+  info.ambient = conventions.ambient;
+  info.mirrorsReplaceLocalLight = conventions.mirrorsReplaceLocalLight ? 1u : 0u;
   return flat;
 }
 

@@ -409,13 +409,13 @@ Scene loadGltfScene(const fs::path& file) {
   Imported imported = importFile(file, glm::dmat4(1.0));
   Scene& scene = imported.scene;
   scene.sourcePath = file;
-  scene.family = SceneFamily::Rendering;
   scene.backgroundColor = glm::vec3(kBackgroundGrey);
   const ImportResult& found = imported.result;
   scene.camera = found.camera ? *found.camera : defaultCamera(found.bounds);
   if (scene.pointLights.empty())
     scene.pointLights.push_back(defaultLight(scene.camera, found.bounds));
   if (scene.shapes.empty()) scene.warnings.push_back(file.string() + ": nothing to draw");
+  setConventions(scene, Conventions::Textbook, "a glTF file");
   return std::move(imported.scene);
 }
 

@@ -1,11 +1,12 @@
 // Host-side scene: what a scene file describes, in one neutral form that
-// both file families (and later glTF) are loaded into. Nothing here knows
+// both file families, PLY and glTF files are loaded into. Nothing here knows
 // about the GPU; src/render flattens it into buffers.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -109,6 +110,12 @@ struct AreaLight {
 
 enum class CameraType { Pinhole, ThinLens };
 
+// Which way image right points: forward x up (right-handed; family A, glTF)
+// or up x forward (family B's renderers: a camera at the origin looking down
+// +z with up +y sees world -x on the left). Image up is `up` made orthogonal
+// to forward either way.
+enum class ImageRight { ForwardCrossUp, UpCrossForward };
+
 struct Camera {
   CameraType type = CameraType::Pinhole;
   uint32_t width = 800;
@@ -120,7 +127,14 @@ struct Camera {
   float exposure = 1.0f;                 // linear scale applied before tone mapping
   float apertureRadius = 0.0f;           // thin lens: radius of the lens disc, 0 = pinhole
   float focusDistance = 1.0f;            // thin lens: distance to the plane in focus
+  ImageRight imageRight = ImageRight::ForwardCrossUp;
 };
+
+// The camera's unit basis: image right, image up and the view direction.
+struct CameraBasis {
+  glm::vec3 right, up, forward;
+};
+CameraBasis cameraBasis(const Camera& camera);
 
 // Phong: Whitted ray tracing (mirror and refraction branches), direct light
 // from point and area lights, and optionally `distributedBounces` sampled
@@ -131,9 +145,21 @@ enum class RenderMode { Binary, Phong, PathTracer };
 
 enum class SamplerKind { Random, Jittered, Sobol };  // Sobol: Owen-scrambled (rng.glsl)
 
-// Which file family a scene came from; decides the lighting conventions
-// documented in README (falloff and intensity scale).
-enum class SceneFamily { PathOfLight, Rendering };
+// How a scene's numbers become an image: light falloff and scale, the
+// shading model, ambient light, how mirrors mix with a surface's own
+// shading, which way image right points, and 8-bit quantization. Neither
+// coursework wrote them down; README "Conventions" gives each set and its
+// evidence, render/Conventions.hpp what each means for the renderer.
+enum class Conventions {
+  CourseworkA,  // "Path of Light": fitted to the official renders
+  CourseworkB,  // "Rendering" 2023-24: fitted to a student's renders of the official files
+  Textbook,     // Whitted with unit lights: no falloff, per-channel Blinn-Phong, no ambient
+};
+
+// The canonical names ("coursework-a", "coursework-b", "textbook") of the
+// `conventions` scene key and --conventions; nullopt for anything else.
+std::optional<Conventions> conventionsNamed(const std::string& name);
+const char* conventionsName(Conventions conventions);
 
 struct RenderSettings {
   RenderMode mode = RenderMode::Phong;
@@ -149,7 +175,8 @@ struct RenderSettings {
 
 struct Scene {
   std::filesystem::path sourcePath;
-  SceneFamily family = SceneFamily::PathOfLight;
+  Conventions conventions = Conventions::CourseworkA;
+  std::string conventionsReason;  // why the loader chose them, e.g. "key 'rendermode'"
   RenderSettings settings;
   Camera camera;
   glm::vec3 backgroundColor{0.0f};
@@ -161,5 +188,9 @@ struct Scene {
   std::vector<Texture> textures;
   std::vector<std::string> warnings;  // unknown keys and ignored features, one line each
 };
+
+// Gives the scene its conventions, and the camera the image right they
+// imply; `reason` says why (for messages).
+void setConventions(Scene& scene, Conventions conventions, std::string reason);
 
 }  // namespace rt

@@ -112,11 +112,16 @@ bool anyElement(const Json* array, bool (*predicate)(const Json&)) {
 }
 
 // TsFreddie's renderer (metallic/transmit/roughness materials) lit its
-// scenes as family B does: no falloff, per-channel Blinn-Phong; its
-// reference renders in ../shared match only that reading.
+// scenes with the textbook conventions: no falloff, per-channel Blinn-Phong,
+// no ambient; its reference renders in ../shared match only that reading.
 bool isTsFreddieMaterial(const Json& material) {
   return findKey(material, "metallic") || findKey(material, "transmit") ||
          findKey(material, "roughness");
+}
+
+bool hasTsFreddieMaterial(const Json& shape) {
+  const Json* material = findKey(shape, "material");
+  return material && isTsFreddieMaterial(*material);
 }
 
 bool isFamilyBShape(const Json& shape) {
@@ -124,34 +129,59 @@ bool isFamilyBShape(const Json& shape) {
   if (type && *type == "cylinder") return true;
   const Json* material = findKey(shape, "material");
   return material && (findKey(*material, "specularcolor") || findKey(*material, "isreflective") ||
-                      findKey(*material, "isrefractive") || isTsFreddieMaterial(*material));
+                      findKey(*material, "isrefractive"));
 }
 
 bool hasIntensity(const Json& light) { return findKey(light, "intensity") != nullptr; }
 
-// Family B ("Rendering", 2023-24) when the file uses a key that only family B has:
-//  - a top-level `rendermode`;
-//  - camera `lookAt`, `upVector` or `exposure` (family A writes `lookat` and `up`
-//    and has no exposure);
-//  - a light with `intensity` in a scene with family-B shape keys (a cylinder, or
-//    material `specularcolor`/`isreflective`/`isrefractive`). `intensity` alone
-//    decides nothing: the family-A 2019 file uses it too.
-// Everything else is family A ("Path of Light"). The family only selects lighting
-// conventions downstream; which keys are read does not depend on it.
-SceneFamily detectFamily(const Json& root) {
-  if (findKey(root, "rendermode")) return SceneFamily::Rendering;
+struct ChosenConventions {
+  Conventions conventions;
+  std::string reason;
+};
+
+// The conventions a file asks for with `conventions`, else those of the
+// family its keys belong to:
+//  - family B ("Rendering", 2023-24): a top-level `rendermode`; a camera
+//    `lookAt`, `upVector` or `exposure` (family A writes `lookat` and `up`
+//    and has no exposure); or lights with `intensity` beside family-B shape
+//    keys (a cylinder, material `specularcolor`/`isreflective`/`isrefractive`).
+//    `intensity` alone decides nothing: the family-A 2019 file uses it too;
+//  - TsFreddie's renderer (`intensity` lights beside metallic/transmit/
+//    roughness materials): textbook;
+//  - everything else is family A ("Path of Light").
+// Which keys are read does not depend on the choice.
+ChosenConventions chooseConventions(JsonObject& top, const Json& root) {
+  if (const std::optional<JsonNode> named = top.optional("conventions")) {
+    const std::string name = named->string();
+    const std::optional<Conventions> conventions = conventionsNamed(name);
+    if (!conventions) {
+      named->fail("unknown conventions '" + name +
+                  "' (expected \"coursework-a\", \"coursework-b\" or \"textbook\")");
+    }
+    return {*conventions, "the scene's 'conventions' key"};
+  }
+  if (findKey(root, "rendermode")) return {Conventions::CourseworkB, "family B key 'rendermode'"};
   if (const Json* camera = findKey(root, "camera")) {
     for (const char* key : {"lookAt", "upVector", "exposure"}) {
-      if (findKey(*camera, key)) return SceneFamily::Rendering;
+      if (findKey(*camera, key)) {
+        return {Conventions::CourseworkB, std::string("family B key 'camera.") + key + "'"};
+      }
     }
   }
   if (const Json* scene = findKey(root, "scene")) {
-    if (anyElement(findKey(*scene, "lightsources"), hasIntensity) &&
-        anyElement(findKey(*scene, "shapes"), isFamilyBShape)) {
-      return SceneFamily::Rendering;
+    const Json* shapes = findKey(*scene, "shapes");
+    if (anyElement(findKey(*scene, "lightsources"), hasIntensity)) {
+      if (anyElement(shapes, hasTsFreddieMaterial)) {
+        return {Conventions::Textbook,
+                "TsFreddie's materials (metallic/transmit/roughness) with 'intensity' lights"};
+      }
+      if (anyElement(shapes, isFamilyBShape)) {
+        return {Conventions::CourseworkB,
+                "'intensity' lights with family B shapes (cylinder or family B material keys)"};
+      }
     }
   }
-  return SceneFamily::PathOfLight;
+  return {Conventions::CourseworkA, "no family B key (family A, Path of Light)"};
 }
 
 // ----------------------------------------------------------------- settings
@@ -655,13 +685,14 @@ float readReflectivity(JsonObject& material) {
   return 0.0f;
 }
 
-// Family A: `kt` weight. Family B: `isrefractive` means fully transmissive.
+// Family A: `kt` weight. Family B: `isrefractive` transmits what the mirror
+// weight (already read into `out`) leaves.
 void readRefraction(JsonObject& material, Material& out) {
   const std::optional<JsonNode> kt = weightOrAlias(material, "kt", "transmit");
   const std::optional<JsonNode> isRefractive = material.optional("isrefractive");
   if (kt && isRefractive) kt->fail("conflicts with 'isrefractive': give one transmission weight");
   if (kt) out.transmission = kt->floatInRange(0.0f, 1.0f);
-  if (isRefractive) out.transmission = isRefractive->boolean() ? 1.0f : 0.0f;
+  if (isRefractive) out.transmission = isRefractive->boolean() ? 1.0f - out.reflectivity : 0.0f;
   if (const std::optional<JsonNode> ior =
           material.optionalOneOf({"eta", "ior", "refractiveIndex", "refractiveindex"})) {
     out.ior = ior->positiveFloat();
@@ -1032,8 +1063,8 @@ Scene readScene(std::string_view jsonText, const fs::path& file) {
   const Json document = parseJson(jsonText, file.string());
   Scene scene;
   scene.sourcePath = file;
-  scene.family = detectFamily(document);
   JsonObject top = JsonNode(document, "", diagnostics).object();
+  ChosenConventions chosen = chooseConventions(top, document);
   scene.settings.maxBounces = readBounces(top);
   scene.settings.mode = readRenderMode(top);
   scene.settings.distributedBounces = readDistributedBounces(top, scene.settings.mode);
@@ -1048,6 +1079,7 @@ Scene readScene(std::string_view jsonText, const fs::path& file) {
   const LightList lights = readSceneObject(sceneObject, context, scene);
   if (lights.sampler && !samplerGiven) scene.settings.sampler = *lights.sampler;
   if (defaultView) chooseDefaultView(scene);
+  setConventions(scene, chosen.conventions, std::move(chosen.reason));
   ignoreRendererKeys(top);
   top.reportUnknownKeys();
   scene.warnings = diagnostics.takeWarnings();

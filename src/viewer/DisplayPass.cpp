@@ -219,15 +219,19 @@ void DisplayPass::setSource(const Buffer& accumulation, uint32_t width, uint32_t
   vkUpdateDescriptorSets(context_.device(), 2, writes, 0, nullptr);
 }
 
-void DisplayPass::recordToneMap(VkCommandBuffer commands, float exposure, uint32_t firstRow,
-                                uint32_t rows) const {
+void DisplayPass::recordToneMap(VkCommandBuffer commands, const ToneMapping& mapping,
+                                uint32_t firstRow, uint32_t rows) const {
   rows = std::min(rows, size_.y - std::min(firstRow, size_.y));
   if (rows == 0) return;
   // The previous frame's copy read the pixels; this pass updates them.
   recordBufferBarrier(commands, pixels_->handle(), VK_ACCESS_TRANSFER_READ_BIT,
                       VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-  gpu::GpuDisplayParams params{size_, exposure, firstRow};
+  gpu::GpuDisplayParams params{};
+  params.size = size_;
+  params.exposure = mapping.exposure;
+  params.firstRow = firstRow;
+  params.truncate = mapping.quantization == Quantization::Truncate ? 1u : 0u;
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0,
                           nullptr);

@@ -13,6 +13,8 @@
 #include <memory>
 #include <vector>
 
+#include "io/Image.hpp"
+
 namespace rt {
 class Buffer;
 class ShaderCompiler;
@@ -51,7 +53,8 @@ class DisplayPass {
   // Records the tone-mapping dispatch for rows [firstRow, firstRow + rows)
   // (after the render dispatches) and the copy of those pixels into the
   // display image. Rows that got no new samples need no update.
-  void recordToneMap(VkCommandBuffer commands, float exposure, uint32_t firstRow,
+  // `mapping` gives the exposure and the quantization (its curve is the clamp).
+  void recordToneMap(VkCommandBuffer commands, const ToneMapping& mapping, uint32_t firstRow,
                      uint32_t rows) const;
   // Records the blit into a swapchain image, which ends in
   // COLOR_ATTACHMENT_OPTIMAL for the overlay pass.

@@ -36,9 +36,7 @@ void OrbitCamera::reset() {
   pivot_ = homePivot_;
 }
 
-glm::vec3 OrbitCamera::right() const {
-  return glm::normalize(glm::cross(camera_.forward, worldUp_));
-}
+glm::vec3 OrbitCamera::right() const { return cameraBasis(camera_).right; }
 
 void OrbitCamera::placeAtDistance(float distance) {
   camera_.position = pivot_ - camera_.forward * distance;
@@ -47,8 +45,10 @@ void OrbitCamera::placeAtDistance(float distance) {
 void OrbitCamera::orbit(float yawDegrees, float pitchDegrees) {
   glm::vec3 offset = camera_.position - pivot_;
   // The camera moves to its right when the offset turns towards it: that is a
-  // positive rotation about up (up x offset = distance * right).
-  offset = rotate(offset, worldUp_, yawDegrees);
+  // positive rotation about up (up x offset = distance * (forward x up)),
+  // and a negative one where image right is up x forward.
+  bool mirrored = camera_.imageRight == ImageRight::UpCrossForward;
+  offset = rotate(offset, worldUp_, mirrored ? -yawDegrees : yawDegrees);
   glm::vec3 axis = glm::normalize(glm::cross(-offset, worldUp_));
   glm::vec3 pitched = rotate(offset, axis, pitchDegrees);
   if (std::abs(glm::dot(glm::normalize(pitched), worldUp_)) < kMaxUpAlignment) offset = pitched;
@@ -60,7 +60,7 @@ void OrbitCamera::pan(glm::vec2 pixels, float imageHeight) {
   float distance = glm::length(pivot_ - camera_.position);
   float tanHalfFov = std::tan(glm::radians(camera_.fovYDegrees) * 0.5f);
   float worldPerPixel = 2.0f * distance * tanHalfFov / std::max(imageHeight, 1.0f);
-  glm::vec3 up = glm::cross(right(), camera_.forward);
+  glm::vec3 up = cameraBasis(camera_).up;
   // Dragging right moves the scene right, so the camera goes left.
   glm::vec3 move = (-pixels.x * right() + pixels.y * up) * worldPerPixel;
   camera_.position += move;
@@ -74,7 +74,7 @@ void OrbitCamera::zoom(float steps) {
 }
 
 void OrbitCamera::fly(glm::vec3 sceneRadii) {
-  glm::vec3 up = glm::cross(right(), camera_.forward);
+  glm::vec3 up = cameraBasis(camera_).up;
   glm::vec3 move =
       (sceneRadii.x * right() + sceneRadii.y * up + sceneRadii.z * camera_.forward) * sceneRadius_;
   camera_.position += move;

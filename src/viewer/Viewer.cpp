@@ -73,9 +73,21 @@ void RateMeter::add(double samples, Clock::time_point now) {
   start_ = now;
 }
 
+Scene Viewer::loadScene() const {
+  Scene scene = loadSceneFile(options_.scenePath);
+  if (options_.conventions) setConventions(scene, *options_.conventions, "--conventions");
+  return scene;
+}
+
+ToneMapping Viewer::displayMapping() const {
+  ToneMapping mapping = toneMappingFor(scene_);
+  mapping.exposure = settings_.exposure;
+  return mapping;
+}
+
 Viewer::Viewer(const ViewerOptions& options)
     : options_(options), planner_(options.frameSeconds, options.samplesPerFrame) {
-  scene_ = loadSceneFile(options_.scenePath);
+  scene_ = loadScene();
   for (const std::string& warning : scene_.warnings) {
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
   }
@@ -406,7 +418,7 @@ void Viewer::recordFrame(VkCommandBuffer commands, uint32_t imageIndex) {
     displayStale_ = false;
     displayedExposure_ = settings_.exposure;
   }
-  display_->recordToneMap(commands, settings_.exposure, rendered.first, rendered.count);
+  display_->recordToneMap(commands, displayMapping(), rendered.first, rendered.count);
   VkImage image = swapchain_->image(imageIndex);
   VkExtent2D extent = swapchain_->extent();
   display_->recordBlit(commands, image, extent);

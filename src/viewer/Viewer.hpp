@@ -89,6 +89,10 @@ class Viewer {
   void handleFileChanges();
   void reloadShaders();
   void reloadScene();
+  // The scene file as loaded, with the --conventions override applied.
+  Scene loadScene() const;
+  // The scene's tone mapping with the overlay's exposure (window and saves).
+  ToneMapping displayMapping() const;
   void handleInput(const InputEvents& input);
   void handleKey(const KeyPress& key);
   void flyWithHeldKeys();

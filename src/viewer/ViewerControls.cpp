@@ -122,7 +122,7 @@ void Viewer::reloadShaders() {
 void Viewer::reloadScene() {
   Scene fresh;
   try {
-    fresh = loadSceneFile(options_.scenePath);
+    fresh = loadScene();
   } catch (const std::exception& e) {
     messages_.sceneError = e.what();
     std::fprintf(stderr, "scene: error %s\n", e.what());
@@ -332,9 +332,7 @@ void Viewer::saveImage(std::filesystem::path path) {
     }
   }
   try {
-    ToneMapping mapping = toneMappingFor(scene_);
-    mapping.exposure = settings_.exposure;
-    writeImage(path, renderer_->resolve(), mapping);
+    writeImage(path, renderer_->resolve(), displayMapping());
     notice(fmt::format("saved: {} ({} spp)", path.string(), renderer_->samplesDone()));
   } catch (const std::exception& e) {
     notice(fmt::format("save: error {}", e.what()));

@@ -29,8 +29,9 @@ struct ViewerOptions {
   uint32_t seed = 0;
   std::optional<SamplerKind> sampler;
   std::optional<ShadingModel> shading;
-  float exposure = 1.0f;  // extra factor on the scene's exposure
-  bool verbose = false;   // a log line every frame (otherwise about once a second)
+  std::optional<Conventions> conventions;  // default: what the scene's keys say
+  float exposure = 1.0f;                   // extra factor on the scene's exposure
+  bool verbose = false;                    // a log line every frame (otherwise about once a second)
 };
 
 // Runs the viewer until the window closes, --frames are done, or SIGINT /

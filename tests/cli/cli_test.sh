@@ -40,6 +40,13 @@ head -c 8 "$SCRATCH/good.png" | grep -q PNG && pass || fail "PNG magic"
 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/sized.ppm" --size 20x10 -q && head -c 11 "$SCRATCH/sized.ppm" | grep -q "20 10" && pass || fail "--size"
 ls "$SCRATCH" | grep -q '\.tmp-' && fail "temporary files left behind" || pass
 
+# --- conventions: detected, chosen by flag, named in the summary --------------
+"$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/conv.png" --spp 1 2>"$SCRATCH/stderr" &&
+  grep -q "conventions: coursework-a (no family B key" "$SCRATCH/stderr" && pass || fail "summary names the detected conventions"
+"$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/conv.png" --spp 1 --conventions coursework-b 2>"$SCRATCH/stderr" &&
+  grep -q "conventions: coursework-b (--conventions)" "$SCRATCH/stderr" && pass || fail "--conventions"
+expect_error "bad --conventions" '--conventions' "$SCRATCH/good.json" "$SCRATCH/out.png" --conventions physics
+
 # --- split renders, budgets, interruption -----------------------------------
 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/a.exr" --spp 6 --samples 0:2 -q &&
   "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/b.exr" --spp 6 --samples 2:6 -q &&

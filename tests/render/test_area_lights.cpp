@@ -75,7 +75,7 @@ void addAreaLight(Scene& scene, Geometry geometry, float intensity, uint32_t sam
 // (lights fall off as I / (4 pi d^2)) with the linear shading model.
 Scene wallScene(uint32_t size) {
   Scene scene;
-  scene.family = SceneFamily::PathOfLight;
+  scene.conventions = Conventions::CourseworkA;
   scene.settings.maxBounces = 4;
   scene.camera.width = scene.camera.height = size;
   scene.camera.position = {0, 0, 5};
@@ -281,7 +281,7 @@ TEST_SUITE("path tracer and distributed bounces") {
     Scene scene = wallScene(32);
     scene.shapes.clear();
     scene.materials.clear();
-    scene.family = SceneFamily::Rendering;
+    scene.conventions = Conventions::Textbook;
     scene.backgroundColor = glm::vec3(1);
     addShape(scene, Sphere{{0, 0, 0}, 1.0f}, diffuse({0.5f, 0.25f, 1.0f}, 0.8f));
     scene.settings.mode = RenderMode::PathTracer;

@@ -93,6 +93,36 @@ TEST_SUITE("render") {
         glm::lessThan(glm::abs(pixel(image, 16, 16) - scene.backgroundColor), glm::vec3(1e-6f))));
   }
 
+  TEST_CASE("family B: a full mirror shows only what it reflects, a half mirror half of each") {
+    // A bright, shiny sphere: under coursework-b its own light is weighted
+    // by 1 - reflectivity; the textbook conventions add it to the reflection.
+    auto sphereScene = [](float reflectivity, Conventions conventions) {
+      Scene scene = baseScene(32, 32);
+      setConventions(scene, conventions, "test");
+      Material material = diffuse({1.0f, 0.5f, 0.5f}, 0.9f, 0.5f);
+      material.reflectivity = reflectivity;
+      addSphere(scene, material);
+      scene.settings.maxBounces = 3;
+      return scene;
+    };
+    RenderOptions options;
+    options.samplesPerPixel = 2;
+    // At the centre the mirror looks back along the camera ray, at nothing.
+    const glm::vec3 background = baseScene(1, 1).backgroundColor;
+    glm::vec3 mirror =
+        pixel(renderScene(sphereScene(1, Conventions::CourseworkB), options), 16, 16);
+    CHECK(glm::all(glm::lessThan(glm::abs(mirror - background), glm::vec3(1e-6f))));
+    glm::vec3 matte = pixel(renderScene(sphereScene(0, Conventions::CourseworkB), options), 16, 16);
+    glm::vec3 half =
+        pixel(renderScene(sphereScene(0.5f, Conventions::CourseworkB), options), 16, 16);
+    CHECK(glm::all(glm::lessThan(glm::abs(half - 0.5f * (matte + background)), glm::vec3(1e-5f))));
+    // The ambient term: 0.4 of the diffuse colour comes on top of the light.
+    CHECK(matte.x <= 1.0f);
+    CHECK(matte.y > 0.4f * 0.5f);
+    glm::vec3 added = pixel(renderScene(sphereScene(1, Conventions::Textbook), options), 16, 16);
+    CHECK(added.x > background.x + 0.5f);
+  }
+
   TEST_CASE("glass with the index of the surrounding air is invisible") {
     Scene scene = baseScene(40, 30);
     addSphere(scene, diffuse({1, 1, 0}), {0, 0, -3}, 1.5f);

@@ -20,7 +20,7 @@ Texture quadrantTexture() {
 // every pixel shows the texture's linear colour.
 Scene flatLitScene() {
   Scene scene;
-  scene.family = SceneFamily::Rendering;
+  scene.conventions = Conventions::Textbook;
   scene.camera.width = 256;
   scene.camera.height = 256;
   scene.camera.position = {0, 0, 1000};

@@ -92,7 +92,7 @@ Quad groundQuad(const Placement& at) {
 // so translations below 2^20 - 8 leave them exact.
 Scene sweepScene(const Placement& at) {
   Scene scene;
-  scene.family = SceneFamily::Rendering;  // no light falloff: brightness is scale free
+  scene.conventions = Conventions::Textbook;  // no light falloff: brightness is scale free
   scene.camera = sweepCamera(at);
   scene.backgroundColor = {0.1f, 0.2f, 0.3f};
   scene.settings.maxBounces = 3;
@@ -127,7 +127,7 @@ enum class Layout { Objects, GroundQuad, GroundSphere };
 // The background is pure blue and no material reflects blue.
 Scene selfShadowScene(const Placement& at, Layout layout) {
   Scene scene;
-  scene.family = SceneFamily::Rendering;
+  scene.conventions = Conventions::Textbook;
   scene.camera = sweepCamera(at);
   scene.backgroundColor = {0.0f, 0.0f, 1.0f};
   scene.settings.maxBounces = 0;

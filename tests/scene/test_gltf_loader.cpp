@@ -442,7 +442,7 @@ std::string messageClass(const std::string& message, const fs::path& file) {
 TEST_SUITE("scene gltf") {
   TEST_CASE("a lone triangle gets a default camera framing it and a default light") {
     rt::Scene scene = loadDoc("triangle.gltf", triangleModel().embedded());
-    CHECK(scene.family == rt::SceneFamily::Rendering);
+    CHECK(scene.conventions == rt::Conventions::Textbook);
     CHECK(near(scene.backgroundColor, glm::vec3(0.5f)));
     REQUIRE(scene.meshes.size() == 1);
     REQUIRE(scene.shapes.size() == 1);
@@ -824,7 +824,7 @@ TEST_SUITE("scene gltf") {
     CHECK(scene.textures.size() == 2);
     CHECK(near(place(instanceOf(scene, 1).objectToWorld, {1, 0, 0}), {11, 0, 0}));
     CHECK(scene.camera.position == glm::vec3(1, 2, 3));
-    CHECK(scene.family == rt::SceneFamily::PathOfLight);
+    CHECK(scene.conventions == rt::Conventions::CourseworkA);
     CHECK(scene.pointLights.empty());  // no default light when appending
 
     b.doc["meshes"][0]["primitives"][0]["indices"] = 7;

@@ -135,7 +135,7 @@ TEST_SUITE("scene loader: official files") {
             rt::test::needsShared()) {
     const rt::Scene scene =
         rt::loadScene(sceneFormatDir() / "official/cg-path-of-light-2019/example.json");
-    CHECK(scene.family == rt::SceneFamily::PathOfLight);
+    CHECK(scene.conventions == rt::Conventions::CourseworkA);
     CHECK(scene.settings.maxBounces == 3);
     CHECK(scene.camera.type == rt::CameraType::Pinhole);
     CHECK(scene.camera.fovYDegrees == doctest::Approx(35.0));
@@ -160,7 +160,7 @@ TEST_SUITE("scene loader: official files") {
             rt::test::needsShared()) {
     const rt::Scene scene = rt::loadScene(
         sceneFormatDir() / "official/cg-path-of-light-2021-2023/examples/example.json");
-    CHECK(scene.family == rt::SceneFamily::PathOfLight);
+    CHECK(scene.conventions == rt::Conventions::CourseworkA);
     CHECK(scene.shapes.size() == 5);
     REQUIRE(scene.pointLights.size() == 1);
     CHECK(near(scene.pointLights[0].diffuseIntensity, {100, 100, 100}));
@@ -190,7 +190,7 @@ TEST_SUITE("scene loader: official files") {
             rt::test::needsShared()) {
     const rt::Scene scene =
         rt::loadScene(sceneFormatDir() / "official/cgr-2023-2024/mirror_image.json");
-    CHECK(scene.family == rt::SceneFamily::Rendering);
+    CHECK(scene.conventions == rt::Conventions::CourseworkB);
     CHECK(scene.settings.mode == rt::RenderMode::Phong);
     CHECK(scene.settings.maxBounces == 8);
     CHECK(scene.camera.exposure == doctest::Approx(0.1));
@@ -213,7 +213,7 @@ TEST_SUITE("scene loader: official files") {
             rt::test::needsShared()) {
     const rt::Scene scene =
         rt::loadScene(sceneFormatDir() / "official/cgr-2023-2024/binary_primitves.json");
-    CHECK(scene.family == rt::SceneFamily::Rendering);
+    CHECK(scene.conventions == rt::Conventions::CourseworkB);
     CHECK(scene.settings.mode == rt::RenderMode::Binary);
     CHECK(scene.settings.maxBounces == 4);
     CHECK(scene.camera.width == 1200);
@@ -350,7 +350,7 @@ TEST_SUITE("scene loader: student files") {
 TEST_SUITE("scene loader: in-memory scenes") {
   TEST_CASE("a minimal family-A scene") {
     const rt::Scene scene = parse(minimalScene());
-    CHECK(scene.family == rt::SceneFamily::PathOfLight);
+    CHECK(scene.conventions == rt::Conventions::CourseworkA);
     CHECK(scene.sourcePath == fs::path("mem.json"));
     CHECK(scene.camera.width == 64);
     CHECK(scene.camera.height == 48);
@@ -512,7 +512,7 @@ TEST_SUITE("scene loader: in-memory scenes") {
     scene["camera"]["upVector"] = {0, 1, 0};
     scene["camera"]["exposure"] = 0.25;
     rt::Scene loaded = parse(scene);
-    CHECK(loaded.family == rt::SceneFamily::Rendering);
+    CHECK(loaded.conventions == rt::Conventions::CourseworkB);
     CHECK(near(loaded.camera.forward, {0, 0, 1}));
     CHECK(loaded.camera.exposure == doctest::Approx(0.25));
 
@@ -533,7 +533,7 @@ TEST_SUITE("scene loader: in-memory scenes") {
     firstShape(scene).erase("material");
     rt::Scene loaded = parse(scene);
     CHECK(loaded.settings.mode == rt::RenderMode::Binary);
-    CHECK(loaded.family == rt::SceneFamily::Rendering);
+    CHECK(loaded.conventions == rt::Conventions::CourseworkB);
     CHECK(loaded.materials.size() == 1);
     CHECK(loaded.warnings.empty());
 
@@ -563,7 +563,8 @@ TEST_SUITE("scene loader: in-memory scenes") {
     const rt::Scene loaded = parse(scene);
     CHECK(near(loaded.pointLights[0].diffuseIntensity, {0.5f, 0.25f, 1}));
     CHECK(near(loaded.pointLights[0].specularIntensity, {0.5f, 0.25f, 1}));
-    CHECK(loaded.family == rt::SceneFamily::PathOfLight);  // intensity alone is the 2019 format
+    CHECK(loaded.conventions ==
+          rt::Conventions::CourseworkA);  // intensity alone is the 2019 format
 
     scene["scene"].erase("lightsources");
     CHECK(parse(scene).pointLights.empty());
@@ -608,7 +609,7 @@ TEST_SUITE("scene loader: in-memory scenes") {
     const auto& cylinder = std::get<rt::Cylinder>(loaded.shapes[0].geometry);
     CHECK(near(cylinder.axis, {0, 1, 0}));
     CHECK(cylinder.halfHeight == doctest::Approx(0.25));
-    CHECK(loaded.family == rt::SceneFamily::PathOfLight);  // no light uses `intensity`
+    CHECK(loaded.conventions == rt::Conventions::CourseworkA);  // no light uses `intensity`
 
     firstShape(scene)["axis"] = {0, 0, 0};
     CHECK(contains(errorOf(scene), "scene.shapes[0].axis: must be a non-zero, finite vector"));
@@ -692,11 +693,13 @@ TEST_SUITE("scene loader: in-memory scenes") {
     rt::Scene loaded = parse(scene);
     CHECK(near(loaded.materials[0].specularColor, glm::vec3(0.5f)));
     CHECK(loaded.materials[0].reflectivity == doctest::Approx(0.6));
-    CHECK(loaded.materials[0].transmission == 1.0f);
+    // Refraction takes what the mirror leaves (weights 0.6 + 0.4).
+    CHECK(loaded.materials[0].transmission == doctest::Approx(0.4));
     CHECK(loaded.materials[0].ior == doctest::Approx(1.33));
 
     material["isreflective"] = 0;
     CHECK(parse(scene).materials[0].reflectivity == 0.0f);
+    CHECK(parse(scene).materials[0].transmission == 1.0f);
     material["isreflective"] = "yes";
     CHECK(contains(errorOf(scene),
                    "material.isreflective: expected a boolean (true/false), got string"));
@@ -881,22 +884,47 @@ TEST_SUITE("scene loader: in-memory scenes") {
 
   TEST_CASE("family detection") {
     Json scene = minimalScene();
-    CHECK(parse(scene).family == rt::SceneFamily::PathOfLight);
+    CHECK(parse(scene).conventions == rt::Conventions::CourseworkA);
     scene["rendermode"] = "phong";
-    CHECK(parse(scene).family == rt::SceneFamily::Rendering);
+    CHECK(parse(scene).conventions == rt::Conventions::CourseworkB);
 
     scene = minimalScene();
     scene["camera"]["exposure"] = 1;
-    CHECK(parse(scene).family == rt::SceneFamily::Rendering);
+    CHECK(parse(scene).conventions == rt::Conventions::CourseworkB);
 
     scene = minimalScene();
     Json& light = scene["scene"]["lightsources"][0];
     light.erase("is");
     light.erase("id");
     light["intensity"] = {1, 1, 1};
-    CHECK(parse(scene).family == rt::SceneFamily::PathOfLight);
+    CHECK(parse(scene).conventions == rt::Conventions::CourseworkA);
     firstMaterial(scene)["specularcolor"] = {1, 1, 1};
-    CHECK(parse(scene).family == rt::SceneFamily::Rendering);
+    CHECK(parse(scene).conventions == rt::Conventions::CourseworkB);
+    firstMaterial(scene)["roughness"] = 0.5;  // TsFreddie's renderer
+    CHECK(parse(scene).conventions == rt::Conventions::Textbook);
+  }
+
+  TEST_CASE("conventions: a scene key chooses them; the reason is kept; image right follows") {
+    Json scene = minimalScene();
+    rt::Scene detected = parse(scene);
+    CHECK(detected.conventionsReason == "no family B key (family A, Path of Light)");
+    CHECK(detected.camera.imageRight == rt::ImageRight::ForwardCrossUp);
+    scene["rendermode"] = "phong";
+    detected = parse(scene);
+    CHECK(detected.conventionsReason == "family B key 'rendermode'");
+    CHECK(detected.camera.imageRight == rt::ImageRight::UpCrossForward);
+    scene["conventions"] = "textbook";
+    const rt::Scene chosen = parse(scene);
+    CHECK(chosen.conventions == rt::Conventions::Textbook);
+    CHECK(chosen.conventionsReason == "the scene's 'conventions' key");
+    CHECK(chosen.camera.imageRight == rt::ImageRight::ForwardCrossUp);
+    CHECK(chosen.warnings.empty());
+    scene["conventions"] = "coursework-c";
+    CHECK(errorOf(scene) ==
+          "mem.json: conventions: unknown conventions 'coursework-c' (expected "
+          "\"coursework-a\", \"coursework-b\" or \"textbook\")");
+    scene["conventions"] = 2;
+    CHECK(errorOf(scene) == "mem.json: conventions: expected a string, got number");
   }
 
   TEST_CASE("loadScene reads files and reports unreadable ones") {
@@ -1126,7 +1154,7 @@ TEST_SUITE("scene loader: area lights and render modes") {
     CHECK(loaded.textures[material.diffuseTexture].image.width == 64);
     REQUIRE(loaded.meshes.size() == 1);
     CHECK(loaded.meshes[0].uvs.size() == 3);
-    CHECK(loaded.family == rt::SceneFamily::Rendering);  // TsFreddie's conventions
+    CHECK(loaded.conventions == rt::Conventions::Textbook);  // TsFreddie's conventions
 
     scene["scene"]["shapes"][1]["vertices"] = {{0, 0, 0}, {2, 0, 0}};
     CHECK(contains(errorOf(scene), "scene.shapes[1].vertices: expected 3 or 4 vertices, got 2"));

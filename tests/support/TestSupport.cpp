@@ -106,7 +106,7 @@ Image8 downscale(const Image8& image, uint32_t width, uint32_t height) {
 
 Scene frontStage(uint32_t width, uint32_t height, glm::vec3 light, float intensity) {
   Scene scene;
-  scene.family = SceneFamily::Rendering;
+  scene.conventions = Conventions::Textbook;
   scene.camera.width = width;
   scene.camera.height = height;
   scene.camera.position = {0, 0, 5};

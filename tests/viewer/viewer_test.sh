@@ -100,7 +100,7 @@ case_offscreen_match() {
   local status=$?
   [[ $status -eq 0 ]] || fail "viewer exit status $status: $(cat "$SCRATCH/err")"
   grep -q "^done: spp=$SPP " "$SCRATCH/log" || fail "no 'done: spp=$SPP' line in the log"
-  compare "window vs offline" "$SCRATCH/window.png" "$SCRATCH/offline.png" --min-psnr 40 --max-diff 2
+  compare "window vs offline" "$SCRATCH/window.png" "$SCRATCH/offline.png" --max-diff 0
 
   # The same with the overlay on: the screenshot is the presented image, so
   # the overlay shows in it (and only covers part of it).
