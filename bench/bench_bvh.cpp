@@ -216,7 +216,7 @@ int main(int argc, char** argv) {
     std::printf(
         "device: %s; %u hardware threads; primary: %ux%u, %u spp, binary mode, best of 3; "
         "diffuse: 2^20 cosine rays from the surface, closest + any hit each\n\n",
-        context.description().name.c_str(), std::thread::hardware_concurrency(), kPrimaryWidth,
+        context.description().summary().c_str(), std::thread::hardware_concurrency(), kPrimaryWidth,
         kPrimaryWidth, kPrimarySamples);
     std::printf("| %-24s | %9s | %8s | %10s | %9s | %15s | %16s | %13s | %14s |\n", "mesh",
                 "triangles", "build s", "Mtris/s", "bytes/tri", "primary Mrays/s",

@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "%s: %.2f s\n", row.scene.c_str(), row.stats.renderSeconds);
       rows.push_back(row);
     }
-    printTable(rows, context.description().name, width, height, spp);
+    printTable(rows, context.description().summary(), width, height, spp);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

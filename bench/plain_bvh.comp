@@ -20,8 +20,8 @@ layout(std430, set = 0, binding = 1) readonly buffer Triangles { vec4 triangles[
 vec4 nodeRow(uint node, uint row) { return nodes[node * 4u + row]; }
 vec4 triangleRow(uint triangle, uint row) { return triangles[triangle * 3u + row]; }
 #else
-layout(set = 0, binding = 0) uniform samplerBuffer nodeTexels;
-layout(set = 0, binding = 1) uniform samplerBuffer triangleTexels;
+layout(set = 0, binding = 0) uniform textureBuffer nodeTexels;
+layout(set = 0, binding = 1) uniform textureBuffer triangleTexels;
 vec4 nodeRow(uint node, uint row) { return texelFetch(nodeTexels, int(node * 4u + row)); }
 vec4 triangleRow(uint triangle, uint row) {
   return texelFetch(triangleTexels, int(triangle * 3u + row));

@@ -50,8 +50,8 @@ void loadSceneInfo() {
 // of whole texels): CPU drivers such as lavapipe gather texels with vector
 // loads but read storage buffers at divergent indices one lane at a time,
 // which made traversal several times slower.
-layout(set = 0, binding = RT_BINDING_PRIMITIVES) uniform samplerBuffer primitiveTexels;
-layout(set = 0, binding = RT_BINDING_BVH_NODES) uniform usamplerBuffer bvhNodeTexels;
+layout(set = 0, binding = RT_BINDING_PRIMITIVES) uniform textureBuffer primitiveTexels;
+layout(set = 0, binding = RT_BINDING_BVH_NODES) uniform utextureBuffer bvhNodeTexels;
 
 // Shading data of top-level primitive `index` (GpuPrimitive), texel `row`
 // (0..3): a, b, c, then kind/material/shape/flags.
@@ -72,7 +72,7 @@ uvec4 nodeRow(uint index, uint row) {
   return texelFetch(bvhNodeTexels, int(index * RT_TEXELS_PER_BVH_NODE + row));
 }
 
-layout(set = 0, binding = RT_BINDING_ITEMS) uniform samplerBuffer itemTexels;
+layout(set = 0, binding = RT_BINDING_ITEMS) uniform textureBuffer itemTexels;
 
 // Texel `row` (0..2) of leaf item `index` (see GpuItem).
 vec4 itemRow(uint index, uint row) {
@@ -81,8 +81,8 @@ vec4 itemRow(uint index, uint row) {
 
 // Materials and point lights: texel buffers too (read at every hit and for
 // every light).
-layout(set = 0, binding = RT_BINDING_MATERIALS) uniform usamplerBuffer materialTexels;
-layout(set = 0, binding = RT_BINDING_POINT_LIGHTS) uniform samplerBuffer pointLightTexels;
+layout(set = 0, binding = RT_BINDING_MATERIALS) uniform utextureBuffer materialTexels;
+layout(set = 0, binding = RT_BINDING_POINT_LIGHTS) uniform textureBuffer pointLightTexels;
 
 // Texel `row` (0..4) of material `index` (see GpuMaterial).
 uvec4 materialRow(uint index, uint row) {

@@ -6,8 +6,8 @@
 
 #ifdef RT_FEATURE_AREA_LIGHTS
 // Texel buffers (RGBA32UI), read per light sample.
-layout(set = 0, binding = RT_BINDING_AREA_LIGHTS) uniform usamplerBuffer areaLightTexels;
-layout(set = 0, binding = RT_BINDING_EMITTERS) uniform usamplerBuffer emitterTexels;
+layout(set = 0, binding = RT_BINDING_AREA_LIGHTS) uniform utextureBuffer areaLightTexels;
+layout(set = 0, binding = RT_BINDING_EMITTERS) uniform utextureBuffer emitterTexels;
 
 // Texel `row` (0..2) of area light `index` (see GpuAreaLight).
 uvec4 areaLightRow(uint index, uint row) {

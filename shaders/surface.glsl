@@ -3,7 +3,7 @@
 #define RT_SURFACE_GLSL
 
 #ifdef RT_FEATURE_VERTICES
-layout(set = 0, binding = RT_BINDING_VERTICES) uniform samplerBuffer vertexTexels;
+layout(set = 0, binding = RT_BINDING_VERTICES) uniform textureBuffer vertexTexels;
 
 // Texel `row` (0..1) of vertex `index` (see GpuVertex): normal/u, then v.
 vec4 vertexRow(uint index, uint row) {

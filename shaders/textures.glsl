@@ -6,8 +6,8 @@
 #ifdef RT_FEATURE_TEXTURES
 // Texel buffers: the table (RGBA32UI, one GpuTextureInfo a texel) and every
 // texture's texels (R32UI, each a packed RGBA8 sRGB-encoded texel).
-layout(set = 0, binding = RT_BINDING_TEXTURE_INFO) uniform usamplerBuffer textureInfoTexels;
-layout(set = 0, binding = RT_BINDING_TEXELS) uniform usamplerBuffer textureTexels;
+layout(set = 0, binding = RT_BINDING_TEXTURE_INFO) uniform utextureBuffer textureInfoTexels;
+layout(set = 0, binding = RT_BINDING_TEXELS) uniform utextureBuffer textureTexels;
 
 GpuTextureInfo loadTextureInfo(int index) {
   uvec4 info = texelFetch(textureInfoTexels, index * int(RT_TEXELS_PER_TEXTURE_INFO));

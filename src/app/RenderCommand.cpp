@@ -84,8 +84,9 @@ void installInterruptHandlers() {
 void listDevices() {
   auto devices = rt::VulkanContext::listDevices();
   for (const auto& d : devices) {
-    std::printf("%u: %s (%s, Vulkan %u.%u)\n", d.index, d.name.c_str(), d.typeName.c_str(),
-                VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion));
+    std::printf("%u: %s (%s, Vulkan %u.%u, driver %s)\n", d.index, d.name.c_str(),
+                d.typeName.c_str(), VK_API_VERSION_MAJOR(d.apiVersion),
+                VK_API_VERSION_MINOR(d.apiVersion), d.driver.c_str());
   }
   if (devices.empty()) std::printf("no Vulkan devices\n");
 }
@@ -135,7 +136,7 @@ void printSummary(const rt::ImageF& image, const rt::Scene& scene, const rt::Ren
                "%u dispatches%s\n",
                image.width, image.height, stats.samplesDone, stats.renderSeconds,
                samples / std::max(stats.renderSeconds, 1e-9) * 1e-6,
-               context.description().name.c_str(), stats.primitives,
+               context.description().summary().c_str(), stats.primitives,
                stats.features.summary().c_str(), rt::conventionsName(scene.conventions),
                scene.conventionsReason.c_str(), stats.setupSeconds, stats.dispatches,
                rmseText(stats).c_str());

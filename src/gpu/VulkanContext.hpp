@@ -21,6 +21,10 @@ struct DeviceDescription {
   std::string name;
   std::string typeName;  // "discrete GPU", "integrated GPU", "CPU", ...
   uint32_t apiVersion = 0;
+  std::string driver;  // driver name and version, e.g. "llvmpipe, Mesa 25.0.7 (LLVM 15.0.6)"
+
+  // "<name> (driver <driver>)", for summaries and benchmark tables.
+  std::string summary() const { return name + " (driver " + driver + ")"; }
 };
 
 struct ContextOptions {

@@ -114,7 +114,7 @@ Viewer::Viewer(const ViewerOptions& options)
   renderSizeWanted_ = size;
   if (options_.watch) startWatching();
   std::printf("viewer: %ux%u on %s, scene %s, shaders %s\n", size.x, size.y,
-              context_->description().name.c_str(), options_.scenePath.string().c_str(),
+              context_->description().summary().c_str(), options_.scenePath.string().c_str(),
               compiler_->shaderDir().string().c_str());
 }
 
