@@ -320,16 +320,20 @@ RT_ASSERT_STD430_SIZE(GpuSceneInfo, 160);
 
 // Push constants of one dispatch of the render kernel.
 struct GpuFrameParams {
-  uvec2 tileOrigin;   // first pixel of the dispatched tile
-  uvec2 tileSize;     // pixels covered by the dispatch
+  uvec2 tileOrigin;  // first pixel of the dispatched tile
+  uvec2 tileSize;    // pixels covered by the dispatch
+  // Workgroup g of the dispatch renders block (g * stride) mod groups of the
+  // tile, per axis (strides coprime with the group counts): CPU drivers give
+  // each worker thread one contiguous range of workgroups (lavapipe: groups /
+  // threads each), which the strides spread over the whole tile, so that an
+  // expensive region (glass) does not fall to one thread while the other waits.
+  uvec2 groupStride;
   uint sampleBegin;   // first sample index this dispatch adds
   uint sampleCount;   // samples per pixel this dispatch adds
   uint samplesTotal;  // total samples the render aims for (stratification)
   uint seed;
   uint samplerKind;
   uint pad0;
-  uint pad1;
-  uint pad2;
 };
 RT_ASSERT_STD430_SIZE(GpuFrameParams, 48);
 

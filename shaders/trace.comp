@@ -43,15 +43,17 @@ void loadFrameParams() {
   uint z = opaqueZero();
   GpuFrameParams b = frameBlock;
   frame = GpuFrameParams(opaqueUint(b.tileOrigin, z), opaqueUint(b.tileSize, z),
-                         opaqueUint(b.sampleBegin, z), opaqueUint(b.sampleCount, z),
-                         opaqueUint(b.samplesTotal, z), opaqueUint(b.seed, z),
-                         opaqueUint(b.samplerKind, z), 0u, 0u, 0u);
+                         opaqueUint(b.groupStride, z), opaqueUint(b.sampleBegin, z),
+                         opaqueUint(b.sampleCount, z), opaqueUint(b.samplesTotal, z),
+                         opaqueUint(b.seed, z), opaqueUint(b.samplerKind, z), 0u);
 }
 
 void main() {
   loadSceneInfo();
   loadFrameParams();
-  uvec2 local = gl_GlobalInvocationID.xy;
+  // The block this workgroup renders (see GpuFrameParams::groupStride).
+  uvec2 group = (gl_WorkGroupID.xy * frame.groupStride) % gl_NumWorkGroups.xy;
+  uvec2 local = group * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy;
   if (any(greaterThanEqual(local, frame.tileSize))) return;
   uvec2 pixel = frame.tileOrigin + local;
   uint pixelIndex = pixel.y * sceneInfo.width + pixel.x;

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numeric>
 
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
@@ -12,6 +14,19 @@ namespace rt {
 namespace {
 
 uint32_t divideRoundUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
+
+// A stride coprime with `count` near count / golden ratio: g -> g * stride
+// mod count is a permutation that sends any run of consecutive g to blocks
+// spread evenly over 0..count-1 (a Weyl sequence).
+uint32_t spreadingStride(uint32_t count) {
+  if (count <= 2) return 1;
+  const auto target = static_cast<uint32_t>(std::lround(0.6180339887 * count));
+  for (uint32_t offset = 0;; ++offset) {
+    for (uint32_t candidate : {target - offset, target + offset}) {
+      if (candidate > 0 && candidate < count && std::gcd(candidate, count) == 1) return candidate;
+    }
+  }
+}
 
 // Accumulation buffers: texels to the render kernel, a storage buffer to the
 // viewer's display pass, and cleared and read back by transfers.
@@ -122,8 +137,10 @@ void ProgressiveRenderer::recordSamples(VkCommandBuffer commands, uint32_t row, 
   frame.seed = options_.seed;
   frame.samplerKind = gpuSamplerKind(options_.sampler);
   if (options_.independentHalves) frame.samplerKind |= RT_SAMPLER_REPLICATES;
-  kernel_->recordDispatch(commands, &frame, divideRoundUp(region_.width, RT_WORKGROUP_SIZE_X),
-                          divideRoundUp(rows, RT_WORKGROUP_SIZE_Y));
+  const glm::uvec2 groups{divideRoundUp(region_.width, RT_WORKGROUP_SIZE_X),
+                          divideRoundUp(rows, RT_WORKGROUP_SIZE_Y)};
+  frame.groupStride = {spreadingStride(groups.x), spreadingStride(groups.y)};
+  kernel_->recordDispatch(commands, &frame, groups.x, groups.y);
 }
 
 void ProgressiveRenderer::addSamples(uint32_t count) {
