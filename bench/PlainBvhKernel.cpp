@@ -1,7 +1,6 @@
 #include "PlainBvhKernel.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -112,7 +111,6 @@ PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& 
   rt::ShaderCompiler compiler(RT_BENCH_SHADER_DIR, "");
   rt::ShaderDefines defines;
   if (storageBuffers) defines.emplace_back("PLAIN_STORAGE_BUFFERS", "1");
-  if (std::getenv("PLAIN_PACKET")) defines.emplace_back("PLAIN_PACKET", "1");
   VkDescriptorType sceneType =
       storageBuffers ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER : VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
   rt::ComputeKernel kernel(context, compiler.compile("plain_bvh.comp", defines),

@@ -44,59 +44,6 @@ vec2 slabs(vec2 x, vec2 y, vec2 z, vec3 invDir, vec3 originTimesInv, float tMax)
   return vec2(entry, exit);
 }
 
-#ifdef PLAIN_PACKET
-#extension GL_KHR_shader_subgroup_vote : require
-#extension GL_KHR_shader_subgroup_ballot : require
-// Packet walk: the subgroup's lanes visit one node sequence together (every
-// node that any lane's ray enters), so the node index is uniform: one load
-// for the subgroup instead of a gather, and no divergent loop control.
-float closestHit(vec3 origin, vec3 direction) {
-  vec3 invDir = 1.0 / direction;
-  vec3 originTimesInv = origin * invDir;
-  float tMax = 1e30;
-  uint stack[64];
-  uint stackSize = 0u;
-  uint node = 0u;
-  while (node != DONE) {
-    while (node < LEAF) {
-      vec4 n0 = nodeRow(node, 0u), n1 = nodeRow(node, 1u);
-      vec4 n2 = nodeRow(node, 2u), n3 = nodeRow(node, 3u);
-      vec2 a = slabs(n0.xy, n0.zw, n2.xy, invDir, originTimesInv, tMax);
-      vec2 b = slabs(n1.xy, n1.zw, n2.zw, invDir, originTimesInv, tMax);
-      bool hitA = subgroupAny(a.x <= a.y), hitB = subgroupAny(b.x <= b.y);
-      uint childA = floatBitsToUint(n3.x), childB = floatBitsToUint(n3.y);
-      if (!hitA && !hitB) {
-        node = stackSize > 0u ? stack[--stackSize] : DONE;
-      } else {
-        uint nearerA = subgroupBallotBitCount(subgroupBallot(a.x <= a.y && a.x <= b.x));
-        uint nearerB = subgroupBallotBitCount(subgroupBallot(b.x <= b.y && b.x < a.x));
-        bool aFirst = !hitB || (hitA && nearerA >= nearerB);
-        node = aFirst ? childA : childB;
-        if (hitA && hitB) stack[stackSize++] = aFirst ? childB : childA;
-      }
-      node = subgroupBroadcastFirst(node);
-      stackSize = subgroupBroadcastFirst(stackSize);
-    }
-    if (node == DONE) break;
-    uint first = (node & ~LEAF) >> 3u, count = node & 7u;
-    for (uint i = first; i < first + count; ++i) {
-      vec3 v0 = triangleRow(i, 0u).xyz, e1 = triangleRow(i, 1u).xyz, e2 = triangleRow(i, 2u).xyz;
-      vec3 p = cross(direction, e2);
-      float inverseDet = 1.0 / dot(e1, p);
-      vec3 toOrigin = origin - v0;
-      float u = dot(toOrigin, p) * inverseDet;
-      vec3 q = cross(toOrigin, e1);
-      float v = dot(direction, q) * inverseDet;
-      float t = dot(e2, q) * inverseDet;
-      if (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && t < tMax) tMax = t;
-    }
-    node = stackSize > 0u ? stack[--stackSize] : DONE;
-    node = subgroupBroadcastFirst(node);
-    stackSize = subgroupBroadcastFirst(stackSize);
-  }
-  return tMax < 1e30 ? tMax : -1.0;
-}
-#else
 float closestHit(vec3 origin, vec3 direction) {
   vec3 invDir = 1.0 / direction;
   vec3 originTimesInv = origin * invDir;
@@ -137,7 +84,6 @@ float closestHit(vec3 origin, vec3 direction) {
   }
   return tMax < 1e30 ? tMax : -1.0;
 }
-#endif
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
