@@ -104,7 +104,8 @@ struct Row {
 };
 
 Row measure(const std::string& label, rt::TriangleMesh mesh, rt::Renderer& renderer,
-            rt::VulkanContext& context, const rt::ShaderCompiler& compiler) {
+            rt::VulkanContext& context, const rt::ShaderCompiler& compiler,
+            rt::AccelKind accel = rt::AccelKind::Bvh) {
   Row row{label, mesh.faces.size()};
   std::vector<rt::Aabb> boxes = rt::triangleBounds(mesh.positions, mesh.faces);
   auto start = Clock::now();
@@ -127,6 +128,7 @@ Row measure(const std::string& label, rt::TriangleMesh mesh, rt::Renderer& rende
   options.height = kPrimaryWidth;
   options.samplesPerPixel = kPrimarySamples;
   options.countRays = true;
+  options.accel = accel;
   // Best of three renders: on a shared machine single runs vary by 30%.
   for (int repetition = 0; repetition < 3; ++repetition) {
     rt::RenderStats stats;
@@ -136,7 +138,9 @@ Row measure(const std::string& label, rt::TriangleMesh mesh, rt::Renderer& rende
     row.primaryCpuMrays = std::max(row.primaryCpuMrays, rays / stats.renderCpuSeconds * 1e-6);
   }
 
-  rt::BatchIntersector intersector(context, compiler, scene);
+  rt::FlattenOptions flatten;
+  flatten.accel = accel;
+  rt::BatchIntersector intersector(context, compiler, scene, flatten);
   intersector.intersect(std::vector<rt::gpu::GpuRay>(diffuse.begin(), diffuse.begin() + 4096));
   start = Clock::now();
   double cpuStart = cpuSeconds();
@@ -199,7 +203,9 @@ int main(int argc, char** argv) {
   app.add_flag("--plain", plain, "Also time the plain reference kernel on the bunny");
   CLI11_PARSE(app, argc, argv);
   try {
-    rt::VulkanContext context;
+    rt::ContextOptions contextOptions;
+    contextOptions.rayQueries = rt::RayQueries::IfSupported;
+    rt::VulkanContext context(contextOptions);
     rt::ShaderCompiler compiler(rt::ShaderCompiler::defaultShaderDir(),
                                 rt::ShaderCompiler::defaultCacheDir());
     rt::Renderer renderer(context, compiler);
@@ -212,6 +218,11 @@ int main(int argc, char** argv) {
     if (!bunny.empty()) {
       bunnyMesh = rt::loadPly(bunny);
       rows.push_back(measure("Stanford bunny", bunnyMesh, renderer, context, compiler));
+      // The same through the driver's acceleration structures (ray queries).
+      if (context.rayQueriesEnabled()) {
+        rows.push_back(measure("bunny, --accel hardware", bunnyMesh, renderer, context, compiler,
+                               rt::AccelKind::Hardware));
+      }
     }
     std::printf(
         "device: %s; %u hardware threads; primary: %ux%u, %u spp, binary mode, best of 3; "

@@ -48,6 +48,8 @@ using uint = uint32_t;
 #define RT_BINDING_ITEMS 12
 #define RT_BINDING_AREA_LIGHTS 14
 #define RT_BINDING_EMITTERS 15
+// The top-level acceleration structure (--accel hardware only).
+#define RT_BINDING_TLAS 16
 
 #define RT_WORKGROUP_SIZE_X 8
 #define RT_WORKGROUP_SIZE_Y 8

@@ -137,16 +137,44 @@ bool testTopLevelItem(uint item, uint kind, Ray ray, ShearedRay frame, float tMi
 }
 #endif
 
-// Walks the BVH; with anyHit it stops at the first intersection found.
-// A walk pushes only when it enters both children, at most one entry per
-// level of its path; RT_BVH_STACK_SIZE is over twice RT_BVH_MAX_DEPTH, room
-// for a top-level path, the instance marker and a mesh path without a check.
-bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out SurfaceHit hit) {
+// The outward normal of a hit found by either walk, once after it: the
+// walks carry as little per candidate as they can. Cylinders found theirs.
+void completeHitNormal(Ray worldRay, uint hitKind, inout SurfaceHit hit) {
+  uint hitItem = hit.triangleIndex != RT_NONE ? hit.triangleIndex : hit.primitiveIndex;
+  vec4 row0 = itemRow(hitItem, 0u);
+#ifdef RT_FEATURE_SPHERES
+  if (hitKind == RT_PRIM_SPHERE) {
+    hit.normal = normalize(worldRay.origin + hit.t * worldRay.direction - row0.xyz);
+  }
+#endif
+#ifdef RT_FEATURE_TRIANGLES
+  if (hitKind == RT_PRIM_TRIANGLE) {
+    // Items hold the corners themselves (watertight intersection needs them).
+    hit.normal = normalize(cross(itemRow(hitItem, 1u).xyz - row0.xyz, itemRow(hitItem, 2u).xyz - row0.xyz));
+#ifdef RT_FEATURE_INSTANCE_TRANSFORMS
+    if (hit.triangleIndex != RT_NONE) hit.normal = normalToWorld(hit.primitiveIndex, hit.normal);
+#endif
+  }
+#endif
+}
+
+void clearHit(out SurfaceHit hit) {
   hit.t = -1.0;
   hit.primitiveIndex = 0u;
   hit.triangleIndex = RT_NONE;
   hit.normal = vec3(0.0, 0.0, 1.0);
   hit.barycentric = vec2(0.0);
+}
+
+#ifdef RT_ACCEL_HARDWARE
+#include "traverse_hardware.glsl"
+#else
+// Walks the BVH; with anyHit it stops at the first intersection found.
+// A walk pushes only when it enters both children, at most one entry per
+// level of its path; RT_BVH_STACK_SIZE is over twice RT_BVH_MAX_DEPTH, room
+// for a top-level path, the instance marker and a mesh path without a check.
+bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out SurfaceHit hit) {
+  clearHit(hit);
 #ifdef RT_COUNT_RAYS
   ++raysTraced;
 #endif
@@ -249,24 +277,10 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
 #endif
   }
   if (hit.t < 0.0) return false;
-  uint hitItem = hit.triangleIndex != RT_NONE ? hit.triangleIndex : hit.primitiveIndex;
-  vec4 row0 = itemRow(hitItem, 0u);
-#ifdef RT_FEATURE_SPHERES
-  if (hitKind == RT_PRIM_SPHERE) {
-    hit.normal = normalize(worldRay.origin + hit.t * worldRay.direction - row0.xyz);
-  }
-#endif
-#ifdef RT_FEATURE_TRIANGLES
-  if (hitKind == RT_PRIM_TRIANGLE) {
-    // Items hold the corners themselves (watertight intersection needs them).
-    hit.normal = normalize(cross(itemRow(hitItem, 1u).xyz - row0.xyz, itemRow(hitItem, 2u).xyz - row0.xyz));
-#ifdef RT_FEATURE_INSTANCE_TRANSFORMS
-    if (hit.triangleIndex != RT_NONE) hit.normal = normalToWorld(hit.primitiveIndex, hit.normal);
-#endif
-  }
-#endif
+  completeHitNormal(worldRay, hitKind, hit);
   return true;
 }
+#endif  // RT_ACCEL_HARDWARE
 
 bool closestHit(Ray ray, float tMin, float tMax, out SurfaceHit hit) {
   return traverse(ray, tMin, tMax, false, hit);

@@ -97,6 +97,21 @@ std::optional<ShadingModel> shadingNamed(const std::string& name) {
   return std::nullopt;
 }
 
+void addAccelOption(CLI::App& app, std::string& name) {
+  app.add_option("--accel", name,
+                 "Acceleration: bvh (the default: the renderer's own BVH), none (every ray "
+                 "tests every primitive) or hardware (the driver's acceleration structures "
+                 "through ray queries: GPUs with ray tracing units; Mesa 25's lavapipe has them "
+                 "in software)")
+      ->check(CLI::IsMember({"bvh", "none", "hardware"}));
+}
+
+AccelKind accelNamed(const std::string& name) {
+  if (name == "none") return AccelKind::None;
+  if (name == "hardware") return AccelKind::Hardware;
+  return AccelKind::Bvh;
+}
+
 void addConventionsOption(CLI::App& app, std::string& name) {
   app.add_option("--conventions", name,
                  "Conventions (light falloff, shading, ambient, mirrors, image orientation): "

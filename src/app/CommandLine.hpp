@@ -9,6 +9,7 @@
 #include <string>
 
 #include "render/Conventions.hpp"
+#include "render/FlatScene.hpp"
 #include "scene/Scene.hpp"
 
 namespace rt::cli {
@@ -45,6 +46,11 @@ CLI::Validator samplerValidator();
 
 // "standard" / "coursework" / "" (the conventions' default).
 std::optional<ShadingModel> shadingNamed(const std::string& name);
+
+// --accel bvh|none|hardware into `name`; accelNamed turns it into the kind
+// ("" is bvh, the default).
+void addAccelOption(CLI::App& app, std::string& name);
+AccelKind accelNamed(const std::string& name);
 
 // --conventions NAME (coursework-a, coursework-b, textbook) into `name`.
 void addConventionsOption(CLI::App& app, std::string& name);

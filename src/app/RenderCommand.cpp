@@ -84,9 +84,10 @@ void installInterruptHandlers() {
 void listDevices() {
   auto devices = rt::VulkanContext::listDevices();
   for (const auto& d : devices) {
-    std::printf("%u: %s (%s, Vulkan %u.%u, driver %s)\n", d.index, d.name.c_str(),
+    std::printf("%u: %s (%s, Vulkan %u.%u, driver %s%s)\n", d.index, d.name.c_str(),
                 d.typeName.c_str(), VK_API_VERSION_MAJOR(d.apiVersion),
-                VK_API_VERSION_MINOR(d.apiVersion), d.driver.c_str());
+                VK_API_VERSION_MINOR(d.apiVersion), d.driver.c_str(),
+                d.rayQueries ? ", ray queries" : "");
   }
   if (devices.empty()) std::printf("no Vulkan devices\n");
 }
@@ -94,6 +95,7 @@ void listDevices() {
 rt::ContextOptions contextOptions(const CommandLine& cli) {
   rt::ContextOptions options;
   options.validation = cli.validation;
+  if (cli.accel == "hardware") options.rayQueries = rt::RayQueries::Required;
   if (!cli.device.empty()) options.deviceIndex = rt::cli::parseDeviceIndex(cli.device);
   return options;
 }
@@ -116,7 +118,7 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
   options.seed = cli.seed;
   options.sampler = rt::cli::samplerNamed(cli.sampler, scene.settings.sampler);
   options.shading = rt::cli::shadingNamed(cli.shading);
-  options.accel = cli.accel == "none" ? rt::AccelKind::None : rt::AccelKind::Bvh;
+  options.accel = rt::cli::accelNamed(cli.accel);
   if (!cli.sampleRange.empty()) parseSampleRange(cli.sampleRange, options);
   return options;
 }
@@ -213,9 +215,7 @@ int runRenderCommand(int argc, char** argv) {
                  "standard otherwise)")
       ->check(CLI::IsMember({"standard", "coursework"}));
   rt::cli::addConventionsOption(app, cli.conventions);
-  app.add_option("--accel", cli.accel,
-                 "Acceleration: bvh (the default) or none (every ray tests every primitive)")
-      ->check(CLI::IsMember({"bvh", "none"}));
+  rt::cli::addAccelOption(app, cli.accel);
   app.add_flag("--offscreen", cli.offscreen, "Render without a window (the default)");
   app.add_option("--device", cli.device, "'list' to list Vulkan devices, or the number to use");
   app.add_flag("--validation", cli.validation,

@@ -27,6 +27,10 @@ RawBuffer allocate(VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags
   vkGetBufferMemoryRequirements(context.device(), raw.buffer, &requirements);
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = requirements.size;
+  // Acceleration-structure inputs and storage are found by device address.
+  VkMemoryAllocateFlagsInfo addressable{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+  addressable.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+  if (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) alloc.pNext = &addressable;
   try {
     raw.memoryType = context.findMemoryType(requirements.memoryTypeBits, required, preferred);
     alloc.memoryTypeIndex = raw.memoryType;
@@ -61,6 +65,12 @@ Buffer::Buffer(VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usa
 }
 
 Buffer::~Buffer() { release(); }
+
+VkDeviceAddress Buffer::deviceAddress() const {
+  VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+  info.buffer = buffer_;
+  return vkGetBufferDeviceAddress(context_->device(), &info);
+}
 
 Buffer::Buffer(Buffer&& other) noexcept { *this = std::move(other); }
 

@@ -22,6 +22,8 @@ class Buffer {
 
   VkBuffer handle() const { return buffer_; }
   VkDeviceSize size() const { return size_; }
+  // Needs VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT in `usage`.
+  VkDeviceAddress deviceAddress() const;
 
   void upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
   void download(void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);

@@ -142,6 +142,21 @@ void ComputeKernel::bindTexels(uint32_t binding, const Buffer& buffer, VkFormat 
                   &view);
 }
 
+void ComputeKernel::bindAccelerationStructure(uint32_t binding,
+                                              VkAccelerationStructureKHR structure) {
+  VkWriteDescriptorSetAccelerationStructureKHR structures{
+      VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
+  structures.accelerationStructureCount = 1;
+  structures.pAccelerationStructures = &structure;
+  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  write.pNext = &structures;
+  write.dstSet = set_;
+  write.dstBinding = binding;
+  write.descriptorCount = 1;
+  write.descriptorType = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
+  vkUpdateDescriptorSets(context_.device(), 1, &write, 0, nullptr);
+}
+
 void ComputeKernel::recordDispatch(VkCommandBuffer commands, const void* pushConstants,
                                    uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) const {
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);

@@ -16,7 +16,8 @@ class VulkanContext;
 struct KernelBinding {
   uint32_t binding = 0;
   // or UNIFORM_BUFFER (bound with bind), UNIFORM_TEXEL_BUFFER or
-  // STORAGE_TEXEL_BUFFER (bound with bindTexels)
+  // STORAGE_TEXEL_BUFFER (bound with bindTexels), ACCELERATION_STRUCTURE_KHR
+  // (bound with bindAccelerationStructure)
   VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 };
 
@@ -41,6 +42,8 @@ class ComputeKernel {
   void bind(uint32_t binding, const Buffer& buffer);
   // Points a uniform- or storage-texel-buffer binding at a buffer seen as `format` texels.
   void bindTexels(uint32_t binding, const Buffer& buffer, VkFormat format);
+  // Points an ACCELERATION_STRUCTURE_KHR binding at a top level.
+  void bindAccelerationStructure(uint32_t binding, VkAccelerationStructureKHR structure);
 
   // Records a dispatch followed by a barrier that makes its writes visible to
   // the next dispatch and to transfers.

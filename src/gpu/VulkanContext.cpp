@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <vector>
 
 #include "util/Error.hpp"
 
@@ -100,11 +101,60 @@ std::string driverText(VkPhysicalDevice device, const VkPhysicalDeviceProperties
                       : fmt::format("{}, {}", driver.driverName, info);
 }
 
+bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
+  uint32_t count = 0;
+  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
+  return std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
+    return std::strcmp(e.extensionName, name) == 0;
+  });
+}
+
+const char* const kRayQueryExtensions[] = {VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
+                                           VK_KHR_RAY_QUERY_EXTENSION_NAME,
+                                           VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
+
+// The features ray queries need, as the device reports them.
+struct RayQueryFeatures {
+  VkPhysicalDeviceRayQueryFeaturesKHR rayQuery{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR structures{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  VkPhysicalDeviceVulkan12Features vulkan12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+
+  explicit RayQueryFeatures(VkPhysicalDevice device) {
+    structures.pNext = &rayQuery;
+    vulkan12.pNext = &structures;
+    features.pNext = &vulkan12;
+    vkGetPhysicalDeviceFeatures2(device, &features);
+  }
+  RayQueryFeatures(const RayQueryFeatures&) = delete;
+  RayQueryFeatures& operator=(const RayQueryFeatures&) = delete;
+
+  bool complete() const {
+    return rayQuery.rayQuery && structures.accelerationStructure && vulkan12.bufferDeviceAddress;
+  }
+};
+
+bool supportsRayQueries(VkPhysicalDevice device, const VkPhysicalDeviceProperties& props) {
+  if (props.apiVersion < VK_API_VERSION_1_2) return false;
+  for (const char* name : kRayQueryExtensions) {
+    if (!hasDeviceExtension(device, name)) return false;
+  }
+  return RayQueryFeatures(device).complete();
+}
+
 DeviceDescription describe(VkPhysicalDevice device, uint32_t index) {
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(device, &props);
-  return {index, props.deviceName, deviceTypeName(props.deviceType), props.apiVersion,
-          driverText(device, props)};
+  return {index,
+          props.deviceName,
+          deviceTypeName(props.deviceType),
+          props.apiVersion,
+          driverText(device, props),
+          supportsRayQueries(device, props)};
 }
 
 VkInstance createBareInstance(const std::vector<const char*>& layers,
@@ -261,8 +311,30 @@ void VulkanContext::createDevice(const ContextOptions& options) {
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queueInfo;
-  info.enabledExtensionCount = static_cast<uint32_t>(options.deviceExtensions.size());
-  info.ppEnabledExtensionNames = options.deviceExtensions.data();
+  std::vector<const char*> extensions = options.deviceExtensions;
+  rayQueries_ = options.rayQueries != RayQueries::Off && description_.rayQueries;
+  if (options.rayQueries == RayQueries::Required && !rayQueries_) {
+    throw Error(fmt::format("--accel hardware: {} has no ray queries (needs {}, {} and {})",
+                            description_.name, kRayQueryExtensions[0], kRayQueryExtensions[1],
+                            kRayQueryExtensions[2]));
+  }
+  // Only what ray queries need is enabled, and only when they are asked for.
+  RayQueryFeatures features(physicalDevice_);
+  if (rayQueries_) {
+    extensions.insert(extensions.end(), std::begin(kRayQueryExtensions),
+                      std::end(kRayQueryExtensions));
+    features.vulkan12 = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+                         &features.structures};
+    features.vulkan12.bufferDeviceAddress = VK_TRUE;
+    features.structures = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR,
+                           &features.rayQuery};
+    features.structures.accelerationStructure = VK_TRUE;
+    features.rayQuery = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+    features.rayQuery.rayQuery = VK_TRUE;
+    info.pNext = &features.vulkan12;
+  }
+  info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   vkCheck(vkCreateDevice(physicalDevice_, &info, nullptr, &device_), "vkCreateDevice");
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
 

@@ -21,14 +21,20 @@ struct DeviceDescription {
   std::string name;
   std::string typeName;  // "discrete GPU", "integrated GPU", "CPU", ...
   uint32_t apiVersion = 0;
-  std::string driver;  // driver name and version, e.g. "llvmpipe, Mesa 25.0.7 (LLVM 15.0.6)"
+  std::string driver;       // driver name and version, e.g. "llvmpipe, Mesa 25.0.7 (LLVM 15.0.6)"
+  bool rayQueries = false;  // VK_KHR_ray_query with acceleration structures
 
   // "<name> (driver <driver>)", for summaries and benchmark tables.
   std::string summary() const { return name + " (driver " + driver + ")"; }
 };
 
+// Ray queries through the driver's acceleration structures (--accel
+// hardware): off, on where the device has them, or required (an Error when not).
+enum class RayQueries { Off, IfSupported, Required };
+
 struct ContextOptions {
-  bool validation = false;                      // enable VK_LAYER_KHRONOS_validation
+  bool validation = false;  // enable VK_LAYER_KHRONOS_validation
+  RayQueries rayQueries = RayQueries::Off;
   std::optional<uint32_t> deviceIndex;          // as listed by listDevices(); default: best
   std::vector<const char*> instanceExtensions;  // e.g. for a window surface
   std::vector<const char*> deviceExtensions;
@@ -54,7 +60,7 @@ class VulkanContext {
   uint32_t queueFamily() const { return queueFamily_; }
   const DeviceDescription& description() const { return description_; }
   const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
-  bool validationEnabled() const { return messenger_ != VK_NULL_HANDLE; }
+  bool rayQueriesEnabled() const { return rayQueries_; }
   VkSurfaceKHR surface() const { return surface_; }
 
   // Validation warnings and errors reported so far (0 when validation is off).
@@ -90,6 +96,7 @@ class VulkanContext {
   VkQueue queue_ = VK_NULL_HANDLE;
   VkCommandPool commandPool_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
+  bool rayQueries_ = false;
   uint32_t validationMessages_ = 0;
 };
 

@@ -15,7 +15,7 @@ BatchKernel::BatchKernel(VulkanContext& context, const ShaderCompiler& compiler,
   buffers_ = std::make_unique<SceneBuffers>(context, flat_);
   std::vector<uint32_t> spirv =
       compiler.compile(shaderName, detectFeatures(scene, flat_).defines());
-  std::vector<KernelBinding> bindings = SceneBuffers::bindings();
+  std::vector<KernelBinding> bindings = SceneBuffers::bindings(flat_.accel);
   bindings.push_back({RT_BINDING_RAYS});
   bindings.push_back({RT_BINDING_HITS});
   kernel_ = std::make_unique<ComputeKernel>(context, spirv, bindings,

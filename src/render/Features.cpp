@@ -44,6 +44,7 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat) {
     features.instanceTransforms |= movesRayIntoObjectSpace(primitive);
   }
   features.binaryOnly = scene.settings.mode == RenderMode::Binary;
+  features.hardwareAccel = flat.accel == AccelKind::Hardware;
   bool shaded = scene.settings.mode != RenderMode::Binary && scene.settings.maxBounces > 0;
   for (const Shape& shape : scene.shapes) {
     const Material& material = scene.materials.at(shape.material);
@@ -98,6 +99,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(diffuseBounces, "RT_FEATURE_DIFFUSE_BOUNCES");
   flag(pathTracer, "RT_FEATURE_PATH_TRACER");
   flag(countRays, "RT_COUNT_RAYS");
+  flag(hardwareAccel, "RT_ACCEL_HARDWARE");
   flag(binaryOnly, "RT_BINARY_ONLY");
   if (samplerKind >= 0) result.emplace_back("RT_SAMPLER_KIND", std::to_string(samplerKind) + "u");
   if (emitterKinds != 0) {

@@ -30,6 +30,7 @@ struct ShaderFeatures {
   bool diffuseBounces = false;  // sampled diffuse bounces (distributed bounces, path tracer)
   bool pathTracer = false;      // one continuation per hit
   bool countRays = false;       // benchmark instrumentation
+  bool hardwareAccel = false;   // ray queries instead of the BVH walk (--accel hardware)
   // Binary mode: a sample is one closest-hit query; no shading code is built.
   bool binaryOnly = false;
   // The pixel sampler (RT_SAMPLER_*) when one is fixed for the kernel's life,

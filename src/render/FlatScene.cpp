@@ -122,30 +122,6 @@ struct PrimitiveSink {
   }
 };
 
-Aabb primitiveBounds(const gpu::GpuPrimitive& prim) {
-  Aabb box;
-  glm::vec3 a(prim.a);
-  if (prim.kind == RT_PRIM_SPHERE) {
-    box.grow(a - glm::vec3(prim.a.w));
-    box.grow(a + glm::vec3(prim.a.w));
-  } else if (prim.kind == RT_PRIM_TRIANGLE) {
-    box.grow(a);
-    box.grow(glm::vec3(prim.b));
-    box.grow(glm::vec3(prim.c));
-  } else {
-    // Cylinder: the caps' discs bound it; a disc of radius r around axis n
-    // extends r * sqrt(1 - n_i^2) along axis i.
-    glm::vec3 axis(prim.b);
-    glm::vec3 capOffset = axis * prim.b.w;
-    glm::vec3 discExtent = prim.a.w * glm::sqrt(glm::max(glm::vec3(0.0f), 1.0f - axis * axis));
-    for (float side : {-1.0f, 1.0f}) {
-      box.grow(a + side * capOffset - discExtent);
-      box.grow(a + side * capOffset + discExtent);
-    }
-  }
-  return box;
-}
-
 Aabb transformedBounds(const Aabb& box, const glm::mat4& transform) {
   Aabb out;
   if (box.empty()) return out;
@@ -164,7 +140,9 @@ struct MeshBlas {
   std::vector<gpu::GpuItem> triangles;
   uint32_t flags = 0;  // RT_PRIM_HAS_VERTICES / RT_PRIM_SMOOTH for its instances
   Aabb bounds;
-  uint32_t root = 0;  // GPU node index, once laid out
+  bool baked = false;      // built in world space (its one instance's placement applied)
+  uint32_t root = 0;       // GPU node index, once laid out
+  uint32_t firstItem = 0;  // its first triangle in FlatScene::items, once laid out
 };
 
 Bvh buildTree(const std::vector<Aabb>& boxes, uint32_t leafSize, const FlattenOptions& options) {
@@ -325,6 +303,7 @@ std::vector<std::optional<MeshBlas>> addMeshes(const Scene& scene,
     if (!blas) {
       blas = builder.build(instance.mesh, bake ? instance.objectToWorld : glm::mat4(1.0f),
                            textured[instance.mesh]);
+      blas->baked = bake;
     }
     glm::mat4 worldToObject = bake ? glm::mat4(1.0f) : glm::inverse(instance.objectToWorld);
     gpu::GpuPrimitive& prim = flat.primitives[instance.primitive];
@@ -383,6 +362,7 @@ void addBvh(const std::vector<PendingInstance>& instances,
   for (std::optional<MeshBlas>& blas : meshes) {
     if (!blas) continue;
     uint32_t firstTriangle = static_cast<uint32_t>(flat.items.size());
+    blas->firstItem = firstTriangle;
     flat.items.insert(flat.items.end(), blas->triangles.begin(), blas->triangles.end());
     blas->root = appendBvhNodes(
         blas->bvh,
@@ -390,8 +370,18 @@ void addBvh(const std::vector<PendingInstance>& instances,
         flat.bvhNodes);
     meshDepth = std::max(meshDepth, blas->bvh.depth);
   }
+  std::vector<uint32_t> flatMeshOf(meshes.size(), 0);
+  for (size_t mesh = 0; mesh < meshes.size(); ++mesh) {
+    if (!meshes[mesh]) continue;
+    flatMeshOf[mesh] = static_cast<uint32_t>(flat.meshes.size());
+    flat.meshes.push_back(
+        {meshes[mesh]->firstItem, static_cast<uint32_t>(meshes[mesh]->triangles.size())});
+  }
   for (const PendingInstance& instance : instances) {
-    flat.bvhNodes[1 + instance.primitive] = flat.bvhNodes[meshes[instance.mesh]->root];
+    const MeshBlas& blas = *meshes[instance.mesh];
+    flat.bvhNodes[1 + instance.primitive] = flat.bvhNodes[blas.root];
+    flat.instances.push_back({instance.primitive, flatMeshOf[instance.mesh],
+                              blas.baked ? glm::mat4(1.0f) : instance.objectToWorld});
   }
   flat.bvhDepth = top.depth + meshDepth;
 }
@@ -460,6 +450,30 @@ uint32_t dominantAxis(const glm::vec3& v) {
 
 }  // namespace
 
+Aabb primitiveBounds(const gpu::GpuPrimitive& prim) {
+  Aabb box;
+  glm::vec3 a(prim.a);
+  if (prim.kind == RT_PRIM_SPHERE) {
+    box.grow(a - glm::vec3(prim.a.w));
+    box.grow(a + glm::vec3(prim.a.w));
+  } else if (prim.kind == RT_PRIM_TRIANGLE) {
+    box.grow(a);
+    box.grow(glm::vec3(prim.b));
+    box.grow(glm::vec3(prim.c));
+  } else {
+    // Cylinder: the caps' discs bound it; a disc of radius r around axis n
+    // extends r * sqrt(1 - n_i^2) along axis i.
+    glm::vec3 axis(prim.b);
+    glm::vec3 capOffset = axis * prim.b.w;
+    glm::vec3 discExtent = prim.a.w * glm::sqrt(glm::max(glm::vec3(0.0f), 1.0f - axis * axis));
+    for (float side : {-1.0f, 1.0f}) {
+      box.grow(a + side * capOffset - discExtent);
+      box.grow(a + side * capOffset + discExtent);
+    }
+  }
+  return box;
+}
+
 void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuSceneInfo& info,
                 const glm::vec3& frameOrigin) {
   CameraBasis basis = cameraBasis(camera);
@@ -477,6 +491,7 @@ void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuS
 
 FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   FlatScene flat;
+  flat.accel = options.accel;
   uint32_t width = options.width ? options.width : scene.camera.width;
   uint32_t height = options.height ? options.height : scene.camera.height;
   fillCamera(scene.camera, width, height, flat.info);

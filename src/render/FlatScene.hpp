@@ -6,17 +6,42 @@
 #include <string>
 #include <vector>
 
+#include "bvh/Bvh.hpp"
 #include "gpu_types.h"
 #include "render/Conventions.hpp"
 #include "scene/Scene.hpp"
 
 namespace rt {
 
+// Bvh: binned SAH trees. None: every ray tests every primitive (a chain of
+// nodes that prunes nothing), to compare against. Hardware: the driver's
+// acceleration structures through ray queries (GPUs with ray tracing units;
+// render/HardwareScene), the BVH path's hits on every shape.
+enum class AccelKind { Bvh, None, Hardware };
+
+// A mesh's triangles in FlatScene::items (its BVH's leaf order).
+struct FlatMesh {
+  uint32_t firstItem = 0;
+  uint32_t triangleCount = 0;
+};
+
+// A mesh instance: its top-level primitive, its mesh (FlatScene::meshes)
+// and where it puts the mesh's items (identity: they are in world space).
+struct FlatInstance {
+  uint32_t primitive = 0;
+  uint32_t mesh = 0;
+  glm::mat4 objectToWorld{1.0f};
+};
+
 struct FlatScene {
   gpu::GpuSceneInfo info{};
   std::vector<gpu::GpuPrimitive> primitives;  // top level: shapes' primitives, mesh instances
   std::vector<gpu::GpuItem> items;            // what BVH leaves point at (see gpu_types.h)
   std::vector<gpu::GpuBvhNode> bvhNodes;      // top level first, then one tree per mesh
+  // The two levels again as meshes and their instances (the hardware path
+  // builds its own structures from them). Instances are the first primitives.
+  std::vector<FlatMesh> meshes;
+  std::vector<FlatInstance> instances;
   std::vector<gpu::GpuMaterial> materials;
   std::vector<gpu::GpuPointLight> pointLights;
   std::vector<gpu::GpuAreaLight> areaLights;
@@ -27,11 +52,8 @@ struct FlatScene {
   uint32_t bvhDepth = 0;              // top level plus the deepest mesh
   glm::vec3 frameOrigin{0.0f};        // world point at the GPU coordinates' origin (the camera)
   std::vector<std::string> warnings;  // scene features the GPU scene leaves out
+  AccelKind accel = AccelKind::Bvh;   // what the kernels walk
 };
-
-// Bvh: binned SAH trees. None: every ray tests every primitive (a chain of
-// nodes that prunes nothing), to compare against.
-enum class AccelKind { Bvh, None };
 
 struct FlattenOptions {
   uint32_t width = 0;  // override the camera's image size when non-zero
@@ -43,6 +65,9 @@ struct FlattenOptions {
 };
 
 FlatScene flattenScene(const Scene& scene, const FlattenOptions& options = {});
+
+// Bounds of a top-level primitive that is not a mesh instance (its BVH box).
+Aabb primitiveBounds(const gpu::GpuPrimitive& primitive);
 
 // Writes the camera fields of `info` (basis, field of view, lens, image size),
 // the position relative to the flat scene's frameOrigin.

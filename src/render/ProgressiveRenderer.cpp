@@ -107,8 +107,8 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
   kernel_ = buildKernel();
 }
 
-std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(bool countRays) {
-  std::vector<KernelBinding> bindings = SceneBuffers::bindings();
+std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(bool countRays, AccelKind accel) {
+  std::vector<KernelBinding> bindings = SceneBuffers::bindings(accel);
   bindings.push_back({RT_BINDING_ACCUMULATION, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER});
   bindings.push_back({RT_BINDING_ACCUMULATION_ODD, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER});
   if (countRays) bindings.push_back({RT_BINDING_RAY_COUNTER});
@@ -118,7 +118,8 @@ std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(bool countRays) {
 std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
   auto kernel = std::make_unique<ComputeKernel>(
       context_, compiler_.compile("trace.comp", features_.defines()),
-      kernelBindings(rayCounter_.has_value()), static_cast<uint32_t>(sizeof(gpu::GpuFrameParams)));
+      kernelBindings(rayCounter_.has_value(), flat_.accel),
+      static_cast<uint32_t>(sizeof(gpu::GpuFrameParams)));
   sceneBuffers_.bindTo(*kernel);
   kernel->bindTexels(RT_BINDING_ACCUMULATION, accumulation_, VK_FORMAT_R32G32B32A32_SFLOAT);
   kernel->bindTexels(RT_BINDING_ACCUMULATION_ODD, oddAccumulation_, VK_FORMAT_R32G32B32A32_SFLOAT);

@@ -44,6 +44,8 @@ SceneBuffers::SceneBuffers(VulkanContext& context, const FlatScene& scene,
       textureInfos_(makeTexels(context, limits, scene.textureInfos, "texture table")),
       texels_(makeTexels<sizeof(uint32_t)>(context, limits, scene.texels, "texture texels")) {
   info_.upload(&scene.info, sizeof(scene.info));
+  if (scene.accel == AccelKind::Hardware)
+    hardware_ = std::make_unique<HardwareScene>(context, scene);
 }
 
 void SceneBuffers::bindTo(ComputeKernel& kernel) const {
@@ -58,24 +60,31 @@ void SceneBuffers::bindTo(ComputeKernel& kernel) const {
   kernel.bindTexels(RT_BINDING_VERTICES, vertices_, VK_FORMAT_R32G32B32A32_SFLOAT);
   kernel.bindTexels(RT_BINDING_TEXTURE_INFO, textureInfos_, VK_FORMAT_R32G32B32A32_UINT);
   kernel.bindTexels(RT_BINDING_TEXELS, texels_, VK_FORMAT_R32_UINT);
+  if (hardware_ && hardware_->topLevel()) {
+    kernel.bindAccelerationStructure(RT_BINDING_TLAS, hardware_->topLevel());
+  }
 }
 
-std::vector<KernelBinding> SceneBuffers::bindings() {
+std::vector<KernelBinding> SceneBuffers::bindings(AccelKind accel) {
   constexpr VkDescriptorType kTexels = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
   // Scene constants are a uniform buffer, everything else texel buffers: CPU
   // drivers read a storage buffer one lane at a time, even at an index every
   // lane shares, once the read is inside a loop or branch.
-  return {{RT_BINDING_SCENE_INFO, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-          {RT_BINDING_PRIMITIVES, kTexels},
-          {RT_BINDING_BVH_NODES, kTexels},
-          {RT_BINDING_ITEMS, kTexels},
-          {RT_BINDING_MATERIALS, kTexels},
-          {RT_BINDING_POINT_LIGHTS, kTexels},
-          {RT_BINDING_AREA_LIGHTS, kTexels},
-          {RT_BINDING_EMITTERS, kTexels},
-          {RT_BINDING_VERTICES, kTexels},
-          {RT_BINDING_TEXTURE_INFO, kTexels},
-          {RT_BINDING_TEXELS, kTexels}};
+  std::vector<KernelBinding> bindings = {{RT_BINDING_SCENE_INFO, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                         {RT_BINDING_PRIMITIVES, kTexels},
+                                         {RT_BINDING_BVH_NODES, kTexels},
+                                         {RT_BINDING_ITEMS, kTexels},
+                                         {RT_BINDING_MATERIALS, kTexels},
+                                         {RT_BINDING_POINT_LIGHTS, kTexels},
+                                         {RT_BINDING_AREA_LIGHTS, kTexels},
+                                         {RT_BINDING_EMITTERS, kTexels},
+                                         {RT_BINDING_VERTICES, kTexels},
+                                         {RT_BINDING_TEXTURE_INFO, kTexels},
+                                         {RT_BINDING_TEXELS, kTexels}};
+  if (accel == AccelKind::Hardware) {
+    bindings.push_back({RT_BINDING_TLAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR});
+  }
+  return bindings;
 }
 
 void SceneBuffers::updateInfo(const gpu::GpuSceneInfo& info) { info_.upload(&info, sizeof(info)); }

@@ -1,12 +1,15 @@
 // A FlatScene uploaded to GPU texel buffers (and a uniform buffer for its
-// constants), bindable to any kernel that includes shaders/bindings.glsl.
+// constants), bindable to any kernel that includes shaders/bindings.glsl;
+// for --accel hardware also as the driver's acceleration structures.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "gpu/Buffer.hpp"
 #include "gpu/ComputeKernel.hpp"
 #include "render/FlatScene.hpp"
+#include "render/HardwareScene.hpp"
 
 namespace rt {
 
@@ -25,7 +28,7 @@ class SceneBuffers {
                const SceneBufferLimits& limits = {});
   void bindTo(ComputeKernel& kernel) const;
   // The binding numbers bindTo() fills (set 0), for kernel layouts.
-  static std::vector<KernelBinding> bindings();
+  static std::vector<KernelBinding> bindings(AccelKind accel = AccelKind::Bvh);
   // Replaces the per-scene constants (camera moves); no dispatch may be in flight.
   void updateInfo(const gpu::GpuSceneInfo& info);
   size_t bytes() const;
@@ -42,6 +45,7 @@ class SceneBuffers {
   Buffer vertices_;
   Buffer textureInfos_;
   Buffer texels_;
+  std::unique_ptr<HardwareScene> hardware_;  // --accel hardware only
 };
 
 }  // namespace rt

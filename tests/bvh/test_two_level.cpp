@@ -134,6 +134,35 @@ TEST_SUITE("bvh-gpu") {
     test::checkNoValidationMessages();
   }
 
+  TEST_CASE("--accel hardware: ray queries give the BVH's hits" * test::needsRayQueries()) {
+    // Shared (object-space, mirrored) instances and world-space copies,
+    // spheres, a cylinder and a quad: every kind of primitive and placement.
+    for (bool flattened : {false, true}) {
+      CAPTURE(flattened);
+      Scene scene = meshScene(flattened);
+      auto rays = randomRays(20000, 13);
+      checkSame(compareHits(gpuHits(scene, rays, AccelKind::Bvh),
+                            gpuHits(scene, rays, AccelKind::Hardware)),
+                rays.size());
+    }
+    test::checkNoValidationMessages();
+  }
+
+  TEST_CASE("--accel hardware renders the BVH's image" * test::needsRayQueries()) {
+    Scene scene = loadScene(std::filesystem::path(RT_SOURCE_SHADER_DIR) / "../scenes/default.json");
+    Renderer renderer(test::gpu(), test::shaderCompiler());
+    RenderOptions options;
+    options.width = 160;
+    options.height = 120;
+    options.samplesPerPixel = 2;
+    Image8 bvh = toneMap(renderer.render(scene, options), {});
+    options.accel = AccelKind::Hardware;
+    Image8 hardware = toneMap(renderer.render(scene, options), {});
+    test::savePng(hardware, "default-accel-hardware.png");
+    CHECK(test::psnr(bvh, hardware) > 50.0);
+    test::checkNoValidationMessages();
+  }
+
   TEST_CASE("only a mesh placed more than once makes the walk move rays into object space") {
     Scene shared = meshScene(false);
     CHECK(detectFeatures(shared, flattenScene(shared)).instanceTransforms);

@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <glm/geometric.hpp>
@@ -39,10 +40,24 @@ std::filesystem::path requireShared() {
   return *dir;
 }
 
+doctest::skip needsRayQueries() {
+  static const bool supported = [] {
+    try {
+      std::vector<DeviceDescription> devices = VulkanContext::listDevices();
+      return std::any_of(devices.begin(), devices.end(),
+                         [](const DeviceDescription& device) { return device.rayQueries; });
+    } catch (const std::exception&) {
+      return false;
+    }
+  }();
+  return doctest::skip(!supported);
+}
+
 VulkanContext& gpu() {
   static std::unique_ptr<VulkanContext> context = [] {
     ContextOptions options;
     options.validation = true;
+    options.rayQueries = RayQueries::IfSupported;
     return std::make_unique<VulkanContext>(options);
   }();
   return *context;

@@ -31,7 +31,12 @@ doctest::skip needsShared();
 // when the folder is missing (it only runs then under --no-skip).
 std::filesystem::path requireShared();
 
-// One context for the whole run, validation layer enabled.
+// Decorator of test cases that need ray queries (--accel hardware): skipped
+// on devices without them (Mesa 22.3's lavapipe, older GPUs).
+doctest::skip needsRayQueries();
+
+// One context for the whole run, validation layer enabled, ray queries on
+// where the device has them.
 VulkanContext& gpu();
 const ShaderCompiler& shaderCompiler();
 
