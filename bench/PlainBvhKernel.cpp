@@ -71,6 +71,63 @@ std::vector<float> layoutNodes(const rt::Bvh& bvh) {
   return nodes;
 }
 
+// The binary tree collapsed into nodes of up to four children: a node takes
+// its binary children and opens the largest interior one until it has four
+// (greedy by surface area). Rows: min x, max x, min y, max y, min z, max z of
+// the four boxes, then the references (unused slots: empty boxes, DONE).
+std::vector<float> layoutWideNodes(const rt::Bvh& bvh) {
+  auto isLeaf = [&](uint32_t n) { return bvh.nodes[n].count != 0; };
+  auto childrenOf = [&](uint32_t binary) {
+    std::vector<uint32_t> children{bvh.nodes[binary].firstIndex, bvh.nodes[binary].firstIndex + 1};
+    while (children.size() < 4) {
+      int open = -1;
+      float largest = -1.0f;
+      for (size_t i = 0; i < children.size(); ++i) {
+        if (isLeaf(children[i])) continue;
+        float area = bvh.nodes[children[i]].bounds.surfaceArea();
+        if (area > largest) largest = area, open = int(i);
+      }
+      if (open < 0) break;
+      uint32_t opened = children[size_t(open)];
+      children.erase(children.begin() + open);
+      children.push_back(bvh.nodes[opened].firstIndex);
+      children.push_back(bvh.nodes[opened].firstIndex + 1);
+    }
+    return children;
+  };
+  std::vector<uint32_t> order{0};  // binary nodes that become wide nodes, breadth first
+  std::vector<std::vector<uint32_t>> children;
+  std::vector<uint32_t> wideIndex(bvh.nodes.size(), 0);
+  for (size_t i = 0; i < order.size(); ++i) {
+    children.push_back(childrenOf(order[i]));
+    for (uint32_t c : children.back()) {
+      if (!isLeaf(c)) {
+        wideIndex[c] = static_cast<uint32_t>(order.size());
+        order.push_back(c);
+      }
+    }
+  }
+  std::vector<float> nodes;
+  for (const std::vector<uint32_t>& kids : children) {
+    float rows[7][4];
+    for (int slot = 0; slot < 4; ++slot) {
+      bool used = size_t(slot) < kids.size();
+      const rt::BvhNode* child = used ? &bvh.nodes[kids[size_t(slot)]] : nullptr;
+      for (int axis = 0; axis < 3; ++axis) {
+        rows[2 * axis][slot] = used ? child->bounds.min[axis] : 1e30f;
+        rows[2 * axis + 1][slot] = used ? child->bounds.max[axis] : -1e30f;
+      }
+      uint32_t ref = !used ? 0xffffffffu
+                     : child->count == 0
+                         ? wideIndex[kids[size_t(slot)]]
+                         : kLeafBit | child->firstIndex << kCountBits | child->count;
+      rows[6][slot] = bitsFloat(ref);
+    }
+    nodes.insert(nodes.end(), &rows[0][0], &rows[0][0] + 28);
+  }
+  return nodes;
+}
+
 // Triangles in leaf order as (v0, v1 - v0, v2 - v0), one vec4 each.
 std::vector<float> layoutTriangles(const rt::TriangleMesh& mesh, const rt::Bvh& bvh) {
   std::vector<float> triangles;
@@ -94,10 +151,11 @@ rt::Bvh buildMeshBvh(const rt::TriangleMesh& mesh) {
 }  // namespace
 
 PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& mesh,
-                            const PlainCamera& camera, bool storageBuffers, uint32_t width,
+                            const PlainCamera& camera, const PlainLayout& layout, uint32_t width,
                             uint32_t samples) {
+  const bool storageBuffers = layout.storageBuffers;
   rt::Bvh bvh = buildMeshBvh(mesh);
-  std::vector<float> nodes = layoutNodes(bvh);
+  std::vector<float> nodes = layout.wide ? layoutWideNodes(bvh) : layoutNodes(bvh);
   std::vector<float> triangles = layoutTriangles(mesh, bvh);
   const VkBufferUsageFlags usage =
       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
@@ -111,6 +169,8 @@ PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& 
   rt::ShaderCompiler compiler(RT_BENCH_SHADER_DIR, "");
   rt::ShaderDefines defines;
   if (storageBuffers) defines.emplace_back("PLAIN_STORAGE_BUFFERS", "1");
+  if (layout.wide) defines.emplace_back("PLAIN_WIDE", "1");
+  defines.emplace_back("PLAIN_NODE_TEXELS", layout.wide ? "7u" : "4u");
   VkDescriptorType sceneType =
       storageBuffers ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER : VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
   rt::ComputeKernel kernel(context, compiler.compile("plain_bvh.comp", defines),

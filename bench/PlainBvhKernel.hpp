@@ -27,10 +27,16 @@ struct PlainResult {
   double hitFraction = 0;        // primary rays that hit the mesh
 };
 
-// `storageBuffers`: nodes and triangles read from storage buffers instead of
-// texel buffers. `width` x `width` pixels, `samples` dispatches.
+struct PlainLayout {
+  bool storageBuffers = false;  // nodes and triangles in storage buffers, not texel buffers
+  // Four children per node (the binary tree collapsed by surface area, boxes
+  // as structure of arrays), nearest child first; else Aila and Laine's binary.
+  bool wide = false;
+};
+
+// `width` x `width` pixels, `samples` dispatches.
 PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& mesh,
-                            const PlainCamera& camera, bool storageBuffers, uint32_t width,
+                            const PlainCamera& camera, const PlainLayout& layout, uint32_t width,
                             uint32_t samples);
 
 }  // namespace bench

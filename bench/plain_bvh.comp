@@ -1,7 +1,8 @@
 #version 460
 // The plain reference kernel of PlainBvhKernel.hpp: one primary ray per
-// invocation, a stack walk of Aila and Laine's binary layout, Moller-Trumbore
-// triangles; writes the hit distance (-1: miss). Push constants only enter
+// invocation, a stack walk of Aila and Laine's binary layout (or, with
+// PLAIN_WIDE, of four-wide nodes), Moller-Trumbore triangles; writes the hit
+// distance (-1: miss). Push constants only enter
 // arithmetic, never a branch: lavapipe would recompile the kernel at every
 // dispatch otherwise.
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -17,12 +18,14 @@ layout(push_constant) uniform PlainParams {
 #ifdef PLAIN_STORAGE_BUFFERS
 layout(std430, set = 0, binding = 0) readonly buffer Nodes { vec4 nodes[]; };
 layout(std430, set = 0, binding = 1) readonly buffer Triangles { vec4 triangles[]; };
-vec4 nodeRow(uint node, uint row) { return nodes[node * 4u + row]; }
+vec4 nodeRow(uint node, uint row) { return nodes[node * PLAIN_NODE_TEXELS + row]; }
 vec4 triangleRow(uint triangle, uint row) { return triangles[triangle * 3u + row]; }
 #else
 layout(set = 0, binding = 0) uniform textureBuffer nodeTexels;
 layout(set = 0, binding = 1) uniform textureBuffer triangleTexels;
-vec4 nodeRow(uint node, uint row) { return texelFetch(nodeTexels, int(node * 4u + row)); }
+vec4 nodeRow(uint node, uint row) {
+  return texelFetch(nodeTexels, int(node * PLAIN_NODE_TEXELS + row));
+}
 vec4 triangleRow(uint triangle, uint row) {
   return texelFetch(triangleTexels, int(triangle * 3u + row));
 }
@@ -44,6 +47,76 @@ vec2 slabs(vec2 x, vec2 y, vec2 z, vec3 invDir, vec3 originTimesInv, float tMax)
   return vec2(entry, exit);
 }
 
+#ifdef PLAIN_WIDE
+// Four children per node, structure of arrays: rows min x, max x, min y,
+// max y, min z, max z of the four boxes, then the four child references.
+void sortPair(inout float da, inout uint ra, inout float db, inout uint rb) {
+  bool swap = db < da;
+  float d = swap ? db : da;
+  uint r = swap ? rb : ra;
+  db = swap ? da : db;
+  rb = swap ? ra : rb;
+  da = d;
+  ra = r;
+}
+
+float closestHit(vec3 origin, vec3 direction) {
+  vec3 invDir = 1.0 / direction;
+  vec3 originTimesInv = origin * invDir;
+  float tMax = 1e30;
+  uint stack[96];
+  uint stackSize = 0u;
+  uint node = 0u;
+  const float MISS = 3e38;
+  while (node != DONE) {
+    while (node < LEAF) {
+      vec4 t0x = nodeRow(node, 0u) * invDir.x - originTimesInv.x;
+      vec4 t1x = nodeRow(node, 1u) * invDir.x - originTimesInv.x;
+      vec4 t0y = nodeRow(node, 2u) * invDir.y - originTimesInv.y;
+      vec4 t1y = nodeRow(node, 3u) * invDir.y - originTimesInv.y;
+      vec4 t0z = nodeRow(node, 4u) * invDir.z - originTimesInv.z;
+      vec4 t1z = nodeRow(node, 5u) * invDir.z - originTimesInv.z;
+      uvec4 refs = floatBitsToUint(nodeRow(node, 6u));
+      vec4 entry = max(max(min(t0x, t1x), min(t0y, t1y)), max(min(t0z, t1z), vec4(0.0)));
+      vec4 exit = min(min(max(t0x, t1x), max(t0y, t1y)), min(max(t0z, t1z), vec4(tMax)));
+      bvec4 enters = bvec4(uvec4(lessThanEqual(entry, exit)) & uvec4(notEqual(refs, uvec4(DONE))));
+      vec4 d = mix(vec4(MISS), entry, enters);
+      float d0 = d.x, d1 = d.y, d2 = d.z, d3 = d.w;
+      uint r0 = refs.x, r1 = refs.y, r2 = refs.z, r3 = refs.w;
+      // Only the nearest child first; the others wait in any order (a full
+      // sort of the four measured slower still).
+      sortPair(d0, r0, d1, r1);
+      sortPair(d0, r0, d2, r2);
+      sortPair(d0, r0, d3, r3);
+      stack[stackSize] = r3;
+      stackSize += d3 < MISS ? 1u : 0u;
+      stack[stackSize] = r2;
+      stackSize += d2 < MISS ? 1u : 0u;
+      stack[stackSize] = r1;
+      stackSize += d1 < MISS ? 1u : 0u;
+      bool pop = d0 >= MISS && stackSize > 0u;
+      uint top = stack[max(stackSize, 1u) - 1u];
+      node = d0 < MISS ? r0 : (pop ? top : DONE);
+      stackSize -= pop ? 1u : 0u;
+    }
+    if (node == DONE) break;
+    uint first = (node & ~LEAF) >> 3u, count = node & 7u;
+    for (uint i = first; i < first + count; ++i) {
+      vec3 v0 = triangleRow(i, 0u).xyz, e1 = triangleRow(i, 1u).xyz, e2 = triangleRow(i, 2u).xyz;
+      vec3 p = cross(direction, e2);
+      float inverseDet = 1.0 / dot(e1, p);
+      vec3 toOrigin = origin - v0;
+      float u = dot(toOrigin, p) * inverseDet;
+      vec3 q = cross(toOrigin, e1);
+      float v = dot(direction, q) * inverseDet;
+      float t = dot(e2, q) * inverseDet;
+      if (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && t < tMax) tMax = t;
+    }
+    node = stackSize > 0u ? stack[--stackSize] : DONE;
+  }
+  return tMax < 1e30 ? tMax : -1.0;
+}
+#else
 float closestHit(vec3 origin, vec3 direction) {
   vec3 invDir = 1.0 / direction;
   vec3 originTimesInv = origin * invDir;
@@ -84,6 +157,7 @@ float closestHit(vec3 origin, vec3 direction) {
   }
   return tMax < 1e30 ? tMax : -1.0;
 }
+#endif
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
