@@ -44,7 +44,7 @@ void loadSceneInfo() {
       opaqueUint(b.sphereUvPole, z), opaqueUint(b.textureCount, z),
       opaqueUint(b.areaLightCount, z), opaqueUint(b.distributedBounces, z),
       opaqueFloat(b.indirectClamp, z), opaqueFloat(b.ambient, z),
-      opaqueUint(b.mirrorsReplaceLocalLight, z), 0u);
+      opaqueUint(b.mirrorsReplaceLocalLight, z), opaqueUint(b.areaLightSamples, z));
 }
 // Primitives and BVH nodes are read through texel buffers (RGBA32F, records
 // of whole texels): CPU drivers such as lavapipe gather texels with vector

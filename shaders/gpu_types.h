@@ -316,7 +316,7 @@ struct GpuSceneInfo {
   // 1: a hit's own light is clamped to 1, then weighted by
   // 1 - reflectivity - transmission (family B); 0: added to the reflection.
   uint mirrorsReplaceLocalLight;
-  uint pad0;
+  uint areaLightSamples;  // shadow rays per hit to all area lights together
 };
 RT_ASSERT_STD430_SIZE(GpuSceneInfo, 160);
 

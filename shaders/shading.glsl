@@ -12,21 +12,29 @@ float lightAttenuation(float distance) {
   return attenuation;
 }
 
-#ifdef RT_FEATURE_REFRACTION
 // Beyond this many transmissive surfaces a shadow ray counts as blocked.
+#ifdef RT_FEATURE_REFRACTION
 const int RT_MAX_SHADOW_CROSSINGS = 8;
+#else
+const int RT_MAX_SHADOW_CROSSINGS = 1;
+#endif
 
-// Fraction of a light's intensity that reaches distance `tMax` along `ray`
-// through transmissive surfaces. Shadow rays go straight (refraction does
-// not bend them: caustics need sampled bounces), losing the Fresnel
-// reflectance and (1 - transmission) at each crossing; an opaque surface
-// blocks all.
-float shadowTransmittance(Ray ray, float tMax) {
+// Share of a light that reaches the end of `ray` at distance tMax: 0 behind
+// an opaque surface; with `throughGlass`, transmissive surfaces let it
+// through, losing the Fresnel reflectance and (1 - transmission) at each
+// crossing (shadow rays go straight: refraction does not bend them, and
+// caustics need sampled bounces). Without it (where sampled bounces carry
+// that light) an any-hit query decides. One walk call site for all of it:
+// the walk is most of a kernel's code, and every call site is a copy.
+float lightVisibility(Ray ray, float tMax, bool throughGlass) {
   float transmittance = 1.0;
   float travelled = 0.0;
   for (int crossing = 0; crossing < RT_MAX_SHADOW_CROSSINGS; ++crossing) {
     SurfaceHit hit;
-    if (!closestHit(ray, 0.0, tMax - travelled, hit)) return transmittance;
+    float limit = tMax - travelled;
+    if (!traverse(ray, 0.0, limit, !throughGlass, hit)) return transmittance;
+#ifdef RT_FEATURE_REFRACTION
+    if (!throughGlass) return 0.0;
     GpuMaterial blocker = loadMaterial(hitMaterial(hit));
     float cosine = dot(ray.direction, hit.normal);
     float eta = cosine < 0.0 ? 1.0 / blocker.ior : blocker.ior;
@@ -38,19 +46,11 @@ float shadowTransmittance(Ray ray, float tMax) {
     Ray next = spawnRay(point.xyz, point.w, hit.normal, ray.direction);
     travelled += dot(next.origin - ray.origin, ray.direction);
     ray = next;
+#else
+    return 0.0;
+#endif
   }
   return 0.0;
-}
-#endif
-
-// Share of a light that reaches the end of `shadowRay` at distance tMax.
-// `throughGlass`: transmissive surfaces let light through (attenuated)
-// instead of blocking it; off where sampled bounces carry that light.
-float lightVisibility(Ray shadowRay, float tMax, bool throughGlass) {
-#ifdef RT_FEATURE_REFRACTION
-  if (throughGlass) return shadowTransmittance(shadowRay, tMax);
-#endif
-  return occluded(shadowRay, 0.0, tMax) ? 0.0 : 1.0;
 }
 
 // Unit-length colour: the coursework's renderer tints by the diffuse colour's
@@ -104,58 +104,65 @@ vec3 blinnPhong(ShadingContext context, vec3 l, vec3 diffuseIntensity, vec3 spec
   return diffuse + specular;
 }
 
-vec3 pointLighting(ShadingContext context, bool throughGlass) {
+// One shadow-ray sample of a light: what the point receives from it when
+// nothing is in the way, and the ray that decides whether something is.
+struct LightSample {
+  vec3 reflected;  // towards the viewer; 0: nothing to trace
+  Ray shadowRay;
+  float tMax;
+};
+
+LightSample pointLightSample(ShadingContext context, uint index) {
+  LightSample lit;
+  lit.reflected = vec3(0.0);
+  GpuPointLight light = loadPointLight(index);
   vec3 p = context.surface.position;
-  vec3 radiance = vec3(0.0);
-  for (uint i = 0u; i < sceneInfo.pointLightCount; ++i) {
-    GpuPointLight light = loadPointLight(i);
-    vec3 toLight = light.position - p;
-    float distance = length(toLight);
-    if (!(distance > 0.0)) continue;
-    vec3 l = toLight / distance;
-    vec3 reflected = blinnPhong(context, l, light.diffuseIntensity, light.specularIntensity);
-    if (maxComponent(reflected) <= 0.0) continue;
-    Ray shadowRay = spawnRay(p, context.surface.positionError, context.surface.geometricNormal, l);
-    float visibility = lightVisibility(shadowRay, length(light.position - shadowRay.origin),
-                                       throughGlass);
-    radiance += visibility * lightAttenuation(distance) * reflected;
-  }
-  return radiance;
+  vec3 toLight = light.position - p;
+  float distance = length(toLight);
+  if (!(distance > 0.0)) return lit;
+  vec3 l = toLight / distance;
+  lit.reflected = blinnPhong(context, l, light.diffuseIntensity, light.specularIntensity) *
+                     lightAttenuation(distance);
+  lit.shadowRay =
+      spawnRay(p, context.surface.positionError, context.surface.geometricNormal, l);
+  lit.tMax = length(light.position - lit.shadowRay.origin);
+  return lit;
 }
 
 #ifdef RT_FEATURE_AREA_LIGHTS
-// Next-event estimation of one area light: `samples` points on it per pixel
-// sample, each lighting like a point light with its share of the intensity.
-vec3 areaLighting(ShadingContext context, uint lightIndex, uvec2 pixelSample, uint vertexDepth,
-                  bool throughGlass) {
-  GpuAreaLight light = loadAreaLight(lightIndex);
+// Next-event estimation of area light `lightIndex`: sample `sub` of its
+// `samples` per pixel sample, lighting like a point light with its share of
+// the intensity.
+LightSample areaLightSample(ShadingContext context, GpuAreaLight light, uint lightIndex, uint sub,
+                            uvec2 pixelSample, uint vertexDepth) {
+  LightSample lit;
+  lit.reflected = vec3(0.0);
   vec3 p = context.surface.position;
   uint dimension = vertexDimension(vertexDepth, RT_VERTEX_DIM_LIGHTS + 2u * lightIndex);
-  vec3 radiance = vec3(0.0);
-  for (uint sub = 0u; sub < light.samples; ++sub) {
-    vec2 u = sampleSubPair(frame.samplerKind, pixelSample.x, pixelSample.y, sub, light.samples,
-                           frame.samplesTotal, dimension, frame.seed);
-    LightPoint point = samplePointOnLight(light, p, u);
-    vec3 toLight = point.position - p;
-    float distance = length(toLight);
-    if (!(distance > 0.0)) continue;
-    vec3 l = toLight / distance;
-    vec3 reflected = blinnPhong(context, l, light.diffuseIntensity, light.specularIntensity);
-    if (!(maxComponent(reflected) > 0.0)) continue;
-    float falloffDistance = point.falloffDistance < 0.0 ? distance : point.falloffDistance;
-    reflected *= point.weight * lightAttenuation(falloffDistance);
-    // Both ends leave their surfaces by their error bounds, so the ray
-    // neither starts inside the shaded surface nor ends inside the light.
-    Ray shadowRay = spawnRay(p, context.surface.positionError, context.surface.geometricNormal, l);
-    vec3 target = offsetRayOrigin(point.position, point.positionError,
-                                  dot(point.normal, l) < 0.0 ? point.normal : -point.normal);
-    vec3 toTarget = target - shadowRay.origin;
-    float tMax = length(toTarget);
-    if (!(tMax > 0.0)) continue;
-    shadowRay.direction = toTarget / tMax;
-    radiance += lightVisibility(shadowRay, tMax, throughGlass) * reflected;
-  }
-  return radiance / float(max(light.samples, 1u));
+  vec2 u = sampleSubPair(frame.samplerKind, pixelSample.x, pixelSample.y, sub, light.samples,
+                         frame.samplesTotal, dimension, frame.seed);
+  LightPoint point = samplePointOnLight(light, p, u);
+  vec3 toLight = point.position - p;
+  float distance = length(toLight);
+  if (!(distance > 0.0)) return lit;
+  vec3 l = toLight / distance;
+  vec3 reflected = blinnPhong(context, l, light.diffuseIntensity, light.specularIntensity);
+  if (!(maxComponent(reflected) > 0.0)) return lit;
+  float falloffDistance = point.falloffDistance < 0.0 ? distance : point.falloffDistance;
+  // Both ends leave their surfaces by their error bounds, so the ray
+  // neither starts inside the shaded surface nor ends inside the light.
+  Ray shadowRay = spawnRay(p, context.surface.positionError, context.surface.geometricNormal, l);
+  vec3 target = offsetRayOrigin(point.position, point.positionError,
+                                dot(point.normal, l) < 0.0 ? point.normal : -point.normal);
+  vec3 toTarget = target - shadowRay.origin;
+  float tMax = length(toTarget);
+  if (!(tMax > 0.0)) return lit;
+  shadowRay.direction = toTarget / tMax;
+  lit.reflected = reflected * point.weight * lightAttenuation(falloffDistance) /
+                     float(max(light.samples, 1u));
+  lit.shadowRay = shadowRay;
+  lit.tMax = tMax;
+  return lit;
 }
 
 // Radiance a ray sees leaving an area light's surface (material.emission
@@ -173,16 +180,37 @@ vec3 emittedRadiance(GpuMaterial material, SurfaceHit hit, vec3 direction) {
 #endif
 
 // Light reflected towards the viewer from a surface already facing it, from
-// every point and area light. `throughGlass`: shadow rays pass transmissive
-// surfaces (see lightVisibility).
+// every point light and every sample of every area light, in one loop (see
+// lightVisibility). `throughGlass`: shadow rays pass transmissive surfaces.
 vec3 directLighting(ShadingContext context, uvec2 pixelSample, uint vertexDepth,
                     bool throughGlass) {
-  vec3 radiance = pointLighting(context, throughGlass);
+  vec3 radiance = vec3(0.0);
+  uint samples = sceneInfo.pointLightCount;
 #ifdef RT_FEATURE_AREA_LIGHTS
-  for (uint i = 0u; i < sceneInfo.areaLightCount; ++i) {
-    radiance += areaLighting(context, i, pixelSample, vertexDepth, throughGlass);
-  }
+  samples += sceneInfo.areaLightSamples;
+  uint areaLight = 0u;  // the area light of the next area sample, and its sample
+  uint sub = 0u;
+  GpuAreaLight light;
+  if (sceneInfo.areaLightCount > 0u) light = loadAreaLight(0u);
 #endif
+  for (uint k = 0u; k < samples; ++k) {
+    LightSample lit;
+#ifdef RT_FEATURE_AREA_LIGHTS
+    if (k >= sceneInfo.pointLightCount) {
+      lit = areaLightSample(context, light, areaLight, sub, pixelSample, vertexDepth);
+      if (++sub >= light.samples && ++areaLight < sceneInfo.areaLightCount) {
+        sub = 0u;
+        light = loadAreaLight(areaLight);
+      }
+    } else {
+      lit = pointLightSample(context, k);
+    }
+#else
+    lit = pointLightSample(context, k);
+#endif
+    if (!(maxComponent(lit.reflected) > 0.0)) continue;
+    radiance += lightVisibility(lit.shadowRay, lit.tMax, throughGlass) * lit.reflected;
+  }
   // The coursework model clamps the light reaching the eye first, then tints
   // it (highlights included) by the normalised diffuse colour, or by the
   // texture colour as it is.

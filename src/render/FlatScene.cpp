@@ -530,6 +530,8 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   info.renderMode = gpuRenderMode(scene.settings.mode);
   info.pointLightCount = static_cast<uint32_t>(flat.pointLights.size());
   info.areaLightCount = static_cast<uint32_t>(flat.areaLights.size());
+  info.areaLightSamples = 0;
+  for (const gpu::GpuAreaLight& light : flat.areaLights) info.areaLightSamples += light.samples;
   info.primitiveCount = static_cast<uint32_t>(flat.primitives.size());
   info.bvhNodeCount = static_cast<uint32_t>(flat.bvhNodes.size());
   info.lightFalloff = conventions.falloff;
