@@ -17,14 +17,14 @@
 #include "BenchClock.hpp"
 #include "PlainBvhKernel.hpp"
 #include "bvh/Bvh.hpp"
+#include "encode/FlatScene.hpp"
+#include "formats/json/JsonSceneLoader.hpp"
+#include "formats/ply/PlyLoader.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
 #include "render/BatchIntersector.hpp"
-#include "render/FlatScene.hpp"
 #include "render/Renderer.hpp"
-#include "scene/PlyLoader.hpp"
 #include "scene/ProceduralMesh.hpp"
-#include "scene/SceneLoader.hpp"
 
 namespace {
 
@@ -154,7 +154,7 @@ Row measure(const std::string& label, rt::TriangleMesh mesh, rt::Renderer& rende
 
 // Render time without a BVH over render time with one, on a scene file.
 double onOffRatio(const std::string& path, rt::Renderer& renderer) {
-  rt::Scene scene = rt::loadScene(path);
+  rt::Scene scene = rt::loadJsonScene(path);
   rt::RenderOptions options;
   options.width = 200;
   options.height = 200;

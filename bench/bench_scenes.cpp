@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "formats/json/JsonSceneLoader.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
 #include "render/Renderer.hpp"
-#include "scene/SceneLoader.hpp"
 
 namespace {
 
@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
     rt::Renderer renderer(context, compiler);
     std::vector<Row> rows;
     for (const std::string& path : scenes) {
-      rt::Scene scene = rt::loadScene(path);
+      rt::Scene scene = rt::loadJsonScene(path);
       for (const std::string& accel : accels) {
         rt::RenderOptions options;
         options.width = width;

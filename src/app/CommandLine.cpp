@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <regex>
 
-#include "scene/SceneLoader.hpp"
+#include "formats/json/JsonSceneLoader.hpp"
 #include "util/Error.hpp"
 
 namespace rt::cli {

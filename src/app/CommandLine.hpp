@@ -8,8 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "render/Conventions.hpp"
-#include "render/FlatScene.hpp"
+#include "encode/Conventions.hpp"
+#include "encode/FlatScene.hpp"
 #include "scene/Scene.hpp"
 
 namespace rt::cli {

@@ -14,16 +14,16 @@
 
 #include "app/CommandLine.hpp"
 #include "app/Commands.hpp"
+#include "encode/Conventions.hpp"
+#include "formats/SceneFile.hpp"
+#include "formats/json/JsonSceneLoader.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
+#include "imaging/Convergence.hpp"
 #include "io/AtomicFile.hpp"
 #include "io/Image.hpp"
 #include "io/Plot.hpp"
-#include "render/Conventions.hpp"
-#include "render/Convergence.hpp"
 #include "render/Renderer.hpp"
-#include "scene/SceneFile.hpp"
-#include "scene/SceneLoader.hpp"
 #include "util/Error.hpp"
 
 namespace {

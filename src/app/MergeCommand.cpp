@@ -6,8 +6,8 @@
 
 #include "app/CommandLine.hpp"
 #include "app/Commands.hpp"
+#include "imaging/Merge.hpp"
 #include "io/Image.hpp"
-#include "render/Merge.hpp"
 #include "util/Error.hpp"
 
 int runMergeCommand(int argc, char** argv) {

@@ -14,12 +14,12 @@
 #include "app/CommandLine.hpp"
 #include "app/Commands.hpp"
 #include "app/Progress.hpp"
+#include "encode/Conventions.hpp"
+#include "formats/SceneFile.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
 #include "io/Image.hpp"
-#include "render/Conventions.hpp"
 #include "render/Renderer.hpp"
-#include "scene/SceneFile.hpp"
 #include "util/Error.hpp"
 
 namespace {

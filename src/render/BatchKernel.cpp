@@ -1,11 +1,11 @@
 #include "render/BatchKernel.hpp"
 
+#include "encode/Features.hpp"
+#include "encode/SceneBuffers.hpp"
 #include "gpu/Buffer.hpp"
 #include "gpu/ComputeKernel.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
-#include "render/Features.hpp"
-#include "render/SceneBuffers.hpp"
 
 namespace rt {
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "encode/FlatScene.hpp"
 #include "gpu_types.h"
-#include "render/FlatScene.hpp"
 #include "scene/Scene.hpp"
 
 namespace rt {

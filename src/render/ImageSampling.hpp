@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <optional>
 
-#include "render/Conventions.hpp"
-#include "render/FlatScene.hpp"
-#include "render/PixelRegion.hpp"
+#include "encode/Conventions.hpp"
+#include "encode/FlatScene.hpp"
+#include "imaging/PixelRegion.hpp"
 #include "scene/Scene.hpp"
 
 namespace rt {

@@ -10,16 +10,16 @@
 #include <optional>
 #include <vector>
 
+#include "encode/Features.hpp"
+#include "encode/FlatScene.hpp"
+#include "encode/SceneBuffers.hpp"
 #include "gpu/Buffer.hpp"
 #include "gpu/ComputeKernel.hpp"
 #include "gpu_types.h"
+#include "imaging/ImageError.hpp"
+#include "imaging/PixelRegion.hpp"
 #include "io/Image.hpp"
-#include "render/Features.hpp"
-#include "render/FlatScene.hpp"
-#include "render/ImageError.hpp"
 #include "render/ImageSampling.hpp"
-#include "render/PixelRegion.hpp"
-#include "render/SceneBuffers.hpp"
 #include "scene/Scene.hpp"
 
 namespace rt {

@@ -8,9 +8,9 @@
 #include <ctime>
 #include <optional>
 
+#include "encode/FlatScene.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
-#include "render/FlatScene.hpp"
 #include "render/ProgressiveRenderer.hpp"
 #include "util/Error.hpp"
 

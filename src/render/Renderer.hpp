@@ -8,11 +8,11 @@
 #include <functional>
 #include <optional>
 
+#include "encode/Conventions.hpp"
+#include "encode/Features.hpp"
+#include "imaging/PixelRegion.hpp"
 #include "io/Image.hpp"
-#include "render/Conventions.hpp"
-#include "render/Features.hpp"
 #include "render/ImageSampling.hpp"
-#include "render/PixelRegion.hpp"
 #include "scene/Scene.hpp"
 
 namespace rt {

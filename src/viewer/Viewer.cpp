@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <utility>
 
+#include "formats/SceneFile.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
 #include "render/BatchIntersector.hpp"
-#include "scene/SceneFile.hpp"
 #include "util/Error.hpp"
 #include "viewer/DisplayPass.hpp"
 #include "viewer/SceneBounds.hpp"
@@ -73,7 +73,7 @@ void RateMeter::add(double samples, Clock::time_point now) {
   start_ = now;
 }
 
-Scene Viewer::loadScene() const {
+Scene Viewer::loadViewedScene() const {
   Scene scene = loadSceneFile(options_.scenePath);
   if (options_.conventions) setConventions(scene, *options_.conventions, "--conventions");
   return scene;
@@ -87,7 +87,7 @@ ToneMapping Viewer::displayMapping() const {
 
 Viewer::Viewer(const ViewerOptions& options)
     : options_(options), planner_(options.frameSeconds, options.samplesPerFrame) {
-  scene_ = loadScene();
+  scene_ = loadViewedScene();
   for (const std::string& warning : scene_.warnings) {
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
   }

@@ -90,7 +90,7 @@ class Viewer {
   void reloadShaders();
   void reloadScene();
   // The scene file as loaded, with the --conventions override applied.
-  Scene loadScene() const;
+  Scene loadViewedScene() const;
   // The scene's tone mapping with the overlay's exposure (window and saves).
   ToneMapping displayMapping() const;
   void handleInput(const InputEvents& input);

@@ -7,11 +7,11 @@
 #include <cstdio>
 #include <sstream>
 
+#include "encode/FlatScene.hpp"
+#include "formats/SceneFile.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
 #include "render/BatchIntersector.hpp"
-#include "render/FlatScene.hpp"
-#include "scene/SceneFile.hpp"
 #include "util/Error.hpp"
 #include "viewer/DisplayPass.hpp"
 #include "viewer/SceneBounds.hpp"
@@ -122,7 +122,7 @@ void Viewer::reloadShaders() {
 void Viewer::reloadScene() {
   Scene fresh;
   try {
-    fresh = loadScene();
+    fresh = loadViewedScene();
   } catch (const std::exception& e) {
     messages_.sceneError = e.what();
     std::fprintf(stderr, "scene: error %s\n", e.what());

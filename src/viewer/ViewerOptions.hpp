@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "render/Conventions.hpp"
+#include "encode/Conventions.hpp"
 #include "scene/Scene.hpp"
 
 namespace rt::viewer {

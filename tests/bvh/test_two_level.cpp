@@ -7,14 +7,14 @@
 #include <random>
 
 #include "bvh/Bvh.hpp"
+#include "encode/Features.hpp"
+#include "encode/FlatScene.hpp"
+#include "encode/SceneBuffers.hpp"
+#include "formats/gltf/GltfLoader.hpp"
+#include "formats/json/JsonSceneLoader.hpp"
 #include "render/BatchIntersector.hpp"
-#include "render/Features.hpp"
-#include "render/FlatScene.hpp"
 #include "render/Renderer.hpp"
-#include "render/SceneBuffers.hpp"
-#include "scene/GltfLoader.hpp"
 #include "scene/ProceduralMesh.hpp"
-#include "scene/SceneLoader.hpp"
 #include "support/TestSupport.hpp"
 #include "util/Error.hpp"
 
@@ -149,7 +149,8 @@ TEST_SUITE("bvh-gpu") {
   }
 
   TEST_CASE("--accel hardware renders the BVH's image" * test::needsRayQueries()) {
-    Scene scene = loadScene(std::filesystem::path(RT_SOURCE_SHADER_DIR) / "../scenes/default.json");
+    Scene scene =
+        loadJsonScene(std::filesystem::path(RT_SOURCE_SHADER_DIR) / "../scenes/default.json");
     Renderer renderer(test::gpu(), test::shaderCompiler());
     RenderOptions options;
     options.width = 160;
@@ -225,7 +226,7 @@ TEST_SUITE("bvh-gpu") {
 
   TEST_CASE("--accel none renders the image the BVH renders" * test::needsShared()) {
     const std::filesystem::path shared = test::requireShared();
-    Scene scene = loadScene(shared / "scene-format/official/cgr-2023-2024/mirror_image.json");
+    Scene scene = loadJsonScene(shared / "scene-format/official/cgr-2023-2024/mirror_image.json");
     Renderer renderer(test::gpu(), test::shaderCompiler());
     RenderOptions options;
     options.width = 80;

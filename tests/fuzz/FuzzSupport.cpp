@@ -12,7 +12,7 @@
 #include <utility>
 #include <variant>
 
-#include "scene/GltfContext.hpp"
+#include "formats/gltf/GltfContext.hpp"
 
 namespace rt::fuzz {
 

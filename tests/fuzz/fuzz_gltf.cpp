@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "FuzzSupport.hpp"
-#include "scene/GltfLoader.hpp"
+#include "formats/gltf/GltfLoader.hpp"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "FuzzSupport.hpp"
-#include "scene/PlyLoader.hpp"
+#include "formats/ply/PlyLoader.hpp"
 
 namespace {
 constexpr std::string_view kName = "fuzz.ply";

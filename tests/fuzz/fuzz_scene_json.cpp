@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "FuzzSupport.hpp"
-#include "scene/SceneLoader.hpp"
+#include "formats/json/JsonSceneLoader.hpp"
 
 namespace {
 
@@ -28,7 +28,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  rt::fuzz::checkLoad([&] { return rt::parseScene(text, scenePath); }, rt::fuzz::checkScene,
+  rt::fuzz::checkLoad([&] { return rt::parseJsonScene(text, scenePath); }, rt::fuzz::checkScene,
                       scenePath.string());
   return 0;
 }

@@ -2,12 +2,12 @@
 
 #include <fstream>
 
+#include "encode/Features.hpp"
+#include "encode/SceneBuffers.hpp"
 #include "gpu/ComputeKernel.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu_types.h"
-#include "render/Features.hpp"
 #include "render/ProgressiveRenderer.hpp"
-#include "render/SceneBuffers.hpp"
 #include "support/TestSupport.hpp"
 
 using namespace rt;

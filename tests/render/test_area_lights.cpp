@@ -6,8 +6,8 @@
 #include <cmath>
 #include <glm/gtc/constants.hpp>
 
+#include "formats/json/JsonSceneLoader.hpp"
 #include "render/Renderer.hpp"
-#include "scene/SceneLoader.hpp"
 #include "support/TestSupport.hpp"
 
 using namespace rt;
@@ -384,7 +384,7 @@ TEST_SUITE("path tracer and distributed bounces") {
     const auto folder = shared / "scene-format/student/TsFreddie__RayTracer";
     for (const char* name : {"softshadow", "dof"}) {
       CAPTURE(name);
-      const Scene scene = loadScene(folder / "examples" / (std::string(name) + "_test.json"));
+      const Scene scene = loadJsonScene(folder / "examples" / (std::string(name) + "_test.json"));
       RenderOptions options;
       options.samplesPerPixel = 256;
       options.sampler = scene.settings.sampler;

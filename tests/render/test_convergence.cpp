@@ -8,13 +8,13 @@
 #include <filesystem>
 #include <map>
 
+#include "formats/json/JsonSceneLoader.hpp"
+#include "imaging/Convergence.hpp"
+#include "imaging/ImageError.hpp"
+#include "imaging/Merge.hpp"
 #include "io/Plot.hpp"
-#include "render/Convergence.hpp"
-#include "render/ImageError.hpp"
-#include "render/Merge.hpp"
 #include "render/ProgressiveRenderer.hpp"
 #include "render/Renderer.hpp"
-#include "scene/SceneLoader.hpp"
 #include "support/TestSupport.hpp"
 #include "util/Error.hpp"
 
@@ -23,7 +23,7 @@ using namespace rt;
 namespace {
 
 Scene studyScene(const std::string& name) {
-  return loadScene(std::filesystem::path(RT_SOURCE_SHADER_DIR) / ".." / "scenes" / name);
+  return loadJsonScene(std::filesystem::path(RT_SOURCE_SHADER_DIR) / ".." / "scenes" / name);
 }
 
 RenderOptions smallRender(SamplerKind sampler, uint32_t samples, uint32_t seed = 1) {

@@ -15,8 +15,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "formats/json/JsonSceneLoader.hpp"
 #include "render/Renderer.hpp"
-#include "scene/SceneLoader.hpp"
 #include "support/TestSupport.hpp"
 
 using namespace rt;
@@ -24,8 +24,8 @@ using namespace rt;
 namespace {
 
 Scene stepSixScene(const std::filesystem::path& shared) {
-  Scene scene =
-      loadScene(shared / "scene-format/official/cg-path-of-light-2021-2023/examples/example.json");
+  Scene scene = loadJsonScene(
+      shared / "scene-format/official/cg-path-of-light-2021-2023/examples/example.json");
   for (Material& material : scene.materials) {
     material.reflectivity = 0.0f;
     material.diffuseTexture = -1;
@@ -59,7 +59,7 @@ Image8 renderFamilyB(const std::filesystem::path& shared, const FamilyBReference
   std::ifstream stream(file);
   nlohmann::json document = nlohmann::json::parse(stream);
   if (figure.phong) document["rendermode"] = "phong";
-  Scene scene = parseScene(document.dump(), file);
+  Scene scene = parseJsonScene(document.dump(), file);
   if (conventions) setConventions(scene, *conventions, "test");
   RenderOptions options;
   options.samplesPerPixel = 4;

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "render/Merge.hpp"
+#include "formats/json/JsonSceneLoader.hpp"
+#include "imaging/Merge.hpp"
 #include "render/Renderer.hpp"
-#include "scene/SceneLoader.hpp"
 #include "support/TestSupport.hpp"
 #include "util/Error.hpp"
 
@@ -256,7 +256,7 @@ TEST_SUITE("render") {
          std::filesystem::recursive_directory_iterator(shared / "scene-format" / "official")) {
       if (entry.path().extension() != ".json") continue;
       CAPTURE(entry.path());
-      Scene scene = loadScene(entry.path());
+      Scene scene = loadJsonScene(entry.path());
       RenderOptions options;
       options.width = 60;
       options.height = 40;

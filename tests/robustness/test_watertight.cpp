@@ -7,9 +7,9 @@
 #include <random>
 #include <set>
 
+#include "formats/ply/PlyLoader.hpp"
 #include "render/BatchIntersector.hpp"
 #include "robustness/RobustnessSupport.hpp"
-#include "scene/PlyLoader.hpp"
 
 using namespace rt;
 using namespace rt::test;

@@ -27,8 +27,8 @@
 #include <string>
 #include <vector>
 
+#include "formats/gltf/GltfLoader.hpp"
 #include "render/Renderer.hpp"
-#include "scene/GltfLoader.hpp"
 #include "support/JsonMutations.hpp"
 #include "support/TestSupport.hpp"
 #include "util/Error.hpp"

@@ -12,11 +12,11 @@
 #include <glm/geometric.hpp>
 #include <string>
 
-#include "scene/GltfLoader.hpp"
-#include "scene/MessageText.hpp"
-#include "scene/PlyLoader.hpp"
-#include "scene/SceneLoader.hpp"
-#include "scene/UnitVector.hpp"
+#include "formats/common/MessageText.hpp"
+#include "formats/common/UnitVector.hpp"
+#include "formats/gltf/GltfLoader.hpp"
+#include "formats/json/JsonSceneLoader.hpp"
+#include "formats/ply/PlyLoader.hpp"
 #include "util/Error.hpp"
 
 namespace fs = std::filesystem;
@@ -100,13 +100,13 @@ TEST_SUITE("scene hostile messages") {
   TEST_CASE("JSON scenes: file text in errors and warnings stays on one line") {
     const std::string badType =
         sceneWithShape(R"({"type":"sp\nhe\u001bre","center":[0,0,-3],"radius":1})");
-    const std::string error = errorOf([&] { rt::parseScene(badType, "type.json"); });
+    const std::string error = errorOf([&] { rt::parseJsonScene(badType, "type.json"); });
     CHECK(isPrintableLine(error));
     CHECK(contains(error, "type.json: scene.shapes[0].type: unknown shape type 'sp\\nhe\\x1Bre'"));
 
     std::string withKey = kSphere;
     withKey.insert(1, R"("co\r\nlor\u009b":1,)");
-    const rt::Scene scene = rt::parseScene(sceneWithShape(withKey), "key.json");
+    const rt::Scene scene = rt::parseJsonScene(sceneWithShape(withKey), "key.json");
     REQUIRE(scene.warnings.size() == 1);
     CHECK(isPrintableLine(scene.warnings[0]));
     CHECK(contains(scene.warnings[0], "unknown key 'co\\r\\nlor\\xC2\\x9B'"));
@@ -116,7 +116,7 @@ TEST_SUITE("scene hostile messages") {
     const std::string text = sceneWithShape(kSphere);
     std::string broken = text;
     broken.replace(broken.find("pinhole"), 7, "pin\xffhole");
-    const std::string error = errorOf([&] { rt::parseScene(broken, "utf8.json"); });
+    const std::string error = errorOf([&] { rt::parseJsonScene(broken, "utf8.json"); });
     CHECK(isPrintableLine(error));
     CHECK(contains(error, "utf8.json: byte "));
     CHECK(contains(error, "\\xFF"));
@@ -243,6 +243,6 @@ TEST_SUITE("scene hostile vectors") {
   TEST_CASE("JSON scenes: a denormal view direction or target offset gives a unit forward") {
     std::string scene = sceneWithShape(kSphere);
     scene.replace(scene.find("[0,0,-1]"), 8, "[1e-39,2e-39,-1e-39]");
-    CHECK(isUnit(rt::parseScene(scene, "tiny.json").camera.forward));
+    CHECK(isUnit(rt::parseJsonScene(scene, "tiny.json").camera.forward));
   }
 }

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/PlyLoader.hpp"
+#include "formats/ply/PlyLoader.hpp"
 #include "support/TestSupport.hpp"
 #include "util/Error.hpp"
 

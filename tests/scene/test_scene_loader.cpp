@@ -1,4 +1,4 @@
-// Tests for rt::loadScene / rt::parseScene: the official and student files
+// Tests for rt::loadJsonScene / rt::parseJsonScene: the official and student files
 // under shared/scene-format, and hand-written bad inputs that must fail with
 // one line naming the file and the JSON path.
 #include <doctest/doctest.h>
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/SceneLoader.hpp"
+#include "formats/json/JsonSceneLoader.hpp"
 #include "support/JsonMutations.hpp"
 #include "support/TestSupport.hpp"
 #include "util/Error.hpp"
@@ -60,12 +60,12 @@ Json minimalScene() {
 Json& firstShape(Json& scene) { return scene["scene"]["shapes"][0]; }
 Json& firstMaterial(Json& scene) { return firstShape(scene)["material"]; }
 
-rt::Scene parse(const Json& document) { return rt::parseScene(document.dump(), "mem.json"); }
+rt::Scene parse(const Json& document) { return rt::parseJsonScene(document.dump(), "mem.json"); }
 
 // The rt::Error message of parsing `text`, or "" when it loads.
 std::string errorOfText(const std::string& text) {
   try {
-    rt::parseScene(text, "mem.json");
+    rt::parseJsonScene(text, "mem.json");
   } catch (const rt::Error& error) {
     const std::string message = error.what();
     CHECK_MESSAGE(!contains(message, "\n"), "error messages are one line: " << message);
@@ -92,7 +92,7 @@ size_t checkCorruptionsFailCleanly(const Json& document, const fs::path& file = 
       document, replacements, [&](const Json::json_pointer& pointer, const Json& variant) {
         ++tried;
         try {
-          rt::parseScene(variant.dump(), file);
+          rt::parseJsonScene(variant.dump(), file);
         } catch (const rt::Error&) {
         } catch (const std::exception& error) {
           FAIL("not an rt::Error at " << pointer.to_string() << ": " << error.what());
@@ -134,7 +134,7 @@ TEST_SUITE("scene loader: official files") {
   TEST_CASE("2019 example: camera vectors default to looking down +z from the origin" *
             rt::test::needsShared()) {
     const rt::Scene scene =
-        rt::loadScene(sceneFormatDir() / "official/cg-path-of-light-2019/example.json");
+        rt::loadJsonScene(sceneFormatDir() / "official/cg-path-of-light-2019/example.json");
     CHECK(scene.conventions == rt::Conventions::CourseworkA);
     CHECK(scene.settings.maxBounces == 3);
     CHECK(scene.camera.type == rt::CameraType::Pinhole);
@@ -158,7 +158,7 @@ TEST_SUITE("scene loader: official files") {
 
   TEST_CASE("2021-2023 example: lookat is a direction, textures resolve, quads keep v0..v3" *
             rt::test::needsShared()) {
-    const rt::Scene scene = rt::loadScene(
+    const rt::Scene scene = rt::loadJsonScene(
         sceneFormatDir() / "official/cg-path-of-light-2021-2023/examples/example.json");
     CHECK(scene.conventions == rt::Conventions::CourseworkA);
     CHECK(scene.shapes.size() == 5);
@@ -189,7 +189,7 @@ TEST_SUITE("scene loader: official files") {
   TEST_CASE("family B mirror_image: lookAt is a target, isreflective gates reflectivity" *
             rt::test::needsShared()) {
     const rt::Scene scene =
-        rt::loadScene(sceneFormatDir() / "official/cgr-2023-2024/mirror_image.json");
+        rt::loadJsonScene(sceneFormatDir() / "official/cgr-2023-2024/mirror_image.json");
     CHECK(scene.conventions == rt::Conventions::CourseworkB);
     CHECK(scene.settings.mode == rt::RenderMode::Phong);
     CHECK(scene.settings.maxBounces == 8);
@@ -212,7 +212,7 @@ TEST_SUITE("scene loader: official files") {
   TEST_CASE("family B binary_primitves: no materials, no lights, default bounces" *
             rt::test::needsShared()) {
     const rt::Scene scene =
-        rt::loadScene(sceneFormatDir() / "official/cgr-2023-2024/binary_primitves.json");
+        rt::loadJsonScene(sceneFormatDir() / "official/cgr-2023-2024/binary_primitves.json");
     CHECK(scene.conventions == rt::Conventions::CourseworkB);
     CHECK(scene.settings.mode == rt::RenderMode::Binary);
     CHECK(scene.settings.maxBounces == 4);
@@ -225,7 +225,8 @@ TEST_SUITE("scene loader: official files") {
   }
 
   TEST_CASE("family B scene.json has two lights and six shapes" * rt::test::needsShared()) {
-    const rt::Scene scene = rt::loadScene(sceneFormatDir() / "official/cgr-2023-2024/scene.json");
+    const rt::Scene scene =
+        rt::loadJsonScene(sceneFormatDir() / "official/cgr-2023-2024/scene.json");
     CHECK(scene.settings.mode == rt::RenderMode::Binary);
     CHECK(scene.pointLights.size() == 2);
     CHECK(scene.shapes.size() == 6);
@@ -238,7 +239,7 @@ TEST_SUITE("scene loader: official files") {
     for (const fs::path& file : files) {
       CAPTURE(file.string());
       rt::Scene scene;
-      CHECK_NOTHROW(scene = rt::loadScene(file));
+      CHECK_NOTHROW(scene = rt::loadJsonScene(file));
       CHECK(scene.warnings.empty());
       CHECK(!scene.shapes.empty());
       CHECK(scene.materials.size() == scene.shapes.size());
@@ -291,7 +292,7 @@ TEST_SUITE("scene loader: student files") {
     for (const fs::path& file : files) {
       CAPTURE(file.string());
       try {
-        rt::loadScene(file);
+        rt::loadJsonScene(file);
         ++loaded;
       } catch (const rt::Error& error) {
         const std::string message = error.what();
@@ -311,7 +312,7 @@ TEST_SUITE("scene loader: student files") {
       const fs::path file = student / relative;
       if (!fs::exists(file)) return "(absent)";
       try {
-        rt::loadScene(file);
+        rt::loadJsonScene(file);
       } catch (const rt::Error& error) {
         return error.what();
       }
@@ -339,7 +340,7 @@ TEST_SUITE("scene loader: student files") {
 
     const fs::path thinLens = student / "PeihengLu__CG_CW2/examples/example_thinlens.json";
     if (fs::exists(thinLens)) {
-      const rt::Scene scene = rt::loadScene(thinLens);
+      const rt::Scene scene = rt::loadJsonScene(thinLens);
       CHECK(scene.camera.type == rt::CameraType::ThinLens);
       CHECK(scene.camera.apertureRadius == doctest::Approx(0.1));
       CHECK(scene.camera.focusDistance == doctest::Approx(6.5));
@@ -732,7 +733,7 @@ TEST_SUITE("scene loader: in-memory scenes") {
     firstMaterial(scene)["tPath"] = "../textures/a.png";
     firstMaterial(scene)["tWidth"] = 10;
     firstMaterial(scene)["tHeight"] = 10;
-    rt::Scene loaded = rt::parseScene(scene.dump(), sceneFile);
+    rt::Scene loaded = rt::parseJsonScene(scene.dump(), sceneFile);
     CHECK(loaded.materials[0].texture == (dir.path() / "textures/a.png").lexically_normal());
     REQUIRE(loaded.materials[0].diffuseTexture == 0);
     REQUIRE(loaded.textures.size() == 1);
@@ -742,12 +743,12 @@ TEST_SUITE("scene loader: in-memory scenes") {
 
     firstMaterial(scene).erase("tPath");
     firstMaterial(scene)["texture"] = "examples/b.png";  // only found from the parent folder
-    loaded = rt::parseScene(scene.dump(), sceneFile);
+    loaded = rt::parseJsonScene(scene.dump(), sceneFile);
     CHECK(loaded.materials[0].texture == (dir.path() / "examples/b.png").lexically_normal());
 
     firstMaterial(scene)["texture"] = "missing.png";
     try {
-      rt::parseScene(scene.dump(), sceneFile);
+      rt::parseJsonScene(scene.dump(), sceneFile);
       FAIL("a missing texture must fail");
     } catch (const rt::Error& error) {
       CHECK(contains(error.what(), sceneFile.string() +
@@ -757,7 +758,7 @@ TEST_SUITE("scene loader: in-memory scenes") {
 
     firstMaterial(scene)["texture"] = "../textures/corrupt.png";
     try {
-      rt::parseScene(scene.dump(), sceneFile);
+      rt::parseJsonScene(scene.dump(), sceneFile);
       FAIL("a corrupt texture must fail");
     } catch (const rt::Error& error) {
       CHECK(contains(error.what(), "scene.shapes[0].material.texture: cannot use texture: "));
@@ -927,30 +928,30 @@ TEST_SUITE("scene loader: in-memory scenes") {
     CHECK(errorOf(scene) == "mem.json: conventions: expected a string, got number");
   }
 
-  TEST_CASE("loadScene reads files and reports unreadable ones") {
+  TEST_CASE("loadJsonScene reads files and reports unreadable ones") {
     const TempDir dir;
     const fs::path file = dir.write("scene.json", minimalScene().dump());
-    const rt::Scene scene = rt::loadScene(file);
+    const rt::Scene scene = rt::loadJsonScene(file);
     CHECK(scene.sourcePath == file);
     CHECK(scene.shapes.size() == 1);
 
     const fs::path missing = dir.path() / "nope.json";
     try {
-      rt::loadScene(missing);
+      rt::loadJsonScene(missing);
       FAIL("a missing file must fail");
     } catch (const rt::Error& error) {
       CHECK(std::string(error.what()) ==
             missing.string() + ": cannot open: No such file or directory");
     }
     try {
-      rt::loadScene(dir.path());
+      rt::loadJsonScene(dir.path());
       FAIL("a folder must fail");
     } catch (const rt::Error& error) {
       CHECK(contains(error.what(), ": cannot open: Is a directory"));
     }
     const fs::path broken = dir.write("broken.json", "{\"camera\": ");
     try {
-      rt::loadScene(broken);
+      rt::loadJsonScene(broken);
       FAIL("broken JSON must fail");
     } catch (const rt::Error& error) {
       CHECK(contains(error.what(), broken.string() + ": byte "));
@@ -990,7 +991,7 @@ rt::Scene loadWithoutTextures(const fs::path& file) {
     if (!shape.contains("material")) continue;
     for (const char* key : {"tPath", "tWidth", "tHeight"}) shape["material"].erase(key);
   }
-  return rt::parseScene(document.dump(), file);
+  return rt::parseJsonScene(document.dump(), file);
 }
 
 }  // namespace
@@ -1186,7 +1187,7 @@ TEST_SUITE("scene loader: PLY meshes") {
       firstShape(scene) = plyShape("trimesh", key, "../meshes/tri.ply");
       firstShape(scene)["center"] = {1, 2, 3};
       firstShape(scene)["scale"] = 2;
-      const rt::Scene loaded = rt::parseScene(scene.dump(), sceneFile);
+      const rt::Scene loaded = rt::parseJsonScene(scene.dump(), sceneFile);
       const rt::MeshInstance& instance = instanceOf(loaded, 0);
       REQUIRE(loaded.meshes.size() == 1);
       const rt::TriangleMesh& mesh = loaded.meshes[instance.mesh];
@@ -1199,18 +1200,18 @@ TEST_SUITE("scene loader: PLY meshes") {
     }
     Json scene = minimalScene();
     firstShape(scene) = plyShape("trimesh", "mPath", "../meshes/tri.ply");
-    CHECK(near(placed(instanceOf(rt::parseScene(scene.dump(), sceneFile), 0), {1, 1, 1}),
+    CHECK(near(placed(instanceOf(rt::parseJsonScene(scene.dump(), sceneFile), 0), {1, 1, 1}),
                {1, 1, 1}));  // no placement: the file's own coordinates
     firstShape(scene)["pos"] = {0, -1, 0};
     firstShape(scene)["sizeScale"] = 0.5;
-    CHECK(near(placed(instanceOf(rt::parseScene(scene.dump(), sceneFile), 0), {0, 1, 0}),
+    CHECK(near(placed(instanceOf(rt::parseJsonScene(scene.dump(), sceneFile), 0), {0, 1, 0}),
                {0, -0.5f, 0}));
     firstShape(scene)["scale"] = 2;
     CHECK(contains(errorOf(scene), "scene.shapes[0]"));
     firstShape(scene).erase("scale");
     firstShape(scene)["sizeScale"] = 0;
     try {
-      rt::parseScene(scene.dump(), sceneFile);
+      rt::parseJsonScene(scene.dump(), sceneFile);
       FAIL("a zero scale must fail");
     } catch (const rt::Error& error) {
       CHECK(contains(error.what(), "scene.shapes[0].sizeScale: must be positive"));
@@ -1226,7 +1227,7 @@ TEST_SUITE("scene loader: PLY meshes") {
                                 plyShape("trimesh", "mPath", "meshes/tri.ply"),
                                 plyShape("trimesh", "plyPath", "../examples/meshes/tri.ply")};
     scene["scene"]["shapes"][2]["center"] = {0, 0, 5};
-    const rt::Scene loaded = rt::parseScene(scene.dump(), sceneFile);
+    const rt::Scene loaded = rt::parseJsonScene(scene.dump(), sceneFile);
     CHECK(loaded.meshes.size() == 1);
     REQUIRE(loaded.shapes.size() == 3);
     for (size_t i = 0; i < 3; ++i) CHECK(instanceOf(loaded, i).mesh == 0);
@@ -1244,7 +1245,7 @@ TEST_SUITE("scene loader: PLY meshes") {
     scene["scene"]["shapes"][1] = plyShape("trimesh", "mPath", "../meshes/bad.ply");
     const auto errorIn = [&](const Json& document) -> std::string {
       try {
-        rt::parseScene(document.dump(), sceneFile);
+        rt::parseJsonScene(document.dump(), sceneFile);
       } catch (const rt::Error& error) {
         return error.what();
       }
@@ -1274,7 +1275,7 @@ TEST_SUITE("scene loader: PLY meshes") {
     const fs::path student = sceneFormatDir() / "student";
     const fs::path monkeyScene = student / "TsFreddie__RayTracer/examples/monkey_bvh_test.json";
     if (fs::exists(monkeyScene)) {
-      const rt::Scene monkey = rt::loadScene(monkeyScene);
+      const rt::Scene monkey = rt::loadJsonScene(monkeyScene);
       REQUIRE(monkey.meshes.size() == 1);
       CHECK(monkey.meshes[0].positions.size() == 2874);
       CHECK(monkey.meshes[0].faces.size() == 968);

@@ -1,0 +1,124 @@
+#include "encode/Features.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <variant>
+
+namespace rt {
+namespace {
+
+// Beyond this many pending rays the tracer follows one branch at random
+// (unbiased), which bounds per-invocation memory for deep glass scenes.
+constexpr uint32_t kMaxWhittedStack = 24;
+
+void addGeometryFeatures(const Shape& shape, ShaderFeatures& features) {
+  std::visit(
+      [&](const auto& geometry) {
+        using T = std::decay_t<decltype(geometry)>;
+        if constexpr (std::is_same_v<T, Sphere>) features.spheres = true;
+        if constexpr (std::is_same_v<T, Cylinder>) features.cylinders = true;
+        if constexpr (std::is_same_v<T, Triangle> || std::is_same_v<T, Quad> ||
+                      std::is_same_v<T, MeshInstance>) {
+          features.triangles = true;
+        }
+        if constexpr (std::is_same_v<T, MeshInstance>) features.meshes = true;
+      },
+      shape.geometry);
+}
+
+// A mesh used once is built in world space: its instance's world-to-object
+// rows are the identity.
+bool movesRayIntoObjectSpace(const gpu::GpuPrimitive& primitive) {
+  return primitive.kind == RT_PRIM_INSTANCE &&
+         (primitive.a != glm::vec4(1, 0, 0, 0) || primitive.b != glm::vec4(0, 1, 0, 0) ||
+          primitive.c != glm::vec4(0, 0, 1, 0));
+}
+
+}  // namespace
+
+ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat) {
+  ShaderFeatures features;
+  for (const Shape& shape : scene.shapes) addGeometryFeatures(shape, features);
+  for (const gpu::GpuPrimitive& primitive : flat.primitives) {
+    features.looseTriangles |= primitive.kind == RT_PRIM_TRIANGLE;
+    features.instanceTransforms |= movesRayIntoObjectSpace(primitive);
+  }
+  features.binaryOnly = scene.settings.mode == RenderMode::Binary;
+  features.hardwareAccel = flat.accel == AccelKind::Hardware;
+  bool shaded = scene.settings.mode != RenderMode::Binary && scene.settings.maxBounces > 0;
+  for (const Shape& shape : scene.shapes) {
+    const Material& material = scene.materials.at(shape.material);
+    features.reflection |= shaded && material.reflectivity > 0.0f;
+    features.refraction |= shaded && material.transmission > 0.0f;
+  }
+  features.vertices = !flat.vertices.empty();
+  for (const gpu::GpuMaterial& material : flat.materials) {
+    features.textures |= shaded && material.diffuseTexture >= 0;
+  }
+  features.thinLens =
+      scene.camera.type == CameraType::ThinLens && scene.camera.apertureRadius > 0.0f;
+  bool lit = scene.settings.mode != RenderMode::Binary;
+  features.areaLights = lit && !flat.areaLights.empty();
+  if (features.areaLights) {
+    for (const gpu::GpuEmitter& emitter : flat.emitters)
+      features.emitterKinds |= 1u << emitter.kind;
+  }
+  features.pathTracer = scene.settings.mode == RenderMode::PathTracer;
+  features.diffuseBounces =
+      features.pathTracer ? scene.settings.maxBounces > 0 : lit && flat.info.distributedBounces > 0;
+  if (features.pathTracer) {
+    features.whittedStackSize = 1;  // one path: each hit follows one continuation
+  } else if (features.diffuseBounces) {
+    // Depth first, up to three continuations a hit: two pending rays per level.
+    uint32_t levels = scene.settings.maxBounces + flat.info.distributedBounces;
+    features.whittedStackSize = std::min(2 * levels + 1, kMaxWhittedStack);
+  } else if (features.refraction) {
+    // Depth-first walk of a binary ray tree: at most one pending ray per level.
+    features.whittedStackSize = std::min(scene.settings.maxBounces + 1, kMaxWhittedStack);
+  }
+  return features;
+}
+
+ShaderDefines ShaderFeatures::defines() const {
+  ShaderDefines result;
+  auto flag = [&](bool on, const char* name) {
+    if (on) result.emplace_back(name, "1");
+  };
+  flag(spheres, "RT_FEATURE_SPHERES");
+  flag(triangles, "RT_FEATURE_TRIANGLES");
+  flag(cylinders, "RT_FEATURE_CYLINDERS");
+  flag(meshes, "RT_FEATURE_MESHES");
+  flag(looseTriangles, "RT_FEATURE_LOOSE_TRIANGLES");
+  flag(instanceTransforms, "RT_FEATURE_INSTANCE_TRANSFORMS");
+  flag(reflection, "RT_FEATURE_REFLECTION");
+  flag(refraction, "RT_FEATURE_REFRACTION");
+  flag(thinLens, "RT_FEATURE_THIN_LENS");
+  flag(vertices, "RT_FEATURE_VERTICES");
+  flag(textures, "RT_FEATURE_TEXTURES");
+  flag(areaLights, "RT_FEATURE_AREA_LIGHTS");
+  flag(diffuseBounces, "RT_FEATURE_DIFFUSE_BOUNCES");
+  flag(pathTracer, "RT_FEATURE_PATH_TRACER");
+  flag(countRays, "RT_COUNT_RAYS");
+  flag(hardwareAccel, "RT_ACCEL_HARDWARE");
+  flag(binaryOnly, "RT_BINARY_ONLY");
+  if (samplerKind >= 0) result.emplace_back("RT_SAMPLER_KIND", std::to_string(samplerKind) + "u");
+  if (emitterKinds != 0) {
+    result.emplace_back("RT_EMITTER_KINDS", std::to_string(emitterKinds) + "u");
+  }
+  result.emplace_back("RT_WHITTED_STACK_SIZE", std::to_string(whittedStackSize));
+  return result;
+}
+
+std::string ShaderFeatures::summary() const {
+  std::string text;
+  for (const auto& [name, value] : defines()) {
+    if (name.rfind("RT_FEATURE_", 0) != 0) continue;
+    std::string feature = name.substr(11);
+    std::transform(feature.begin(), feature.end(), feature.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    text += (text.empty() ? "" : " ") + feature;
+  }
+  return text.empty() ? "none" : text;
+}
+
+}  // namespace rt

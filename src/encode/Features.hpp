@@ -1,0 +1,52 @@
+// Which shader code a scene needs. Each feature becomes an RT_FEATURE_*
+// define, so a scene without (say) refraction never compiles or runs the
+// refraction code (the Mitsuba "variants" idea, chosen per scene at run time).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "encode/FlatScene.hpp"
+#include "gpu/ShaderCompiler.hpp"
+#include "scene/Scene.hpp"
+
+namespace rt {
+
+struct ShaderFeatures {
+  bool spheres = false;
+  bool triangles = false;       // also quads and meshes
+  bool meshes = false;          // mesh instances: the two-level BVH
+  bool looseTriangles = false;  // triangles and quads that are top-level items, not in a mesh
+  // Some mesh instance is not in world space (a mesh placed more than once):
+  // the walk moves the ray into it.
+  bool instanceTransforms = false;
+  bool cylinders = false;
+  bool reflection = false;
+  bool refraction = false;
+  bool thinLens = false;
+  bool vertices = false;  // per-vertex normals / UVs on triangles
+  bool textures = false;
+  bool areaLights = false;
+  bool diffuseBounces = false;  // sampled diffuse bounces (distributed bounces, path tracer)
+  bool pathTracer = false;      // one continuation per hit
+  bool countRays = false;       // benchmark instrumentation
+  bool hardwareAccel = false;   // ray queries instead of the BVH walk (--accel hardware)
+  // Binary mode: a sample is one closest-hit query; no shading code is built.
+  bool binaryOnly = false;
+  // The pixel sampler (RT_SAMPLER_*) when one is fixed for the kernel's life,
+  // so only its code is built; -1: chosen per dispatch (samplerKind).
+  int samplerKind = -1;
+  // Kinds of area-light pieces (bits 1 << RT_PRIM_*), so that only their
+  // sampling code is built; 0: no area lights.
+  uint32_t emitterKinds = 0;
+  uint32_t whittedStackSize = 1;  // pending rays of the ray tree
+
+  ShaderDefines defines() const;
+  std::string summary() const;  // e.g. "spheres triangles reflection"
+};
+
+// `flat` is the scene flattened for the GPU (it knows which triangles carry
+// vertex data and which textures are drawn).
+ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat);
+
+}  // namespace rt

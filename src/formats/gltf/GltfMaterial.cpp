@@ -1,0 +1,311 @@
+#include "formats/gltf/GltfMaterial.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/constants.hpp>
+
+#include "formats/gltf/GltfDocument.hpp"
+#include "util/Error.hpp"
+
+namespace rt::gltf {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The images decoded for one file together stay below this (each image is
+// also limited to 2^26 pixels by io/Image): a few kilobytes of PNG can
+// inflate to hundreds of megabytes, and one file may name it many times.
+constexpr uint64_t kMaxTextureBytes = uint64_t(1) << 30;
+
+// Blinn-Phong exponents beyond this are a mirror in all but name.
+constexpr float kMaxExponent = 10000.0f;
+
+double finiteNumber(const Context& context, double value, const std::string& where) {
+  if (!std::isfinite(value)) context.fail(where, "is not a finite number");
+  return value;
+}
+
+// A factor the specification keeps in [0, 1]; values outside are clamped.
+float unitFactor(Context& context, double value, const std::string& where) {
+  finiteNumber(context, value, where);
+  if (value < 0.0 || value > 1.0) context.warn(where, "outside [0, 1]; clamped");
+  return static_cast<float>(std::clamp(value, 0.0, 1.0));
+}
+
+glm::vec3 baseColor(Context& context, const std::vector<double>& factor, const std::string& where) {
+  if (factor.size() != 4) {
+    context.fail(where, "has " + std::to_string(factor.size()) + " numbers, 4 are required");
+  }
+  glm::vec3 color;
+  for (int c = 0; c < 3; ++c) {
+    color[c] = unitFactor(context, factor[size_t(c)], where + "[" + std::to_string(c) + "]");
+  }
+  return color;
+}
+
+// A number inside an extension object, `fallback` when absent.
+double extensionNumber(const Context& context, const tinygltf::ExtensionMap& extensions,
+                       const std::string& extension, const std::string& key, double fallback,
+                       const std::string& where) {
+  auto found = extensions.find(extension);
+  if (found == extensions.end() || !found->second.IsObject() || !found->second.Has(key)) {
+    return fallback;
+  }
+  const tinygltf::Value& value = found->second.Get(key);
+  std::string path = where + ".extensions." + extension + "." + key;
+  if (!value.IsNumber()) context.fail(path, "expected a number");
+  return finiteNumber(context, value.GetNumberAsDouble(), path);
+}
+
+bool hasExtension(const tinygltf::ExtensionMap& extensions, const std::string& name,
+                  const char* key) {
+  auto found = extensions.find(name);
+  return found != extensions.end() && found->second.IsObject() && found->second.Has(key);
+}
+
+void noteIgnoredFeatures(Context& context, const tinygltf::Material& gltf,
+                         const std::string& where) {
+  if (gltf.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0) {
+    context.ignored("metallic-roughness texture detail (the mean is used)", where);
+  }
+  if (gltf.normalTexture.index >= 0) context.ignored("normal maps", where);
+  if (gltf.occlusionTexture.index >= 0) context.ignored("occlusion maps", where);
+  bool glows = gltf.emissiveTexture.index >= 0 ||
+               std::any_of(gltf.emissiveFactor.begin(), gltf.emissiveFactor.end(),
+                           [](double v) { return v > 0.0; });
+  if (glows) context.ignored("emission", where);
+  if (gltf.alphaMode != "OPAQUE") context.ignored("alpha modes BLEND and MASK", where);
+  if (hasExtension(gltf.extensions, "KHR_materials_transmission", "transmissionTexture")) {
+    context.ignored("transmission textures", where);
+  }
+}
+
+// glTF metallic-roughness onto the Blinn-Phong rt::Material, with
+// m = metallic, r = roughness (factor times the mean of the
+// metallic-roughness texture, if any: per-texel values cannot be
+// represented), t = transmission:
+//   diffuseColor     = baseColor.rgb
+//   kd               = (1 - m) (1 - t)            metals and glass have no diffuse term
+//   specularColor    = mix(white, baseColor, m)    metals tint their highlights
+//   specularExponent = clamp(2 / r^4 - 2, 1, 10000)   the Blinn-Phong lobe as wide as the
+//                      microfacet lobe of roughness r (alpha = r^2; Walter et al. 2007)
+//   ks               = min(1, F0 (p + 8) / (8 pi)),  F0 = mix(0.04, 1, m): the peak of the
+//                      energy-normalised Blinn-Phong lobe with the Fresnel reflectance at
+//                      normal incidence, capped at 1 (images are clamped anyway)
+//   reflectivity     = m (1 - r)^2                 mirror reflection of smooth metals
+//                      (untinted: rt::Material's mirror weight is a scalar)
+//   transmission     = KHR_materials_transmission.transmissionFactor (default 0)
+//   ior              = KHR_materials_ior.ior (default 1.5; below 1 is taken as 1.5)
+Material convertMaterial(Context& context, const tinygltf::Material& gltf, const std::string& where,
+                         glm::vec2 textureMetallicRoughness) {
+  const tinygltf::PbrMetallicRoughness& pbr = gltf.pbrMetallicRoughness;
+  std::string pbrWhere = where + ".pbrMetallicRoughness";
+  glm::vec3 base = baseColor(context, pbr.baseColorFactor, pbrWhere + ".baseColorFactor");
+  float m = unitFactor(context, pbr.metallicFactor, pbrWhere + ".metallicFactor") *
+            textureMetallicRoughness.x;
+  float r = unitFactor(context, pbr.roughnessFactor, pbrWhere + ".roughnessFactor") *
+            textureMetallicRoughness.y;
+  float t = unitFactor(context,
+                       extensionNumber(context, gltf.extensions, "KHR_materials_transmission",
+                                       "transmissionFactor", 0.0, where),
+                       where + ".extensions.KHR_materials_transmission.transmissionFactor");
+  double ior = extensionNumber(context, gltf.extensions, "KHR_materials_ior", "ior", 1.5, where);
+  if (ior < 1.0) {
+    context.warn(where + ".extensions.KHR_materials_ior.ior", "below 1; using 1.5");
+    ior = 1.5;
+  }
+
+  Material out;
+  out.diffuseColor = base;
+  out.kd = (1.0f - m) * (1.0f - t);
+  out.specularColor = glm::mix(glm::vec3(1.0f), base, m);
+  float r4 = r * r * r * r;
+  out.specularExponent =
+      r4 > 2.0f / kMaxExponent ? std::clamp(2.0f / r4 - 2.0f, 1.0f, kMaxExponent) : kMaxExponent;
+  float f0 = glm::mix(0.04f, 1.0f, m);
+  out.ks = std::min(1.0f, f0 * (out.specularExponent + 8.0f) / (8.0f * glm::pi<float>()));
+  out.reflectivity = m * (1.0f - r) * (1.0f - r);
+  out.transmission = t;
+  out.ior = static_cast<float>(ior);
+  noteIgnoredFeatures(context, gltf, where);
+  return out;
+}
+
+Material defaultMaterial() {
+  Material out;
+  out.diffuseColor = glm::vec3(0.8f);
+  out.kd = 1.0f;
+  out.ks = 0.0f;
+  return out;
+}
+
+// KHR_texture_transform of the base colour texture, as a 3x3 UV matrix
+// (translation * rotation * scale, rotation counter-clockwise in UV space).
+UvMapping uvMappingOf(const Context& context, const tinygltf::TextureInfo& info,
+                      const std::string& where) {
+  UvMapping mapping;
+  mapping.set = std::max(info.texCoord, 0);
+  auto found = info.extensions.find("KHR_texture_transform");
+  if (found == info.extensions.end() || !found->second.IsObject()) return mapping;
+  const tinygltf::Value& ext = found->second;
+  std::string path = where + ".extensions.KHR_texture_transform";
+  auto number = [&](const tinygltf::Value& v, const std::string& key) {
+    if (!v.IsNumber()) context.fail(path + "." + key, "expected a number");
+    return static_cast<float>(finiteNumber(context, v.GetNumberAsDouble(), path + "." + key));
+  };
+  auto pair = [&](const char* key, glm::vec2 fallback) {
+    if (!ext.Has(key)) return fallback;
+    const tinygltf::Value& v = ext.Get(key);
+    if (!v.IsArray() || v.ArrayLen() != 2) context.fail(path + "." + key, "expected 2 numbers");
+    return glm::vec2(number(v.Get(0), key), number(v.Get(1), key));
+  };
+  glm::vec2 offset = pair("offset", glm::vec2(0.0f));
+  glm::vec2 scale = pair("scale", glm::vec2(1.0f));
+  float rotation = ext.Has("rotation") ? number(ext.Get("rotation"), "rotation") : 0.0f;
+  if (ext.Has("texCoord")) mapping.set = std::max(int(number(ext.Get("texCoord"), "texCoord")), 0);
+  float c = std::cos(rotation), s = std::sin(rotation);
+  // Column-major: u' = c sx u + s sy v + ox,  v' = -s sx u + c sy v + oy.
+  mapping.transform = glm::mat3(glm::vec3(c * scale.x, -s * scale.x, 0.0f),
+                                glm::vec3(s * scale.y, c * scale.y, 0.0f), glm::vec3(offset, 1.0f));
+  return mapping;
+}
+
+}  // namespace
+
+MaterialTable::MaterialTable(Context& context, Scene& scene, fs::path baseDir)
+    : context_(context), scene_(scene), baseDir_(std::move(baseDir)) {}
+
+uint32_t MaterialTable::material(int index, const std::string& where) {
+  if (auto found = materials_.find(index); found != materials_.end()) return found->second;
+  const auto& gltfMaterials = context_.model().materials;
+  if (index >= 0 && size_t(index) >= gltfMaterials.size()) {
+    context_.fail(where, "material " + std::to_string(index) + " does not exist (the file has " +
+                             std::to_string(gltfMaterials.size()) + ")");
+  }
+  Material converted = defaultMaterial();
+  if (index >= 0) {
+    std::string name = item("materials", index);
+    const tinygltf::Material& gltf = gltfMaterials[size_t(index)];
+    glm::vec2 average =
+        metallicRoughnessAverage(gltf.pbrMetallicRoughness.metallicRoughnessTexture,
+                                 name + ".pbrMetallicRoughness.metallicRoughnessTexture");
+    converted = convertMaterial(context_, gltf, name, average);
+    const tinygltf::TextureInfo& info = gltf.pbrMetallicRoughness.baseColorTexture;
+    if (info.index >= 0) {
+      std::string infoWhere = name + ".pbrMetallicRoughness.baseColorTexture";
+      uvMappingOf(context_, info, infoWhere);  // validates the transform now
+      converted.diffuseTexture = texture(info, infoWhere);
+      if (converted.diffuseTexture >= 0) {
+        converted.texture = scene_.textures[size_t(converted.diffuseTexture)].source;
+      }
+    }
+  }
+  scene_.materials.push_back(std::move(converted));
+  uint32_t added = static_cast<uint32_t>(scene_.materials.size() - 1);
+  materials_.emplace(index, added);
+  return added;
+}
+
+UvMapping MaterialTable::uvMapping(int index) const {
+  if (index < 0 || size_t(index) >= context_.model().materials.size()) return {};
+  const tinygltf::Material& gltf = context_.model().materials[size_t(index)];
+  const tinygltf::TextureInfo& info = gltf.pbrMetallicRoughness.baseColorTexture;
+  if (info.index < 0) return {};
+  return uvMappingOf(context_, info, item("materials", index));
+}
+
+int MaterialTable::imageOf(int textureIndex, const std::string& where) {
+  const auto& textures = context_.model().textures;
+  if (textureIndex < 0 || size_t(textureIndex) >= textures.size()) {
+    context_.fail(where, "texture " + std::to_string(textureIndex) +
+                             " does not exist (the file has " + std::to_string(textures.size()) +
+                             ")");
+  }
+  int image = textures[size_t(textureIndex)].source;
+  if (image < 0) {
+    // The image is only given through an extension (KTX2, WebP, ...).
+    context_.warn(where, "texture " + std::to_string(textureIndex) +
+                             " has no PNG or JPEG image; it is not used");
+    return -1;
+  }
+  const auto& images = context_.model().images;
+  if (size_t(image) >= images.size()) {
+    context_.fail(where, "image " + std::to_string(image) + " does not exist (the file has " +
+                             std::to_string(images.size()) + ")");
+  }
+  return image;
+}
+
+int32_t MaterialTable::texture(const tinygltf::TextureInfo& info, const std::string& where) {
+  int image = imageOf(info.index, where);
+  return image < 0 ? -1 : decodeImage(image, where);
+}
+
+// Mean metallic (blue) and roughness (green) of a metallic-roughness texture,
+// (1, 1) without one.
+glm::vec2 MaterialTable::metallicRoughnessAverage(const tinygltf::TextureInfo& info,
+                                                  const std::string& where) {
+  if (info.index < 0) return glm::vec2(1.0f);
+  int image = imageOf(info.index, where);
+  if (image < 0) return glm::vec2(1.0f);
+  if (auto found = averages_.find(image); found != averages_.end()) return found->second;
+  std::string source;
+  ImageRgba8 decoded = readImage(image, where, source);
+  double metallic = 0.0, roughness = 0.0;
+  size_t pixels = decoded.rgba.size() / 4;
+  for (size_t i = 0; i < pixels; ++i) {
+    roughness += decoded.rgba[4 * i + 1];
+    metallic += decoded.rgba[4 * i + 2];
+  }
+  glm::vec2 mean(1.0f);
+  if (pixels > 0) mean = glm::vec2(glm::dvec2(metallic, roughness) / (255.0 * double(pixels)));
+  averages_.emplace(image, mean);
+  return mean;
+}
+
+int32_t MaterialTable::decodeImage(int index, const std::string& where) {
+  if (auto found = images_.find(index); found != images_.end()) return found->second;
+  Texture texture;
+  texture.image = readImage(index, where, texture.source);
+  scene_.textures.push_back(std::move(texture));
+  int32_t added = static_cast<int32_t>(scene_.textures.size() - 1);
+  images_.emplace(index, added);
+  return added;
+}
+
+// Decodes image `index` (embedded bytes, or a file next to the glTF file);
+// `source` says where it came from.
+ImageRgba8 MaterialTable::decodeImageData(int index, const std::string& where,
+                                          std::string& source) {
+  const tinygltf::Image& image = context_.model().images[size_t(index)];
+  std::string name = item("images", index);
+  if (image.image.empty() && image.uri.empty()) context_.fail(where, name + " has no data");
+  try {
+    if (!image.image.empty()) {
+      source = context_.fileName() + ":" + name;
+      return decodeImageRgba8(image.image.data(), image.image.size(), source);
+    }
+    fs::path path = baseDir_ / percentDecoded(image.uri);
+    source = path.string();
+    std::vector<unsigned char> bytes;
+    if (std::string problem = readRegularFile(path, bytes); !problem.empty()) {
+      throw Error(source + ": " + problem);
+    }
+    return decodeImageRgba8(bytes.data(), bytes.size(), source);
+  } catch (const Error& error) {
+    context_.fail(where, name + ": " + error.what());
+  }
+}
+
+// Every decode counts, kept or not: the budget bounds memory and time.
+ImageRgba8 MaterialTable::readImage(int index, const std::string& where, std::string& source) {
+  ImageRgba8 image = decodeImageData(index, where, source);
+  decodedBytes_ += image.rgba.size();
+  if (decodedBytes_ > kMaxTextureBytes) {
+    context_.fail(where, item("images", index) + ": the decoded images exceed " +
+                             std::to_string(kMaxTextureBytes >> 20) + " MiB");
+  }
+  return image;
+}
+
+}  // namespace rt::gltf

@@ -1,0 +1,46 @@
+// glTF materials and base colour textures onto rt::Material (Blinn-Phong with
+// mirror and refraction weights) and Scene::textures.
+#pragma once
+
+#include <filesystem>
+#include <map>
+
+#include "formats/gltf/GltfContext.hpp"
+#include "formats/gltf/GltfMesh.hpp"
+#include "scene/Scene.hpp"
+
+namespace rt::gltf {
+
+// The glTF default material (no `material` on a primitive) becomes a plain
+// grey diffuse rt::Material, as in the JSON scenes, rather than the white
+// rough metal of the glTF specification.
+class MaterialTable {
+ public:
+  MaterialTable(Context& context, Scene& scene, std::filesystem::path baseDir);
+
+  // Index into Scene::materials of glTF material `index` (-1: the default
+  // material), converted and added on first use. Fails for a missing index.
+  uint32_t material(int index, const std::string& where);
+
+  // How primitives with this material map texture coordinates.
+  UvMapping uvMapping(int index) const;
+
+ private:
+  int32_t texture(const tinygltf::TextureInfo& info, const std::string& where);
+  int32_t decodeImage(int image, const std::string& where);
+  glm::vec2 metallicRoughnessAverage(const tinygltf::TextureInfo& info, const std::string& where);
+  // The image of glTF texture `textureIndex`, or -1 when it has none we can read.
+  int imageOf(int textureIndex, const std::string& where);
+  ImageRgba8 readImage(int image, const std::string& where, std::string& source);
+  ImageRgba8 decodeImageData(int image, const std::string& where, std::string& source);
+
+  Context& context_;
+  Scene& scene_;
+  std::filesystem::path baseDir_;
+  std::map<int, uint32_t> materials_;  // glTF material -> Scene::materials
+  std::map<int, int32_t> images_;      // glTF image -> Scene::textures
+  std::map<int, glm::vec2> averages_;  // glTF image -> mean (metallic, roughness)
+  uint64_t decodedBytes_ = 0;          // all images decoded so far, bounded
+};
+
+}  // namespace rt::gltf

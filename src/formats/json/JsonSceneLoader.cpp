@@ -1,0 +1,1119 @@
+#include "formats/json/JsonSceneLoader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
+#include <memory>
+#include <system_error>
+
+#include "formats/common/MessageText.hpp"
+#include "formats/common/UnitVector.hpp"
+#include "formats/json/JsonReader.hpp"
+#include "formats/ply/PlyLoader.hpp"
+#include "util/Error.hpp"
+
+namespace rt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Larger images are typos (or hostile files), not render requests.
+constexpr int64_t kMaxImageSide = 16384;
+constexpr int64_t kMaxBounces = 64;
+// Family B files may omit nbounces.
+constexpr uint32_t kDefaultBounces = 4;
+constexpr int64_t kMaxSamplesPerPixel = int64_t{1} << 20;
+// |sin| of the angle below which up and forward give no usable image plane.
+constexpr float kParallelTolerance = 1e-4f;
+
+// The 2019 family-A file has no position/lookat/up. Its spheres sit at
+// z = 0.4 and 0.7 in front of the origin, so look down +z with y up.
+constexpr glm::vec3 kDefaultPosition{0.0f, 0.0f, 0.0f};
+constexpr glm::vec3 kDefaultForward{0.0f, 0.0f, 1.0f};
+constexpr glm::vec3 kDefaultUp{0.0f, 1.0f, 0.0f};
+
+// What shape reading needs besides the JSON itself.
+struct ShapeContext {
+  fs::path sceneDir;  // absolute folder of the scene file, for texture and mesh paths
+  RenderMode mode;
+  std::map<fs::path, uint32_t> plyMeshes;  // Scene::meshes index of each PLY file read
+};
+
+// ---------------------------------------------------------------- JSON text
+
+std::string withoutExceptionId(const char* what) {
+  // nlohmann prefixes "[json.exception.parse_error.101] "; users need only the rest.
+  const std::string_view message = what;
+  const size_t end = message.find("] ");
+  return std::string(end == std::string_view::npos ? message : message.substr(end + 2));
+}
+
+// Number overflow (e.g. 1e400) comes without an offset; point at the number's text.
+size_t offsetOfOverflow(std::string_view text, const std::string& message) {
+  const size_t open = message.find('\'');
+  const size_t close = message.rfind('\'');
+  if (open == std::string::npos || close <= open) return 0;
+  const size_t found = text.find(std::string_view(message).substr(open + 1, close - open - 1));
+  return found == std::string_view::npos ? 0 : found + 1;
+}
+
+Json parseJson(std::string_view text, const std::string& file) {
+  try {
+    return Json::parse(text.begin(), text.end());
+  } catch (const Json::parse_error& error) {
+    throw Error(file + ": byte " + std::to_string(error.byte) + ": " +
+                withoutExceptionId(error.what()));
+  } catch (const Json::out_of_range& error) {
+    const std::string message = withoutExceptionId(error.what());
+    throw Error(file + ": byte " + std::to_string(offsetOfOverflow(text, message)) + ": " +
+                message);
+  }
+}
+
+std::string readFileText(const fs::path& file) {
+  const auto cannotOpen = [&file](int code) {
+    return Error(file.string() + ": cannot open: " + std::strerror(code));
+  };
+  std::error_code ignored;
+  if (fs::is_directory(file, ignored)) throw cannotOpen(EISDIR);
+  struct Closer {
+    void operator()(std::FILE* stream) const { std::fclose(stream); }
+  };
+  const std::unique_ptr<std::FILE, Closer> stream(std::fopen(file.c_str(), "rb"));
+  if (!stream) throw cannotOpen(errno);
+  std::string text;
+  std::array<char, 1 << 16> buffer;
+  size_t count = 0;
+  while ((count = std::fread(buffer.data(), 1, buffer.size(), stream.get())) > 0) {
+    text.append(buffer.data(), count);
+  }
+  if (std::ferror(stream.get())) throw cannotOpen(errno);
+  return text;
+}
+
+// ---------------------------------------------------------- family detection
+
+const Json* findKey(const Json& object, std::string_view key) {
+  if (!object.is_object()) return nullptr;
+  const auto found = object.find(key);
+  return found == object.end() ? nullptr : &*found;
+}
+
+bool anyElement(const Json* array, bool (*predicate)(const Json&)) {
+  return array && array->is_array() && std::any_of(array->begin(), array->end(), predicate);
+}
+
+// TsFreddie's renderer (metallic/transmit/roughness materials) lit its
+// scenes with the textbook conventions: no falloff, per-channel Blinn-Phong,
+// no ambient; its reference renders in ../shared match only that reading.
+bool isTsFreddieMaterial(const Json& material) {
+  return findKey(material, "metallic") || findKey(material, "transmit") ||
+         findKey(material, "roughness");
+}
+
+bool hasTsFreddieMaterial(const Json& shape) {
+  const Json* material = findKey(shape, "material");
+  return material && isTsFreddieMaterial(*material);
+}
+
+bool isFamilyBShape(const Json& shape) {
+  const Json* type = findKey(shape, "type");
+  if (type && *type == "cylinder") return true;
+  const Json* material = findKey(shape, "material");
+  return material && (findKey(*material, "specularcolor") || findKey(*material, "isreflective") ||
+                      findKey(*material, "isrefractive"));
+}
+
+bool hasIntensity(const Json& light) { return findKey(light, "intensity") != nullptr; }
+
+struct ChosenConventions {
+  Conventions conventions;
+  std::string reason;
+};
+
+// The conventions a file asks for with `conventions`, else those of the
+// family its keys belong to:
+//  - family B ("Rendering", 2023-24): a top-level `rendermode`; a camera
+//    `lookAt`, `upVector` or `exposure` (family A writes `lookat` and `up`
+//    and has no exposure); or lights with `intensity` beside family-B shape
+//    keys (a cylinder, material `specularcolor`/`isreflective`/`isrefractive`).
+//    `intensity` alone decides nothing: the family-A 2019 file uses it too;
+//  - TsFreddie's renderer (`intensity` lights beside metallic/transmit/
+//    roughness materials): textbook;
+//  - everything else is family A ("Path of Light").
+// Which keys are read does not depend on the choice.
+ChosenConventions chooseConventions(JsonObject& top, const Json& root) {
+  if (const std::optional<JsonNode> named = top.optional("conventions")) {
+    const std::string name = named->string();
+    const std::optional<Conventions> conventions = conventionsNamed(name);
+    if (!conventions) {
+      named->fail("unknown conventions '" + name +
+                  "' (expected \"coursework-a\", \"coursework-b\" or \"textbook\")");
+    }
+    return {*conventions, "the scene's 'conventions' key"};
+  }
+  if (findKey(root, "rendermode")) return {Conventions::CourseworkB, "family B key 'rendermode'"};
+  if (const Json* camera = findKey(root, "camera")) {
+    for (const char* key : {"lookAt", "upVector", "exposure"}) {
+      if (findKey(*camera, key)) {
+        return {Conventions::CourseworkB, std::string("family B key 'camera.") + key + "'"};
+      }
+    }
+  }
+  if (const Json* scene = findKey(root, "scene")) {
+    const Json* shapes = findKey(*scene, "shapes");
+    if (anyElement(findKey(*scene, "lightsources"), hasIntensity)) {
+      if (anyElement(shapes, hasTsFreddieMaterial)) {
+        return {Conventions::Textbook,
+                "TsFreddie's materials (metallic/transmit/roughness) with 'intensity' lights"};
+      }
+      if (anyElement(shapes, isFamilyBShape)) {
+        return {Conventions::CourseworkB,
+                "'intensity' lights with family B shapes (cylinder or family B material keys)"};
+      }
+    }
+  }
+  return {Conventions::CourseworkA, "no family B key (family A, Path of Light)"};
+}
+
+// ----------------------------------------------------------------- settings
+
+// Settings of the students' own renderers: accepted so their files load; no effect here.
+void ignoreRendererKeys(JsonObject& object) {
+  object.ignore({"bvh", "BVH", "use_bvh", "useBVH", "output"});
+}
+
+RenderMode readRenderMode(JsonObject& top) {
+  const std::optional<JsonNode> node = top.optional("rendermode");
+  if (!node) return RenderMode::Phong;
+  const std::string mode = node->string();
+  if (mode == "binary") return RenderMode::Binary;
+  if (mode == "phong") return RenderMode::Phong;
+  if (mode == "pathtracer" || mode == "pathtracing" || mode == "path") {
+    return RenderMode::PathTracer;
+  }
+  node->fail("unknown rendermode '" + mode +
+             "' (expected \"binary\", \"phong\" or \"pathtracer\")");
+}
+
+uint32_t readBounces(JsonObject& top) {
+  const std::optional<JsonNode> node = top.optional("nbounces");
+  return node ? static_cast<uint32_t>(node->integer(0, kMaxBounces)) : kDefaultBounces;
+}
+
+// The mixed mode's second depth (the seed report's "distributed ray bounce"):
+// sampled diffuse bounces on top of the Whitted tree. The path tracer
+// counts every bounce against nbounces instead.
+uint32_t readDistributedBounces(JsonObject& top, RenderMode mode) {
+  const std::optional<JsonNode> node =
+      top.optionalOneOf({"distributedbounces", "ndistributedbounces", "distributed_bounces"});
+  if (!node) return 0;
+  const auto bounces = static_cast<uint32_t>(node->integer(0, kMaxBounces));
+  if (mode == RenderMode::PathTracer && bounces > 0) {
+    node->warn("ignored: the path tracer's paths are nbounces long");
+  }
+  return bounces;
+}
+
+float readIndirectClamp(JsonObject& top) {
+  const std::optional<JsonNode> node = top.optionalOneOf({"clampindirect", "clamp_indirect"});
+  return node ? node->nonNegativeFloat() : 0.0f;
+}
+
+SamplerKind parseSampler(const JsonNode& node) {
+  const std::string name = node.string();
+  if (std::optional<SamplerKind> kind = samplerKindNamed(name)) return *kind;
+  node.fail("unknown sampler '" + name + "' (expected \"random\", \"jittered\" or \"sobol\")");
+}
+
+uint32_t parseSampleCount(const JsonNode& node) {
+  return static_cast<uint32_t>(node.integer(1, kMaxSamplesPerPixel));
+}
+
+// Students put sampling keys at the top level or in the camera. Either place is
+// fine; both is fine only when they agree.
+template <typename Parse>
+auto readFromEither(const std::optional<JsonNode>& first, const std::optional<JsonNode>& second,
+                    Parse parse) -> std::optional<decltype(parse(*first))> {
+  if (!first && !second) return std::nullopt;
+  if (!first) return parse(*second);
+  const auto value = parse(*first);
+  if (second && parse(*second) != value) {
+    second->fail("conflicts with '" + first->path() + "': give the setting once");
+  }
+  return value;
+}
+
+// Returns whether the file names a sampler.
+bool readSampling(JsonObject& top, JsonObject& camera, RenderSettings& settings) {
+  const auto samplerAt = [](JsonObject& object) {
+    return object.optionalOneOf({"sampler", "method"});
+  };
+  const auto samplesAt = [](JsonObject& object) {
+    return object.optionalOneOf({"nsamples", "samples", "spp"});
+  };
+  const auto sampler = readFromEither(samplerAt(top), samplerAt(camera), parseSampler);
+  if (sampler) settings.sampler = *sampler;
+  if (const auto samples = readFromEither(samplesAt(top), samplesAt(camera), parseSampleCount)) {
+    settings.samplesPerPixel = *samples;
+  }
+  return sampler.has_value();
+}
+
+// ------------------------------------------------------------------- camera
+
+glm::vec3 unitVector(const JsonNode& node) {
+  glm::vec3 value = node.vec3();
+  if (!normalizeInPlace(value)) node.fail("must be a non-zero, finite vector");
+  return value;
+}
+
+// Family A `lookat` is a view direction, family B `lookAt` a target point
+// (both verified against the official renders; see README).
+glm::vec3 readForward(JsonObject& camera, glm::vec3 position) {
+  const std::optional<JsonNode> direction = camera.optional("lookat");
+  const std::optional<JsonNode> target = camera.optional("lookAt");
+  if (direction && target) {
+    target->fail(
+        "conflicts with 'camera.lookat': lookat is a view direction, lookAt a target point");
+  }
+  if (direction) return unitVector(*direction);
+  if (!target) return kDefaultForward;
+  glm::vec3 offset = target->vec3() - position;
+  if (!normalizeInPlace(offset)) {
+    target->fail("target point must differ from the camera position by a finite offset");
+  }
+  return offset;
+}
+
+// `up` is kept as given (the ray builder orthogonalises it) but must span an
+// image plane with the view direction.
+glm::vec3 readUp(JsonObject& camera, glm::vec3 forward) {
+  const std::optional<JsonNode> node = camera.optionalOneOf({"up", "upVector"});
+  const glm::vec3 up = node ? node->vec3() : kDefaultUp;
+  const std::string path = node ? node->path() : camera.childPath("up");
+  glm::vec3 direction = up;
+  if (!normalizeInPlace(direction)) {
+    camera.diagnostics().fail(path, "must be a non-zero, finite vector");
+  }
+  if (glm::length(glm::cross(forward, direction)) < kParallelTolerance) {
+    camera.diagnostics().fail(path, node ? "is parallel to the view direction"
+                                         : "missing, and the default up (0, 1, 0) is parallel "
+                                           "to the view direction");
+  }
+  return up;
+}
+
+CameraType readCameraType(const JsonNode& node) {
+  const std::string type = node.string();
+  if (type == "pinhole") return CameraType::Pinhole;
+  if (type == "thinlens" || type == "thinlen") return CameraType::ThinLens;
+  node.fail("unknown camera type '" + type + "' (expected \"pinhole\" or \"thinlens\")");
+}
+
+uint32_t readImageSide(const JsonNode& node) {
+  return static_cast<uint32_t>(node.integer(1, kMaxImageSide));
+}
+
+float readFov(const JsonNode& node) {
+  const float degrees = node.floatValue();
+  if (!(degrees > 0.0f && degrees < 180.0f)) {
+    node.fail("must be between 0 and 180 degrees (exclusive), got " + formatNumber(degrees));
+  }
+  return degrees;
+}
+
+// Thin-lens keys as the students spelled them.
+struct LensKeys {
+  std::optional<JsonNode> aperture;        // lens diameter, or a fraction of f with f and d
+  std::optional<JsonNode> lensRadius;      // lens radius
+  std::optional<JsonNode> focusDistance;   // distance to the plane in focus
+  std::optional<JsonNode> focalLength;     // seed report: f
+  std::optional<JsonNode> sensorDistance;  // seed report: lens-to-sensor distance d
+};
+
+std::optional<JsonNode> readFocusDistanceKey(JsonObject& camera) {
+  return camera.optionalOneOf({"focusdistance", "focus_dist", "focalDistance", "focal_length"});
+}
+
+LensKeys readLensKeys(JsonObject& camera) {
+  LensKeys keys;
+  keys.aperture = camera.optionalOneOf({"aperture", "size"});  // `size`: TsFreddie's files
+  keys.lensRadius = camera.optional("lensRadius");
+  if (keys.aperture && keys.lensRadius) {
+    keys.lensRadius->fail(
+        "conflicts with 'camera.aperture': give the lens diameter (aperture) or its radius "
+        "(lensRadius)");
+  }
+  keys.focusDistance = readFocusDistanceKey(camera);
+  keys.focalLength = camera.optionalOneOf({"f", "focal"});
+  keys.sensorDistance = camera.optional("d");
+  return keys;
+}
+
+// The seed report's lens: focal length f and lens-to-sensor distance d fix the
+// focus distance by the thin lens equation 1/f = 1/d + 1/focus, and `aperture`
+// is the lens diameter as a fraction of f (0.0625 for f/16).
+void applySeedReportLens(const LensKeys& keys, JsonObject& camera, Camera& out) {
+  if (!keys.focalLength) {
+    camera.diagnostics().fail(
+        camera.childPath("f"),
+        "missing: the lens-to-sensor distance 'd' needs the focal length 'f'");
+  }
+  if (!keys.sensorDistance) {
+    camera.diagnostics().fail(
+        camera.childPath("d"),
+        "missing: the focal length 'f' needs the lens-to-sensor distance 'd'");
+  }
+  if (keys.focusDistance) {
+    keys.focusDistance->fail("conflicts with 'f' and 'd', which already fix the focus distance");
+  }
+  const float focal = keys.focalLength->positiveFloat();
+  const float sensor = keys.sensorDistance->positiveFloat();
+  if (!(sensor > focal)) {
+    keys.sensorDistance->fail("must be greater than the focal length f = " + formatNumber(focal) +
+                              " for the lens to focus");
+  }
+  out.focusDistance = focal * sensor / (sensor - focal);
+  if (keys.aperture) out.apertureRadius = keys.aperture->nonNegativeFloat() * focal / 2.0f;
+  if (keys.lensRadius) out.apertureRadius = keys.lensRadius->nonNegativeFloat();
+}
+
+void applyDirectLens(const LensKeys& keys, JsonObject& camera, Camera& out) {
+  if (keys.aperture) out.apertureRadius = keys.aperture->nonNegativeFloat() / 2.0f;
+  if (keys.lensRadius) out.apertureRadius = keys.lensRadius->nonNegativeFloat();
+  if (keys.focusDistance) {
+    out.focusDistance = keys.focusDistance->positiveFloat();
+  } else if (out.apertureRadius > 0.0f) {
+    camera.diagnostics().fail(camera.childPath("focusdistance"),
+                              "missing: a thin lens with an aperture needs a focus distance "
+                              "(focusdistance, focus_dist, focalDistance or focal_length)");
+  }
+}
+
+void readThinLens(JsonObject& camera, Camera& out) {
+  const LensKeys keys = readLensKeys(camera);
+  if (keys.focalLength || keys.sensorDistance) {
+    applySeedReportLens(keys, camera, out);
+  } else {
+    applyDirectLens(keys, camera, out);
+  }
+  if (out.apertureRadius > 0.0f) return;
+  // A lens without an aperture images like a pinhole; render it as one.
+  out.type = CameraType::Pinhole;
+  if (!keys.aperture && !keys.lensRadius) {
+    camera.diagnostics().warn(camera.childPath("type"),
+                              "thinlens camera without 'aperture' or 'lensRadius' renders as a "
+                              "pinhole");
+  }
+}
+
+void warnLensKeysOnPinhole(JsonObject& camera) {
+  for (const char* key : {"aperture", "size", "lensRadius", "focusdistance", "focus_dist",
+                          "focalDistance", "focal_length", "f", "focal", "d"}) {
+    camera.ignoreWithWarning(
+        key, std::string("thin lens key '") + key + "' ignored: the camera type is \"pinhole\"");
+  }
+}
+
+Camera readCamera(JsonObject& camera) {
+  Camera out;
+  out.type = readCameraType(camera.required("type"));
+  out.width = readImageSide(camera.required("width"));
+  out.height = readImageSide(camera.required("height"));
+  out.fovYDegrees = readFov(camera.required("fov"));
+  const std::optional<JsonNode> position = camera.optional("position");
+  out.position = position ? position->vec3() : kDefaultPosition;
+  out.forward = readForward(camera, out.position);
+  out.up = readUp(camera, out.forward);
+  if (const std::optional<JsonNode> exposure = camera.optional("exposure")) {
+    out.exposure = exposure->positiveFloat();
+  }
+  if (out.type == CameraType::ThinLens) {
+    readThinLens(camera, out);
+  } else {
+    warnLensKeysOnPinhole(camera);
+  }
+  return out;
+}
+
+// ------------------------------------------------------------------- lights
+
+bool isAreaLightType(std::string type) {
+  std::transform(type.begin(), type.end(), type.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return type.find("area") != std::string::npos;
+}
+
+struct LightIntensity {
+  glm::vec3 diffuse{1.0f};
+  glm::vec3 specular{1.0f};
+};
+
+// `intensity` (2019 and family B) sets both terms; family A gives `is`
+// (specular) and `id` (diffuse) separately.
+LightIntensity readIntensity(JsonObject& light) {
+  const std::optional<JsonNode> intensity = light.optional("intensity");
+  const std::optional<JsonNode> specular = light.optional("is");
+  const std::optional<JsonNode> diffuse = light.optional("id");
+  if (intensity) {
+    if (specular || diffuse) {
+      (specular ? specular : diffuse)->fail("conflicts with 'intensity': give intensity or is/id");
+    }
+    const glm::vec3 both = intensity->nonNegativeVec3();
+    return {both, both};
+  }
+  if (!specular && !diffuse) {
+    light.diagnostics().fail(light.childPath("intensity"),
+                             "missing: a light needs 'intensity', or both 'is' and 'id'");
+  }
+  LightIntensity out;
+  out.specular = light.required("is").nonNegativeVec3();
+  out.diffuse = light.required("id").nonNegativeVec3();
+  return out;
+}
+
+PointLight readPointLight(JsonObject& light) {
+  PointLight out;
+  out.position = light.required("position").vec3();
+  const LightIntensity intensity = readIntensity(light);
+  out.diffuseIntensity = intensity.diffuse;
+  out.specularIntensity = intensity.specular;
+  return out;
+}
+
+// Shadow rays per shading point; the students wrote `samples` or `nsamples`.
+constexpr int64_t kMaxLightSamples = 4096;
+
+uint32_t readLightSamples(JsonObject& light) {
+  const std::optional<JsonNode> node = light.optionalOneOf({"samples", "nsamples"});
+  return node ? static_cast<uint32_t>(node->integer(1, kMaxLightSamples)) : 1u;
+}
+
+// Every random dimension draws from the scene's one sampler; a light's own
+// `method`/`sampler` is honoured only when the scene names none.
+void readLightSampler(JsonObject& light, std::optional<SamplerKind>& lightSampler) {
+  const std::optional<JsonNode> node = light.optionalOneOf({"method", "sampler"});
+  if (!node) return;
+  const SamplerKind kind = parseSampler(*node);
+  if (lightSampler && *lightSampler != kind) {
+    node->warn("ignored: another light asks for a different sampler, the first one is used");
+    return;
+  }
+  lightSampler = kind;
+}
+
+// The emitting surface of an area light written with its own geometry:
+//   v0 v1 v2 [v3]        a triangle or a planar quad (julie-o, PFNK);
+//   position u v [width height]
+//                        a parallelogram centred on position with edges u
+//                        and v (with width/height: unit directions scaled);
+//   position radius      a sphere;
+//   position size        a sphere of diameter size (TsFreddie).
+Geometry readAreaLightGeometry(JsonObject& light) {
+  if (light.has("v0")) {
+    const glm::vec3 v0 = light.required("v0").vec3();
+    const glm::vec3 v1 = light.required("v1").vec3();
+    const glm::vec3 v2 = light.required("v2").vec3();
+    if (const std::optional<JsonNode> v3 = light.optional("v3"))
+      return Quad{v0, v1, v2, v3->vec3()};
+    return Triangle{v0, v1, v2};
+  }
+  const glm::vec3 position = light.required("position").vec3();
+  if (light.has("u") || light.has("v")) {
+    glm::vec3 u = light.required("u").vec3();
+    glm::vec3 v = light.required("v").vec3();
+    const std::optional<JsonNode> width = light.optional("width");
+    const std::optional<JsonNode> height = light.optional("height");
+    if (width) u = unitVector(light.required("u")) * width->positiveFloat();
+    if (height) v = unitVector(light.required("v")) * height->positiveFloat();
+    const glm::vec3 corner = position - 0.5f * (u + v);
+    return Quad{corner, corner + u, corner + u + v, corner + v};
+  }
+  if (const std::optional<JsonNode> radius = light.optional("radius")) {
+    return Sphere{position, radius->positiveFloat()};
+  }
+  if (const std::optional<JsonNode> size = light.optional("size")) {
+    return Sphere{position, size->positiveFloat() / 2.0f};
+  }
+  light.diagnostics().fail(light.childPath("shape"),
+                           "missing: an area light needs its surface: v0..v3, position with u "
+                           "and v, position with radius or size, or the id of a shape");
+}
+
+// Area of a light's own surface (spheres, triangles, quads).
+float surfaceArea(const Geometry& geometry) {
+  const auto triangleArea = [](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+    return 0.5f * glm::length(glm::cross(b - a, c - a));
+  };
+  if (const auto* t = std::get_if<Triangle>(&geometry)) return triangleArea(t->v0, t->v1, t->v2);
+  if (const auto* q = std::get_if<Quad>(&geometry)) {
+    return triangleArea(q->v0, q->v1, q->v2) + triangleArea(q->v0, q->v2, q->v3);
+  }
+  if (const auto* sphere = std::get_if<Sphere>(&geometry)) {
+    return 4.0f * 3.14159265f * sphere->radius * sphere->radius;
+  }
+  return 1.0f;
+}
+
+// A light source in the file, kept until the shapes are read (area lights
+// may name a shape by its id).
+struct PendingAreaLight {
+  AreaLight light;
+  std::optional<Geometry> geometry;  // its own surface, or
+  std::optional<JsonNode> shapeId;   // the id of the shape that emits
+};
+
+struct LightList {
+  std::vector<PendingAreaLight> areaLights;
+  std::optional<SamplerKind> sampler;  // asked for by the lights themselves
+};
+
+void readAreaLight(JsonObject& light, LightList& lights) {
+  PendingAreaLight pending;
+  const LightIntensity intensity = readIntensity(light);
+  pending.light.diffuseIntensity = intensity.diffuse;
+  pending.light.specularIntensity = intensity.specular;
+  pending.light.samples = readLightSamples(light);
+  if (const std::optional<JsonNode> profile = light.optional("emission")) {
+    const std::string name = profile->string();
+    if (name == "isotropic") {
+      pending.light.profile = EmissionProfile::Isotropic;
+    } else if (name == "lambertian" || name == "diffuse") {
+      pending.light.profile = EmissionProfile::Lambertian;
+    } else {
+      profile->fail("unknown emission '" + name + "' (expected \"isotropic\" or \"lambertian\")");
+    }
+  }
+  readLightSampler(light, lights.sampler);
+  pending.shapeId = light.optionalOneOf({"shape", "shapeid", "shapeId", "shape_id"});
+  if (!pending.shapeId) {
+    pending.geometry = readAreaLightGeometry(light);
+    if (!(surfaceArea(*pending.geometry) > 0.0f)) light.fail("area light has no area");
+  }
+  lights.areaLights.push_back(std::move(pending));
+}
+
+void readLight(const JsonNode& node, Scene& scene, LightList& lights) {
+  JsonObject light = node.object();
+  const JsonNode typeNode = light.required("type");
+  const std::string type = typeNode.string();
+  if (isAreaLightType(type)) {
+    readAreaLight(light, lights);
+  } else if (type == "pointlight") {
+    scene.pointLights.push_back(readPointLight(light));
+  } else {
+    typeNode.fail("unknown light type '" + type + "' (expected \"pointlight\" or \"arealight\")");
+  }
+  light.reportUnknownKeys();
+}
+
+// ---------------------------------------------------------------- materials
+
+// Some students ran from a build folder inside the scene's folder
+// ("../textures/x.jpg" next to demo.json): the path seen from a subfolder.
+fs::path seenFromSubfolder(const fs::path& written, const fs::path& sceneDir) {
+  auto part = written.begin();
+  if (written.is_absolute() || part == written.end() || *part != "..") return {};
+  fs::path rest;
+  for (++part; part != written.end(); ++part) rest /= *part;
+  return rest.empty() ? fs::path{} : (sceneDir / rest).lexically_normal();
+}
+
+// Texture paths in family A are relative to a build folder beside examples/,
+// so "../textures/x.jpg" works from the scene's own folder; the README also
+// allows the folder above it. Students' mesh paths follow the same habit
+// ("examples/monkey.ply" from examples/), and some ran from a folder inside
+// the scene's. `kind` names the file in messages.
+fs::path resolveRelative(const JsonNode& node, const fs::path& sceneDir, std::string_view kind) {
+  const fs::path written = node.nonEmptyString();
+  const fs::path parentDir = sceneDir.parent_path();
+  for (const fs::path& candidate :
+       {(sceneDir / written).lexically_normal(), (parentDir / written).lexically_normal(),
+        seenFromSubfolder(written, sceneDir)}) {
+    std::error_code ignored;
+    if (!candidate.empty() && fs::is_regular_file(candidate, ignored)) return candidate;
+  }
+  const std::string notFound = std::string(kind) + " file not found: " + written.string();
+  if (written.is_absolute()) node.fail(notFound);
+  node.fail(notFound + " (looked in " + sceneDir.string() + " and " + parentDir.string() + ")");
+}
+
+fs::path resolveTexture(const JsonNode& node, const fs::path& sceneDir) {
+  return resolveRelative(node, sceneDir, "texture");
+}
+
+// TsFreddie's files may name a texture ("checkerboard") where a weight belongs.
+std::optional<JsonNode> withoutTextureWeight(std::optional<JsonNode> node) {
+  if (node && node->raw().is_string()) {
+    node->warn("ignored: a texture as a weight is not supported");
+    return std::nullopt;
+  }
+  return node;
+}
+
+// One of two alias keys, the second of which may be a texture name (ignored).
+std::optional<JsonNode> weightOrAlias(JsonObject& material, const char* key, const char* alias) {
+  std::optional<JsonNode> node = material.optional(key);
+  std::optional<JsonNode> other = withoutTextureWeight(material.optional(alias));
+  if (node && other)
+    other->fail("conflicts with '" + node->path() + "': give only one of these aliases");
+  return node ? node : other;
+}
+
+// Family A: `kr` (TsFreddie: `metallic`). Family B: `reflectivity`, which
+// counts only when `isreflective` is true.
+float readReflectivity(JsonObject& material) {
+  const std::optional<JsonNode> kr = weightOrAlias(material, "kr", "metallic");
+  const std::optional<JsonNode> isReflective = material.optional("isreflective");
+  const std::optional<JsonNode> reflectivity = material.optional("reflectivity");
+  if (kr && (isReflective || reflectivity)) {
+    kr->fail("conflicts with 'isreflective'/'reflectivity': give one mirror weight");
+  }
+  if (kr) return kr->floatInRange(0.0f, 1.0f);
+  const float weight = reflectivity ? reflectivity->floatInRange(0.0f, 1.0f) : 1.0f;
+  if (isReflective) return isReflective->boolean() ? weight : 0.0f;
+  if (reflectivity) reflectivity->warn("ignored: it only applies with \"isreflective\": true");
+  return 0.0f;
+}
+
+// Family A: `kt` weight. Family B: `isrefractive` transmits what the mirror
+// weight (already read into `out`) leaves.
+void readRefraction(JsonObject& material, Material& out) {
+  const std::optional<JsonNode> kt = weightOrAlias(material, "kt", "transmit");
+  const std::optional<JsonNode> isRefractive = material.optional("isrefractive");
+  if (kt && isRefractive) kt->fail("conflicts with 'isrefractive': give one transmission weight");
+  if (kt) out.transmission = kt->floatInRange(0.0f, 1.0f);
+  if (isRefractive) out.transmission = isRefractive->boolean() ? 1.0f - out.reflectivity : 0.0f;
+  if (const std::optional<JsonNode> ior =
+          material.optionalOneOf({"eta", "ior", "refractiveIndex", "refractiveindex"})) {
+    out.ior = ior->positiveFloat();
+  }
+}
+
+// Decodes the texture once per file, however many materials use it.
+int32_t addTexture(const JsonNode& node, const fs::path& file, Scene& scene) {
+  for (size_t i = 0; i < scene.textures.size(); ++i) {
+    if (scene.textures[i].source == file.string()) return static_cast<int32_t>(i);
+  }
+  try {
+    scene.textures.push_back({file.string(), readImageRgba8(file)});
+  } catch (const Error& error) {
+    node.fail(std::string("cannot use texture: ") + error.what());
+  }
+  return static_cast<int32_t>(scene.textures.size() - 1);
+}
+
+// TsFreddie's procedural "checkerboard": 8 x 8 squares over the unit square.
+int32_t addCheckerboard(Scene& scene) {
+  for (size_t i = 0; i < scene.textures.size(); ++i) {
+    if (scene.textures[i].source == "checkerboard") return static_cast<int32_t>(i);
+  }
+  constexpr uint32_t kSide = 64;
+  constexpr uint32_t kSquare = 8;
+  ImageRgba8 image;
+  image.width = image.height = kSide;
+  image.rgba.resize(size_t{kSide} * kSide * 4);
+  for (uint32_t y = 0; y < kSide; ++y) {
+    for (uint32_t x = 0; x < kSide; ++x) {
+      const uint8_t value = ((x / kSquare + y / kSquare) % 2) ? 255 : 32;
+      uint8_t* pixel = &image.rgba[(size_t{y} * kSide + x) * 4];
+      pixel[0] = pixel[1] = pixel[2] = value;
+      pixel[3] = 255;
+    }
+  }
+  scene.textures.push_back({"checkerboard", std::move(image)});
+  return static_cast<int32_t>(scene.textures.size() - 1);
+}
+
+Material readMaterial(JsonObject& material, const fs::path& sceneDir, Scene& scene) {
+  Material out;
+  out.ks = material.required("ks").nonNegativeFloat();
+  out.kd = material.required("kd").nonNegativeFloat();
+  out.specularExponent = material.required("specularexponent").nonNegativeFloat();
+  out.diffuseColor = material.required("diffusecolor").nonNegativeVec3();
+  if (const std::optional<JsonNode> specular = material.optional("specularcolor")) {
+    out.specularColor = specular->nonNegativeVec3();
+  }
+  out.reflectivity = readReflectivity(material);
+  readRefraction(material, out);
+  if (const std::optional<JsonNode> texture =
+          material.optionalOneOf({"tPath", "texture", "texture_file", "texturepath", "diffuse"})) {
+    if (texture->raw() == "checkerboard") {
+      out.texture = "checkerboard";
+      out.diffuseTexture = addCheckerboard(scene);
+    } else {
+      out.texture = resolveTexture(*texture, sceneDir);
+      out.diffuseTexture = addTexture(*texture, out.texture, scene);
+    }
+  }
+  // The coursework's texture sizes do not match the real images; the image file decides.
+  material.ignore({"tWidth", "tHeight"});
+  material.ignoreWithWarning("roughness", "'roughness' ignored: mirror reflection is sharp");
+  material.ignoreWithWarning("ka", "'ka' ignored: there is no ambient term");
+  material.reportUnknownKeys();
+  return out;
+}
+
+// Shapes without a material are normal in binary mode (only hit/miss is drawn).
+uint32_t addShapeMaterial(JsonObject& shape, const ShapeContext& context, Scene& scene) {
+  Material material;
+  if (const std::optional<JsonNode> node = shape.optional("material")) {
+    JsonObject object = node->object();
+    material = readMaterial(object, context.sceneDir, scene);
+  } else if (context.mode != RenderMode::Binary) {
+    shape.diagnostics().warn(shape.childPath("material"), "missing; the default material is used");
+  }
+  scene.materials.push_back(std::move(material));
+  return static_cast<uint32_t>(scene.materials.size() - 1);
+}
+
+// ------------------------------------------------------------------- shapes
+
+Sphere readSphere(JsonObject& shape) {
+  return {shape.required("center").vec3(), shape.required("radius").positiveFloat()};
+}
+
+// Corners as a `vertices` array (TsFreddie's files) instead of v0, v1, ...
+std::optional<std::vector<glm::vec3>> readCornerArray(JsonObject& shape, size_t lowest,
+                                                      size_t highest) {
+  const std::optional<JsonNode> node = shape.optional("vertices");
+  if (!node) return std::nullopt;
+  std::vector<glm::vec3> corners;
+  for (const JsonNode& corner : node->array()) corners.push_back(corner.vec3());
+  if (corners.size() < lowest || corners.size() > highest) {
+    node->fail("expected " + std::to_string(lowest) +
+               (lowest == highest ? "" : " or " + std::to_string(highest)) + " vertices, got " +
+               std::to_string(corners.size()));
+  }
+  return corners;
+}
+
+// Four corners in cyclic order; three (v0 and its two neighbours, as
+// TsFreddie writes planes) span a parallelogram.
+Quad readQuad(JsonObject& shape) {
+  if (const auto corners = readCornerArray(shape, 3, 4)) {
+    const std::vector<glm::vec3>& c = *corners;
+    if (c.size() == 4) return {c[0], c[1], c[2], c[3]};
+    return {c[0], c[1], c[1] + c[2] - c[0], c[2]};
+  }
+  return {shape.required("v0").vec3(), shape.required("v1").vec3(), shape.required("v2").vec3(),
+          shape.required("v3").vec3()};
+}
+
+Triangle readTriangle(JsonObject& shape) {
+  if (const auto corners = readCornerArray(shape, 3, 3)) {
+    return {(*corners)[0], (*corners)[1], (*corners)[2]};
+  }
+  return {shape.required("v0").vec3(), shape.required("v1").vec3(), shape.required("v2").vec3()};
+}
+
+// Family B `height` is the half-length: the caps are at center +- axis * height.
+Cylinder readCylinder(JsonObject& shape) {
+  return {shape.required("center").vec3(), unitVector(shape.required("axis")),
+          shape.required("radius").positiveFloat(), shape.required("height").positiveFloat()};
+}
+
+uint32_t readVertexIndex(const JsonNode& node, size_t vertexCount) {
+  const int64_t index = node.integer();
+  if (index < 0 || static_cast<uint64_t>(index) >= vertexCount) {
+    node.fail("vertex index " + std::to_string(index) + " is out of range (the mesh has " +
+              std::to_string(vertexCount) + " vertices)");
+  }
+  return static_cast<uint32_t>(index);
+}
+
+// Polygons with more than three corners become a triangle fan around the
+// first corner, which is right for the convex faces the files contain.
+void appendFace(const JsonNode& face, TriangleMesh& mesh) {
+  const std::vector<JsonNode> corners = face.array();
+  if (corners.size() < 3) {
+    face.fail("a face needs at least 3 vertex indices, got " + std::to_string(corners.size()));
+  }
+  std::vector<uint32_t> indices;
+  for (const JsonNode& corner : corners) {
+    indices.push_back(readVertexIndex(corner, mesh.positions.size()));
+  }
+  for (size_t i = 1; i + 1 < indices.size(); ++i) {
+    mesh.faces.emplace_back(indices[0], indices[i], indices[i + 1]);
+  }
+}
+
+TriangleMesh readInlineMesh(JsonObject& shape) {
+  for (const char* key : {"center", "pos", "scale", "sizeScale"}) {
+    shape.ignoreWithWarning(key,
+                            std::string("mesh placement '") + key +
+                                "' is only applied to PLY meshes; ignored for inline vertices");
+  }
+  TriangleMesh mesh;
+  const JsonNode vertices = shape.required("vertices");
+  for (const JsonNode& vertex : vertices.array()) mesh.positions.push_back(vertex.vec3());
+  if (mesh.positions.empty()) vertices.fail("must list at least one vertex");
+  const std::optional<JsonNode> faces = shape.optionalOneOf({"faces", "tris"});
+  if (!faces) shape.diagnostics().fail(shape.childPath("faces"), "missing required key");
+  for (const JsonNode& face : faces->array()) appendFace(face, mesh);
+  if (mesh.faces.empty()) faces->fail("must list at least one face");
+  if (const std::optional<JsonNode> uvs = shape.optionalOneOf({"uv", "uvs"})) {
+    for (const JsonNode& uv : uvs->array()) {
+      const std::vector<JsonNode> pair = uv.array();
+      if (pair.size() != 2)
+        uv.fail("expected 2 texture coordinates, got " + std::to_string(pair.size()));
+      mesh.uvs.emplace_back(pair[0].floatValue(), pair[1].floatValue());
+    }
+    if (mesh.uvs.size() != mesh.positions.size()) {
+      uvs->fail("has " + std::to_string(mesh.uvs.size()) + " entries for " +
+                std::to_string(mesh.positions.size()) + " vertices");
+    }
+  }
+  return mesh;
+}
+
+// Students' placement of a PLY mesh: `center`/`pos` moves the model's own
+// origin there, `scale`/`sizeScale` scales it uniformly about that origin.
+glm::mat4 readPlacement(JsonObject& shape) {
+  glm::vec3 translation(0.0f);
+  float scale = 1.0f;
+  if (const std::optional<JsonNode> node = shape.optionalOneOf({"center", "pos"})) {
+    translation = node->vec3();
+  }
+  if (const std::optional<JsonNode> node = shape.optionalOneOf({"scale", "sizeScale"})) {
+    scale = node->positiveFloat();
+  }
+  return glm::scale(glm::translate(glm::mat4(1.0f), translation), glm::vec3(scale));
+}
+
+// Reads each PLY file once, however many shapes place it. PLY errors keep
+// their "<file>: byte <offset>: ..." and gain the JSON path in front.
+uint32_t addPlyMesh(const JsonNode& fileNode, ShapeContext& context, Scene& scene) {
+  const fs::path file = resolveRelative(fileNode, context.sceneDir, "mesh");
+  if (const auto found = context.plyMeshes.find(file); found != context.plyMeshes.end()) {
+    return found->second;
+  }
+  try {
+    scene.meshes.push_back(loadPly(file));
+  } catch (const Error& error) {
+    fileNode.fail(error.what());
+  }
+  const auto index = static_cast<uint32_t>(scene.meshes.size() - 1);
+  context.plyMeshes.emplace(file, index);
+  return index;
+}
+
+// A `trimesh` lists its vertices and faces inline or names a PLY file; a
+// `ply` shape (TsFreddie's files) always names one.
+MeshInstance readMesh(const JsonNode& typeNode, JsonObject& shape, ShapeContext& context,
+                      Scene& scene) {
+  const std::optional<JsonNode> file = shape.optionalOneOf({"mPath", "plyPath", "file", "path"});
+  if (!file && typeNode.string() == "ply") {
+    shape.diagnostics().fail(shape.childPath("file"),
+                             "missing: a ply shape needs its file (file, path, mPath or plyPath)");
+  }
+  if (!file) {
+    scene.meshes.push_back(readInlineMesh(shape));
+    return {static_cast<uint32_t>(scene.meshes.size() - 1), glm::mat4(1.0f)};
+  }
+  for (const char* key : {"vertices", "faces"}) {
+    if (shape.has(key)) {
+      shape.diagnostics().fail(shape.childPath(key), "conflicts with '" + file->path() +
+                                                         "': give inline vertices or a PLY file");
+    }
+  }
+  const uint32_t mesh = addPlyMesh(*file, context, scene);
+  return {mesh, readPlacement(shape)};
+}
+
+Geometry readGeometry(const JsonNode& typeNode, JsonObject& shape, ShapeContext& context,
+                      Scene& scene) {
+  const std::string type = typeNode.string();
+  if (type == "sphere") return readSphere(shape);
+  if (type == "plane") return readQuad(shape);
+  if (type == "triangle") return readTriangle(shape);
+  if (type == "cylinder") return readCylinder(shape);
+  if (type == "trimesh" || type == "ply") return readMesh(typeNode, shape, context, scene);
+  typeNode.fail("unknown shape type '" + type +
+                "' (expected sphere, plane, triangle, cylinder, trimesh or ply)");
+}
+
+void readShape(const JsonNode& node, ShapeContext& context, Scene& scene) {
+  JsonObject object = node.object();
+  Shape shape;
+  shape.geometry = readGeometry(object.required("type"), object, context, scene);
+  if (const std::optional<JsonNode> id = object.optional("id")) shape.label = id->string();
+  shape.material = addShapeMaterial(object, context, scene);
+  ignoreRendererKeys(object);
+  object.reportUnknownKeys();
+  scene.shapes.push_back(std::move(shape));
+}
+
+// -------------------------------------------------------------------- scene
+
+// The shape an area light names by its `id`: exactly one, not yet a light.
+uint32_t findLightShape(const JsonNode& id, const Scene& scene) {
+  const std::string label = id.nonEmptyString();
+  std::optional<uint32_t> found;
+  for (uint32_t i = 0; i < scene.shapes.size(); ++i) {
+    if (scene.shapes[i].label != label) continue;
+    if (found) id.fail("shape id '" + label + "' is not unique: give the light's shape one id");
+    found = i;
+  }
+  if (!found) id.fail("no shape has the id '" + label + "'");
+  for (const AreaLight& light : scene.areaLights) {
+    if (light.shape == *found) id.fail("shape '" + label + "' already is a light");
+  }
+  return *found;
+}
+
+// A light's own surface becomes a shape that only emits (black otherwise),
+// so that the camera and mirrors see it. Binary mode draws the file's shapes
+// only.
+void addAreaLights(const LightList& lights, RenderMode mode, Scene& scene) {
+  for (const PendingAreaLight& pending : lights.areaLights) {
+    AreaLight light = pending.light;
+    if (pending.shapeId) {
+      light.shape = findLightShape(*pending.shapeId, scene);
+    } else {
+      if (mode == RenderMode::Binary) continue;
+      Material emitter;
+      emitter.kd = 0.0f;
+      emitter.ks = 0.0f;
+      scene.materials.push_back(emitter);
+      Shape shape;
+      shape.geometry = *pending.geometry;
+      shape.material = static_cast<uint32_t>(scene.materials.size() - 1);
+      shape.label = "area light " + std::to_string(scene.areaLights.size());
+      scene.shapes.push_back(std::move(shape));
+      light.shape = static_cast<uint32_t>(scene.shapes.size() - 1);
+    }
+    scene.areaLights.push_back(light);
+  }
+}
+
+LightList readSceneObject(JsonObject& object, ShapeContext& context, Scene& scene) {
+  if (const std::optional<JsonNode> background = object.optional("backgroundcolor")) {
+    scene.backgroundColor = background->nonNegativeVec3();
+  }
+  LightList lights;
+  if (const std::optional<JsonNode> list = object.optional("lightsources")) {
+    for (const JsonNode& light : list->array()) readLight(light, scene, lights);
+  }
+  for (const JsonNode& shape : object.required("shapes").array()) {
+    readShape(shape, context, scene);
+  }
+  addAreaLights(lights, context.mode, scene);
+  ignoreRendererKeys(object);
+  for (const char* key : {"sampler", "method", "nsamples", "samples", "spp"}) {
+    object.ignoreWithWarning(key, std::string("'") + key +
+                                      "' inside scene is ignored: sampling settings are read at "
+                                      "the top level or in camera");
+  }
+  object.reportUnknownKeys();
+  return lights;
+}
+
+// A point inside each shape, for the default view.
+glm::vec3 shapeCenter(const Shape& shape, const Scene& scene) {
+  return std::visit(
+      [&](const auto& g) -> glm::vec3 {
+        using T = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<T, Sphere> || std::is_same_v<T, Cylinder>) return g.center;
+        if constexpr (std::is_same_v<T, Triangle>) return (g.v0 + g.v1 + g.v2) / 3.0f;
+        if constexpr (std::is_same_v<T, Quad>) return (g.v0 + g.v1 + g.v2 + g.v3) / 4.0f;
+        if constexpr (std::is_same_v<T, MeshInstance>) {
+          const TriangleMesh& mesh = scene.meshes.at(g.mesh);
+          glm::vec3 sum(0.0f);
+          for (const glm::vec3& p : mesh.positions) sum += p;
+          const glm::vec3 mean =
+              sum / static_cast<float>(std::max<size_t>(1, mesh.positions.size()));
+          return glm::vec3(g.objectToWorld * glm::vec4(mean, 1.0f));
+        }
+      },
+      shape.geometry);
+}
+
+// A camera without a view direction looks along the z axis (the 2019 file's
+// spheres lie at +z, TsFreddie's at -z): towards the side the shapes are
+// on, planes left out (floors and walls reach past the camera).
+void chooseDefaultView(Scene& scene) {
+  float side = 0.0f;
+  float planeSide = 0.0f;
+  for (const Shape& shape : scene.shapes) {
+    const float z = shapeCenter(shape, scene).z - scene.camera.position.z;
+    (std::holds_alternative<Quad>(shape.geometry) ? planeSide : side) += z;
+  }
+  if (side == 0.0f) side = planeSide;
+  if (side < 0.0f) scene.camera.forward = -kDefaultForward;
+}
+
+fs::path absoluteFolderOf(const fs::path& file) {
+  std::error_code failed;
+  const fs::path absolute = fs::absolute(file, failed);
+  return (failed ? file : absolute).lexically_normal().parent_path();
+}
+
+Scene readScene(std::string_view jsonText, const fs::path& file) {
+  Diagnostics diagnostics(file.string());
+  const Json document = parseJson(jsonText, file.string());
+  Scene scene;
+  scene.sourcePath = file;
+  JsonObject top = JsonNode(document, "", diagnostics).object();
+  ChosenConventions chosen = chooseConventions(top, document);
+  scene.settings.maxBounces = readBounces(top);
+  scene.settings.mode = readRenderMode(top);
+  scene.settings.distributedBounces = readDistributedBounces(top, scene.settings.mode);
+  scene.settings.indirectClamp = readIndirectClamp(top);
+  JsonObject camera = top.required("camera").object();
+  const bool defaultView = !camera.has("lookat") && !camera.has("lookAt");
+  scene.camera = readCamera(camera);
+  const bool samplerGiven = readSampling(top, camera, scene.settings);
+  camera.reportUnknownKeys();
+  JsonObject sceneObject = top.required("scene").object();
+  ShapeContext context{absoluteFolderOf(file), scene.settings.mode, {}};
+  const LightList lights = readSceneObject(sceneObject, context, scene);
+  if (lights.sampler && !samplerGiven) scene.settings.sampler = *lights.sampler;
+  if (defaultView) chooseDefaultView(scene);
+  setConventions(scene, chosen.conventions, std::move(chosen.reason));
+  ignoreRendererKeys(top);
+  top.reportUnknownKeys();
+  scene.warnings = diagnostics.takeWarnings();
+  makePrintable(scene.warnings);
+  return scene;
+}
+
+}  // namespace
+
+Scene parseJsonScene(std::string_view jsonText, const fs::path& file) {
+  return withPrintableErrors([&] { return readScene(jsonText, file); });
+}
+
+Scene loadJsonScene(const fs::path& file) {
+  return withPrintableErrors([&] { return readScene(readFileText(file), file); });
+}
+
+std::optional<SamplerKind> samplerKindNamed(const std::string& name) {
+  if (name == "random") return SamplerKind::Random;
+  if (name == "jittered" || name == "jittering") return SamplerKind::Jittered;
+  if (name == "sobol" || name == "owen-sobol" || name == "ld" || name == "lowdiscrepancy" ||
+      name == "low-discrepancy") {
+    return SamplerKind::Sobol;
+  }
+  return std::nullopt;
+}
+
+const char* samplerKindName(SamplerKind kind) {
+  switch (kind) {
+    case SamplerKind::Random: return "random";
+    case SamplerKind::Jittered: return "jittered";
+    case SamplerKind::Sobol: return "sobol";
+  }
+  return "unknown";
+}
+
+}  // namespace rt

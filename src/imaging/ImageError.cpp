@@ -1,0 +1,54 @@
+#include "imaging/ImageError.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "util/Error.hpp"
+
+namespace rt {
+
+double displayRmse(const ImageF& image, const ImageF& reference, const ToneMapping& mapping,
+                   const PixelRegion& region) {
+  if (image.width != reference.width || image.height != reference.height) {
+    throw Error(fmt::format("image is {}x{} but the reference is {}x{}", image.width, image.height,
+                            reference.width, reference.height));
+  }
+  const PixelRegion r = resolveRegion(region, image.width, image.height);
+  double sum = 0;
+  for (uint32_t y = r.y; y < r.y + r.height; ++y) {
+    for (uint32_t x = r.x; x < r.x + r.width; ++x) {
+      const float* a = image.pixel(x, y);
+      const float* b = reference.pixel(x, y);
+      for (int c = 0; c < 3; ++c) {
+        double d = double(displayValue(a[c], mapping)) - displayValue(b[c], mapping);
+        sum += d * d;
+      }
+    }
+  }
+  return std::sqrt(sum / (3.0 * r.width * r.height));
+}
+
+std::optional<double> estimateDisplayRmse(const SampleSums& sums, const ToneMapping& mapping,
+                                          const PixelRegion& region) {
+  const PixelRegion r = resolveRegion(region, sums.width, sums.height);
+  double sum = 0;
+  for (uint32_t y = r.y; y < r.y + r.height; ++y) {
+    for (uint32_t x = r.x; x < r.x + r.width; ++x) {
+      const size_t i = size_t(y) * sums.width + x;
+      const glm::vec4 odd = sums.odd[i];
+      const glm::vec4 even = sums.all[i] - odd;
+      if (!(odd.w > 0.0f && even.w > 0.0f)) return std::nullopt;
+      const double n = double(even.w) + odd.w;
+      const double weight = double(even.w) * odd.w / (n * n);
+      for (int c = 0; c < 3; ++c) {
+        double d =
+            double(displayValue(even[c] / even.w, mapping)) - displayValue(odd[c] / odd.w, mapping);
+        sum += d * d * weight;
+      }
+    }
+  }
+  return std::sqrt(sum / (3.0 * r.width * r.height));
+}
+
+}  // namespace rt
