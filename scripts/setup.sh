@@ -14,7 +14,26 @@ PACKAGES=(
   # clang with its sanitizer and libFuzzer runtimes (scripts/build-sanitized.sh)
   clang-14 libclang-rt-14-dev
   clang-format
+  python3-venv  # rtfarm's virtual environment (farm_venv below)
 )
+
+# rtfarm (farm/, README "Render farm (Ray)") in build/farm-venv, with Debian's
+# python3 (every node of a Ray cluster needs the same Python and Ray); made
+# again only when farm/pyproject.toml or farm/constraints.txt change.
+farm_venv() {
+  local root venv wanted
+  root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+  venv="$root/build/farm-venv"
+  wanted=$(cat "$root/farm/pyproject.toml" "$root/farm/constraints.txt" | sha256sum | cut -d' ' -f1)
+  if [[ -x "$venv/bin/rtfarm" && "$(cat "$venv/.rtfarm-installed" 2>/dev/null)" == "$wanted" ]]; then
+    return 0
+  fi
+  echo "setup: installing rtfarm and Ray into $venv" >&2
+  /usr/bin/python3 -m venv "$venv"
+  "$venv/bin/pip" install -q --disable-pip-version-check --no-input \
+    -c "$root/farm/constraints.txt" -e "$root/farm[test]"
+  echo "$wanted" >"$venv/.rtfarm-installed"
+}
 
 missing=()
 for pkg in "${PACKAGES[@]}"; do
@@ -23,6 +42,7 @@ for pkg in "${PACKAGES[@]}"; do
 done
 
 if ((${#missing[@]} == 0)); then
+  farm_venv
   exit 0
 fi
 
@@ -34,3 +54,4 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+farm_venv
