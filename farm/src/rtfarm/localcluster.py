@@ -68,6 +68,8 @@ class LocalCluster:
         self.cpus_per_node = cpus_per_node
         self.env = {**os.environ, **(env or {})}
         self.env.pop("RAY_ADDRESS", None)
+        # The workers' temporary files go when the cluster does.
+        self.env["TMPDIR"] = str(self.root / "tmp")
         self.port = free_port()
         self.address = f"127.0.0.1:{self.port}"
         self.nodes: list[Node] = []
@@ -84,6 +86,7 @@ class LocalCluster:
         self.stop()
 
     def start(self) -> None:
+        (self.root / "tmp").mkdir()
         for index in range(self.node_count):
             self.add_node()
         self.wait_for_nodes(self.node_count)

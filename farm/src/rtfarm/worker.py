@@ -14,6 +14,7 @@ from __future__ import annotations
 import ctypes
 import os
 import re
+import shutil
 import signal
 import socket
 import subprocess
@@ -30,6 +31,7 @@ from rtfarm.raytracer import find_raytracer, last_error_line
 _PROGRESS = re.compile(r"^progress\s+(\d+)%")
 _SUMMARY = re.compile(r"^rendered (\d+)x(\d+) at (\d+) spp in ([0-9.]+) s")
 _PR_SET_PDEATHSIG = 1
+_FOLDER_PREFIX = "rtfarm-part-"  # + the worker's pid: see _remove_orphans
 
 
 class RenderFailed(Exception):
@@ -148,13 +150,22 @@ def _run(command: list[str], messages: _Messages) -> int:
     return process.wait()
 
 
+def _remove_orphans() -> None:
+    """Part folders of workers that were killed (and so never removed theirs)."""
+    for folder in Path(tempfile.gettempdir()).glob(f"{_FOLDER_PREFIX}*-*"):
+        owner = folder.name[len(_FOLDER_PREFIX) :].split("-", 1)[0]
+        if owner.isdigit() and not Path(f"/proc/{owner}").exists():
+            shutil.rmtree(folder, ignore_errors=True)
+
+
 def render_part(bundle: Bundle, job: RenderJob, part: Part, board=None) -> PartResult:
     """The Ray task: renders `part` of the bundle's scene; its EXR bytes."""
     try:
         raytracer = find_raytracer(job.raytracer)
     except FarmError as error:
         raise RenderFailed(str(error)) from None
-    with tempfile.TemporaryDirectory(prefix="rtfarm-part-") as folder:
+    _remove_orphans()
+    with tempfile.TemporaryDirectory(prefix=f"{_FOLDER_PREFIX}{os.getpid()}-") as folder:
         tree = Path(folder) / "scene"
         scene = unpack(bundle, tree)
         camera_path = None
