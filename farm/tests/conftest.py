@@ -41,7 +41,12 @@ def cluster(raytracer):
         yield started
 
 
-def run_farm(*args, timeout: float = FARM_TIMEOUT_SECONDS, **popen) -> subprocess.CompletedProcess:
+def run_farm(*args, cluster=None, timeout: float = FARM_TIMEOUT_SECONDS,
+             **popen) -> subprocess.CompletedProcess:
+    """rtfarm ARGS, on `cluster` (its address and token) when given."""
+    if cluster is not None:
+        args = (*args, "--address", cluster.address)
+        popen["env"] = cluster.client_env
     return subprocess.run([*RTFARM, *map(str, args)], capture_output=True, text=True,
                           timeout=timeout, **popen)
 

@@ -10,7 +10,7 @@ def test_frames_of_a_camera_path(cluster, raytracer, tmp_path):
     frames = tmp_path / "frames"
     done = run_farm("animate", DEFAULT_SCENE, tmp_path / "orbit.path", frames, "--frames", "1:4",
                     "--name", "f%02d.exr", "--size", "32x24", "--spp", 4, "--tasks-per-frame", 2,
-                    "--address", cluster.address)
+                    cluster=cluster)
     assert done.returncode == 0, done.stderr
     assert sorted(path.name for path in frames.iterdir()) == ["f01.exr", "f02.exr", "f03.exr"]
     assert "6/6 tasks" in done.stderr

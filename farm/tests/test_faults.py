@@ -48,7 +48,8 @@ def kill_mid_part(farm: subprocess.Popen, node, kill) -> tuple[int, int] | None:
 def start_long_render(cluster, output):
     return subprocess.Popen([*RTFARM, "render", str(DEFAULT_SCENE), str(output), *LONG_RENDER,
                              "--preview-every", "0.2", "--address", cluster.address],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                            env=cluster.client_env)
 
 
 def finish(farm: subprocess.Popen) -> str:
@@ -116,7 +117,7 @@ def test_a_broken_scene_stops_the_render_with_its_error(cluster, tmp_path):
     scene.write_text(DEFAULT_SCENE.read_text().replace('"kd": 0.9', '"kd": "much"', 1))
     start = time.monotonic()
     done = run_farm("render", "broken.json", "out.png", "--spp", 8, "--tasks", 8, "--size", "32x24",
-                    "--address", cluster.address, cwd=tmp_path)
+                    cluster=cluster, cwd=tmp_path)
     assert done.returncode == 1
     assert one_error_line(done.stderr) == (
         "error: broken.json: scene.shapes[0].material.kd: expected a number, got string")

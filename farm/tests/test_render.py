@@ -11,7 +11,7 @@ PROGRESS_DONE = re.compile(r"^rtfarm: (\d+)/(\d+) tasks, 0 running, [0-9.e+-]+ M
 
 
 def farm_render(cluster, scene, output, *args):
-    done = run_farm("render", scene, output, "--address", cluster.address, *args)
+    done = run_farm("render", scene, output, *args, cluster=cluster)
     assert done.returncode == 0, done.stderr
     return done
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import secrets
 import shutil
 import signal
 import socket
@@ -24,7 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 _RAY = str(Path(sys.executable).with_name("ray"))
-_STOP_GRACE_SECONDS = 5.0
+_STOP_GRACE_SECONDS = 2.0
 
 
 def free_port() -> int:
@@ -66,13 +67,23 @@ class LocalCluster:
         self.root = Path(tempfile.mkdtemp(prefix="rtf-", dir="/tmp"))
         self.node_count = nodes
         self.cpus_per_node = cpus_per_node
-        self.env = {**os.environ, **(env or {})}
+        # Ray's token authentication, with a token of this cluster's own: the
+        # same whatever ~/.ray/auth_token holds, and no one else's cluster.
+        self.auth = {"RAY_AUTH_MODE": "token", "RAY_AUTH_TOKEN": secrets.token_hex(32)}
+        self.env = {**os.environ, **(env or {}), **self.auth}
         self.env.pop("RAY_ADDRESS", None)
         # The workers' temporary files go when the cluster does.
         self.env["TMPDIR"] = str(self.root / "tmp")
         self.port = free_port()
         self.address = f"127.0.0.1:{self.port}"
         self.nodes: list[Node] = []
+
+    @property
+    def client_env(self) -> dict[str, str]:
+        """The environment a driver (rtfarm) needs to join this cluster."""
+        client = {**os.environ, **self.auth}
+        client.pop("RAY_ADDRESS", None)
+        return client
 
     def __enter__(self) -> "LocalCluster":
         try:
@@ -146,7 +157,8 @@ def main() -> int:
     arguments = parser.parse_args()
     command = arguments.command[1:] if arguments.command[:1] == ["--"] else arguments.command
     with LocalCluster(arguments.nodes, arguments.cpus_per_node) as cluster:
-        return subprocess.call([part.replace("{address}", cluster.address) for part in command])
+        return subprocess.call([part.replace("{address}", cluster.address) for part in command],
+                               env=cluster.client_env)
 
 
 if __name__ == "__main__":
