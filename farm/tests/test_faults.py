@@ -123,3 +123,14 @@ def test_a_broken_scene_stops_the_render_with_its_error(cluster, tmp_path):
         "error: broken.json: scene.shapes[0].material.kd: expected a number, got string")
     assert time.monotonic() - start < 60, "the render should stop at the first refusal"
     assert sorted(path.name for path in tmp_path.iterdir()) == ["broken.json"]
+
+
+def test_a_driver_without_the_token_is_told_so(cluster, tmp_path):
+    env = {name: value for name, value in cluster.client_env.items() if not name.startswith("RAY_AUTH")}
+    env["HOME"] = str(tmp_path)  # no ~/.ray/auth_token either
+    done = run_farm("render", DEFAULT_SCENE, tmp_path / "out.png", "--address", cluster.address, env=env)
+    assert done.returncode == 1
+    assert one_error_line(done.stderr) == (
+        f"error: the Ray cluster {cluster.address} refused this machine's token: set RAY_AUTH_MODE=token "
+        "and the cluster's token (~/.ray/auth_token or RAY_AUTH_TOKEN)")
+    assert list(tmp_path.iterdir()) == []

@@ -10,9 +10,12 @@ with the raytracer's one-line error, the other tasks cancelled.
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import os
 import socket
+import sys
+import tempfile
 import time
 from dataclasses import dataclass
 from typing import Callable
@@ -52,21 +55,53 @@ def _check_reachable(address: str) -> None:
 def connect(address: str | None) -> None:
     """Joins the Ray cluster at `address`; without one, the cluster this
     machine belongs to (RAY_ADDRESS, `ray start`), else a new local one."""
+    _check_reachable(address or os.environ.get("RAY_ADDRESS", ""))
+    with _stderr_kept() as ray_messages:
+        try:
+            _init(address)
+            return
+        except (ConnectionError, RuntimeError, ValueError) as error:
+            failure = error
+    where = f" {address}" if address else ""
+    if "InvalidAuthToken" in ray_messages.text:
+        raise FarmError(f"the Ray cluster{where} refused this machine's token: set RAY_AUTH_MODE=token "
+                        "and the cluster's token (~/.ray/auth_token or RAY_AUTH_TOKEN)")
+    raise FarmError(f"cannot connect to the Ray cluster{where}: {_one_line(failure)}")
+
+
+def _init(address: str | None) -> None:
     import ray
 
-    _check_reachable(address or os.environ.get("RAY_ADDRESS", ""))
     quiet = {"logging_level": logging.ERROR, "log_to_driver": False}
+    if address or os.environ.get("RAY_ADDRESS"):
+        ray.init(address=address, **quiet)
+        return
     try:
-        if address or os.environ.get("RAY_ADDRESS"):
-            ray.init(address=address, **quiet)
-            return
-        try:
-            ray.init(address="auto", **quiet)
-        except ConnectionError:
-            ray.init(include_dashboard=False, **quiet)
-    except (ConnectionError, RuntimeError, ValueError) as error:
-        first_line = str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
-        raise FarmError(f"cannot connect to the Ray cluster {address or ''}: {first_line}") from None
+        ray.init(address="auto", **quiet)
+    except ConnectionError:
+        ray.init(include_dashboard=False, **quiet)
+
+
+class _stderr_kept(contextlib.AbstractContextManager):
+    """Keeps what Ray's C++ core writes to stderr while it connects (a line
+    per failed attempt) out of the user's terminal, for the error to read."""
+
+    def __enter__(self):
+        sys.stderr.flush()
+        self.file = tempfile.TemporaryFile(mode="w+")
+        self.saved = os.dup(2)
+        os.dup2(self.file.fileno(), 2)
+        self.text = ""
+        return self
+
+    def __exit__(self, *exc):
+        sys.stderr.flush()
+        os.dup2(self.saved, 2)
+        os.close(self.saved)
+        self.file.seek(0)
+        self.text = self.file.read()
+        self.file.close()
+        return False
 
 
 def disconnect() -> None:
@@ -143,8 +178,9 @@ class PartRunner:
                     self.running.pop(part.index, None)
                     on_result(part, result)
                     self.progress.part_done(part, result.pixel_samples)
-                self._read_board(set(pending.values()))
-                self.progress.show(self.running)
+                if pending:  # the caller writes the last line
+                    self._read_board(set(pending.values()))
+                    self.progress.show(self.running)
         finally:
             for ref in pending:
                 ray.cancel(ref, force=True)
