@@ -93,9 +93,11 @@ def test_a_worker_killed_mid_render(cluster, long_reference, tmp_path):
 
 @pytest.fixture
 def quickly_failing_cluster(raytracer):
-    """Its own two nodes (one of them will die), whose head notices a dead node in about a second."""
-    health = {"RAY_health_check_period_ms": "300", "RAY_health_check_timeout_ms": "300",
-              "RAY_health_check_failure_threshold": "3"}
+    """Its own two nodes (one of them will die), whose head notices a dead
+    node in a few seconds (Ray's default: about half a minute), yet not a
+    live one that a loaded CI machine answers late."""
+    health = {"RAY_health_check_period_ms": "500", "RAY_health_check_timeout_ms": "1000",
+              "RAY_health_check_failure_threshold": "4"}
     with LocalCluster(nodes=2, cpus_per_node=1, env={"RTFARM_RAYTRACER": raytracer, **health}) as cluster:
         yield cluster
 

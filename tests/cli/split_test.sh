@@ -2,7 +2,7 @@
 # What the render farm (farm/, rtfarm) asks of build/raytracer: tiles
 # (--region) that merge into the whole image, merge writing a scene's own
 # 8-bit conventions (--scene), and frames of a viewer camera path rendered
-# headless (--camera-path, --frame, --frame-count).
+# headless (--camera-path, --frame, --frame-count) as the viewer shows them.
 # Usage: split_test.sh RAYTRACER SCENES_DIR SCRATCH_DIR
 set -u
 RAYTRACER=$1
@@ -63,5 +63,20 @@ expect_failure out "focus cannot be replayed" "focus.txt:2: 'focus' needs the vi
 printf 'orbit 1\n' >"$SCRATCH/broken.txt"
 expect_failure out "broken camera path" "broken.txt:1: 'orbit' takes 2 argument\(s\), got 1" \
   --camera-path "$SCRATCH/broken.txt" --frame-count
+
+# The viewer shows the same frame (under Xvfb, when installed): its screenshot
+# after the path's moves equals the headless render of that frame, bit for bit.
+if command -v xvfb-run >/dev/null; then
+  printf 'orbit 30 10\nzoom 2\npan 15 -10\nwait 5\nscreenshot %s\n' "$SCRATCH/viewer.png" >"$SCRATCH/viewer.path"
+  xvfb-run -a -s "-screen 0 1280x1024x24" "$RAYTRACER" view "$SCENE" --size 64x48 --max-spp 2 \
+    --spp-per-frame 1 --frames 10 --no-overlay --no-watch --camera-path "$SCRATCH/viewer.path" \
+    >"$SCRATCH/viewer.log" 2>&1 || fail "viewer run: $(tail -3 "$SCRATCH/viewer.log")"
+  "$RAYTRACER" "$SCENE" "$SCRATCH/headless.png" --size 64x48 --spp 2 -q \
+    --camera-path "$SCRATCH/viewer.path" --frame 7 &&
+    cmp -s "$SCRATCH/viewer.png" "$SCRATCH/headless.png" && pass ||
+    fail "frame 7 of the path differs from the viewer's screenshot of it"
+else
+  echo "SKIP: xvfb-run is not installed; the viewer comparison needs a display"
+fi
 
 finish "split"

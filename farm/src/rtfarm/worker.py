@@ -12,6 +12,7 @@ like a worker that died).
 from __future__ import annotations
 
 import ctypes
+import functools
 import os
 import re
 import shutil
@@ -66,6 +67,19 @@ def _die_with_parent() -> None:
     libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
 
 
+@functools.lru_cache(maxsize=4)
+def _vulkan_gpus(raytracer: str) -> tuple[str, ...]:
+    """The device numbers of the machine's Vulkan GPUs (asked once per worker)."""
+    listing = subprocess.run(
+        [raytracer, "--device", "list"], capture_output=True, text=True, check=False
+    ).stdout
+    return tuple(
+        line.split(":", 1)[0]
+        for line in listing.splitlines()
+        if re.match(r"^\d+: ", line) and "(CPU," not in line
+    )
+
+
 def _gpu_device_args(raytracer: str) -> list[str]:
     """--device N for the GPU Ray gave this task: its position among the
     machine's Vulkan GPUs (both list them in PCI order); none without one."""
@@ -74,14 +88,7 @@ def _gpu_device_args(raytracer: str) -> list[str]:
     gpu_ids = ray.get_gpu_ids()
     if not gpu_ids:
         return []
-    listing = subprocess.run(
-        [raytracer, "--device", "list"], capture_output=True, text=True, check=False
-    ).stdout
-    gpus = [
-        line.split(":", 1)[0]
-        for line in listing.splitlines()
-        if re.match(r"^\d+: ", line) and "(CPU," not in line
-    ]
+    gpus = _vulkan_gpus(raytracer)
     position = int(gpu_ids[0])
     return ["--device", gpus[position]] if position < len(gpus) else []
 
