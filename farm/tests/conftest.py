@@ -41,14 +41,16 @@ def cluster(raytracer):
         yield started
 
 
-def run_farm(*args, cluster=None, timeout: float = FARM_TIMEOUT_SECONDS,
-             **popen) -> subprocess.CompletedProcess:
+def run_farm(
+    *args, cluster=None, timeout: float = FARM_TIMEOUT_SECONDS, **popen
+) -> subprocess.CompletedProcess:
     """rtfarm ARGS, on `cluster` (its address and token) when given."""
     if cluster is not None:
         args = (*args, "--address", cluster.address)
         popen["env"] = cluster.client_env
-    return subprocess.run([*RTFARM, *map(str, args)], capture_output=True, text=True,
-                          timeout=timeout, **popen)
+    return subprocess.run(
+        [*RTFARM, *map(str, args)], capture_output=True, text=True, timeout=timeout, **popen
+    )
 
 
 def render_single(raytracer: str, scene, output, *args) -> None:
@@ -116,7 +118,9 @@ _SCENE_WITH_FILES = """{"nbounces": 2,
 
 
 def checker_ppm(side: int = 8) -> bytes:
-    pixels = bytes(255 if (x + y) % 2 else 40 for y in range(side) for x in range(side) for _ in range(3))
+    pixels = bytes(
+        255 if (x + y) % 2 else 40 for y in range(side) for x in range(side) for _ in range(3)
+    )
     return f"P6 {side} {side} 255\n".encode() + pixels
 
 

@@ -42,7 +42,9 @@ def test_a_missing_texture_is_left_for_the_renderer_to_report(tmp_path):
 
 def test_absolute_paths_are_refused_with_the_file_named(tmp_path):
     scene = write_scene_with_files(tmp_path)
-    text = scene.read_text().replace('"mesh.ply"', json.dumps(str(scene.parent.parent / "mesh.ply")))
+    text = scene.read_text().replace(
+        '"mesh.ply"', json.dumps(str(scene.parent.parent / "mesh.ply"))
+    )
     scene.write_text(text)
     with pytest.raises(FarmError, match=r"scene\.json: '/.*mesh\.ply' is an absolute path"):
         make_bundle(str(scene))
@@ -52,15 +54,25 @@ def test_gltf_buffers_and_images_are_found_by_uri(tmp_path):
     (tmp_path / "my buffer.bin").write_bytes(b"\0" * 8)
     (tmp_path / "images").mkdir()
     (tmp_path / "images" / "base.png").write_bytes(b"png")
-    document = {"buffers": [{"uri": "my%20buffer.bin"}, {"uri": "data:application/octet-stream;base64,AA=="}],
-                "images": [{"uri": "images/base.png"}]}
+    document = {
+        "buffers": [
+            {"uri": "my%20buffer.bin"},
+            {"uri": "data:application/octet-stream;base64,AA=="},
+        ],
+        "images": [{"uri": "images/base.png"}],
+    }
     gltf = tmp_path / "model.gltf"
     gltf.write_text(json.dumps(document))
     expected = [tmp_path / "my buffer.bin", tmp_path / "images" / "base.png"]
     assert referenced_files(gltf, gltf.read_bytes()) == expected
     chunk = json.dumps(document).encode().ljust(4 * ((len(json.dumps(document)) + 3) // 4))
     glb = tmp_path / "model.glb"
-    glb.write_bytes(b"glTF" + struct.pack("<II", 2, 20 + len(chunk)) + struct.pack("<II", len(chunk), 0x4E4F534A) + chunk)
+    glb.write_bytes(
+        b"glTF"
+        + struct.pack("<II", 2, 20 + len(chunk))
+        + struct.pack("<II", len(chunk), 0x4E4F534A)
+        + chunk
+    )
     assert referenced_files(glb, glb.read_bytes()) == expected
 
 
@@ -74,5 +86,7 @@ def test_scene_defaults_read_the_sample_count_and_size(tmp_path):
 
 def test_an_unreadable_scene_is_named_as_given(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    with pytest.raises(FarmError, match=r"^nope\.json: cannot open scene: No such file or directory$"):
+    with pytest.raises(
+        FarmError, match=r"^nope\.json: cannot open scene: No such file or directory$"
+    ):
         make_bundle("nope.json")

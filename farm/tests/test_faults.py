@@ -9,8 +9,15 @@ from pathlib import Path
 
 import pytest
 
-from conftest import (DEFAULT_SCENE, FARM_TIMEOUT_SECONDS, RTFARM, assert_same_image, one_error_line,
-                      render_single, run_farm)
+from conftest import (
+    DEFAULT_SCENE,
+    FARM_TIMEOUT_SECONDS,
+    RTFARM,
+    assert_same_image,
+    one_error_line,
+    render_single,
+    run_farm,
+)
 from rtfarm.localcluster import LocalCluster
 
 # Parts of a few seconds each on one CPU, so that a kill lands mid-part.
@@ -46,10 +53,23 @@ def kill_mid_part(farm: subprocess.Popen, node, kill) -> tuple[int, int] | None:
 
 
 def start_long_render(cluster, output):
-    return subprocess.Popen([*RTFARM, "render", str(DEFAULT_SCENE), str(output), *LONG_RENDER,
-                             "--preview-every", "0.2", "--address", cluster.address],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
-                            env=cluster.client_env)
+    return subprocess.Popen(
+        [
+            *RTFARM,
+            "render",
+            str(DEFAULT_SCENE),
+            str(output),
+            *LONG_RENDER,
+            "--preview-every",
+            "0.2",
+            "--address",
+            cluster.address,
+        ],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=cluster.client_env,
+    )
 
 
 def finish(farm: subprocess.Popen) -> str:
@@ -96,9 +116,14 @@ def quickly_failing_cluster(raytracer):
     """Its own two nodes (one of them will die), whose head notices a dead
     node in a few seconds (Ray's default: about half a minute), yet not a
     live one that a loaded CI machine answers late."""
-    health = {"RAY_health_check_period_ms": "500", "RAY_health_check_timeout_ms": "1000",
-              "RAY_health_check_failure_threshold": "4"}
-    with LocalCluster(nodes=2, cpus_per_node=1, env={"RTFARM_RAYTRACER": raytracer, **health}) as cluster:
+    health = {
+        "RAY_health_check_period_ms": "500",
+        "RAY_health_check_timeout_ms": "1000",
+        "RAY_health_check_failure_threshold": "4",
+    }
+    with LocalCluster(
+        nodes=2, cpus_per_node=1, env={"RTFARM_RAYTRACER": raytracer, **health}
+    ) as cluster:
         yield cluster
 
 
@@ -118,21 +143,38 @@ def test_a_broken_scene_stops_the_render_with_its_error(cluster, tmp_path):
     scene = tmp_path / "broken.json"
     scene.write_text(DEFAULT_SCENE.read_text().replace('"kd": 0.9', '"kd": "much"', 1))
     start = time.monotonic()
-    done = run_farm("render", "broken.json", "out.png", "--spp", 8, "--tasks", 8, "--size", "32x24",
-                    cluster=cluster, cwd=tmp_path)
+    done = run_farm(
+        "render",
+        "broken.json",
+        "out.png",
+        "--spp",
+        8,
+        "--tasks",
+        8,
+        "--size",
+        "32x24",
+        cluster=cluster,
+        cwd=tmp_path,
+    )
     assert done.returncode == 1
     assert one_error_line(done.stderr) == (
-        "error: broken.json: scene.shapes[0].material.kd: expected a number, got string")
+        "error: broken.json: scene.shapes[0].material.kd: expected a number, got string"
+    )
     assert time.monotonic() - start < 60, "the render should stop at the first refusal"
     assert sorted(path.name for path in tmp_path.iterdir()) == ["broken.json"]
 
 
 def test_a_driver_without_the_token_is_told_so(cluster, tmp_path):
-    env = {name: value for name, value in cluster.client_env.items() if not name.startswith("RAY_AUTH")}
+    env = {
+        name: value for name, value in cluster.client_env.items() if not name.startswith("RAY_AUTH")
+    }
     env["HOME"] = str(tmp_path)  # no ~/.ray/auth_token either
-    done = run_farm("render", DEFAULT_SCENE, tmp_path / "out.png", "--address", cluster.address, env=env)
+    done = run_farm(
+        "render", DEFAULT_SCENE, tmp_path / "out.png", "--address", cluster.address, env=env
+    )
     assert done.returncode == 1
     assert one_error_line(done.stderr) == (
         f"error: the Ray cluster {cluster.address} refused this machine's token: set RAY_AUTH_MODE=token "
-        "and the cluster's token (~/.ray/auth_token or RAY_AUTH_TOKEN)")
+        "and the cluster's token (~/.ray/auth_token or RAY_AUTH_TOKEN)"
+    )
     assert list(tmp_path.iterdir()) == []

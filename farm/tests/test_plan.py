@@ -10,7 +10,9 @@ def coverage(parts, width, height):
     """How many times each (pixel row, sample) pair is rendered."""
     counts = {}
     for part in parts:
-        rows = range(part.region[1], part.region[1] + part.region[3]) if part.region else range(height)
+        rows = (
+            range(part.region[1], part.region[1] + part.region[3]) if part.region else range(height)
+        )
         assert part.region is None or (part.region[0], part.region[2]) == (0, width)
         for row in rows:
             for sample in range(part.first_sample, part.end_sample):
@@ -23,7 +25,9 @@ def test_split_evenly_covers_the_range_in_near_equal_pieces():
     assert split_evenly(4, 4) == [(0, 1), (1, 2), (2, 3), (3, 4)]
 
 
-@pytest.mark.parametrize("spp,tasks,tiles", [(16, 4, 1), (16, 5, 1), (3, 8, None), (1, 6, None), (7, 7, 2)])
+@pytest.mark.parametrize(
+    "spp,tasks,tiles", [(16, 4, 1), (16, 5, 1), (3, 8, None), (1, 6, None), (7, 7, 2)]
+)
 def test_still_parts_render_every_sample_of_every_pixel_once(spp, tasks, tiles):
     width, height = 32, 24
     tiles = tiles or tiles_for(tasks, spp)

@@ -20,9 +20,11 @@ def test_messages_give_progress_samples_and_the_users_file_names():
     board = Board()
     part = Part(5, 0, 8, region=(0, 0, 32, 6), pixel_share=0.25)
     messages = _Messages(part, board, {"/tmp/rtfarm-part-1-x/scene/": "scenes/"})
-    for line in ["warning: /tmp/rtfarm-part-1-x/scene/sub/a.json: scene.foo: unknown key",
-                 "progress  50%    4.0/8 spp     0.11 Msamples/s  ETA   0.0 s",
-                 "rendered 32x24 at 8 spp in 0.012 s (0.26 Msamples/s) on llvmpipe"]:
+    for line in [
+        "warning: /tmp/rtfarm-part-1-x/scene/sub/a.json: scene.foo: unknown key",
+        "progress  50%    4.0/8 spp     0.11 Msamples/s  ETA   0.0 s",
+        "rendered 32x24 at 8 spp in 0.012 s (0.26 Msamples/s) on llvmpipe",
+    ]:
         messages.read(line + "\n")
     assert board.reports == [(5, 0.5)]
     assert messages.pixel_samples == 32 * 24 * 0.25 * 8

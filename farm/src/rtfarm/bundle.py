@@ -210,4 +210,6 @@ def scene_defaults(bundle: Bundle) -> SceneDefaults:
     for where in (document, camera):
         for key in ("spp", "nsamples", "samples"):
             spp = spp or _whole(where.get(key))
-    return SceneDefaults(spp or _DEFAULT_SPP, _whole(camera.get("width")), _whole(camera.get("height")))
+    return SceneDefaults(
+        spp or _DEFAULT_SPP, _whole(camera.get("width")), _whole(camera.get("height"))
+    )

@@ -92,8 +92,15 @@ class _Preview:
     """OUT.preview.png, merged from the parts so far once every tile has some
     (at most every `interval` seconds); removed when the render ends."""
 
-    def __init__(self, merger: ImageMerger, path: Path | None, tiles: int, interval: float,
-                 scene: str, conventions: str | None):
+    def __init__(
+        self,
+        merger: ImageMerger,
+        path: Path | None,
+        tiles: int,
+        interval: float,
+        scene: str,
+        conventions: str | None,
+    ):
         self.merger = merger
         self.path = path
         self.tiles = tiles
@@ -136,10 +143,13 @@ def _prepare(arguments, camera_path: str | None = None) -> tuple[str, Bundle, in
     return raytracer, bundle, spp
 
 
-def _run(bundle: Bundle, arguments, spp: int, options: farm.ClusterOptions, parts: list[Part],
-         on_result) -> None:
+def _run(
+    bundle: Bundle, arguments, spp: int, options: farm.ClusterOptions, parts: list[Part], on_result
+) -> None:
     progress = ProgressLine(parts, enabled=not arguments.quiet)
-    job = RenderJob(raytracer=_remote_raytracer(arguments.raytracer), args=_render_args(arguments, spp))
+    job = RenderJob(
+        raytracer=_remote_raytracer(arguments.raytracer), args=_render_args(arguments, spp)
+    )
     warnings = _Warnings()
 
     def handle(part: Part, result: PartResult) -> None:
@@ -168,8 +178,14 @@ def render(arguments) -> int:
         parts = plan_still(spp, tasks, tiles, width, height)
         with tempfile.TemporaryDirectory(prefix="rtfarm-") as folder:
             merger = ImageMerger(raytracer, Path(folder), "image")
-            preview = _Preview(merger, preview_path, tiles, arguments.preview_every,
-                               arguments.scene, arguments.conventions)
+            preview = _Preview(
+                merger,
+                preview_path,
+                tiles,
+                arguments.preview_every,
+                arguments.scene,
+                arguments.conventions,
+            )
 
             def add(part: Part, result: PartResult) -> None:
                 merger.add(result.exr)
@@ -227,15 +243,20 @@ def animate(arguments) -> int:
         parts = plan_animation(frames, spp, tasks_per_frame)
         waiting = Counter(part.frame for part in parts)
         with tempfile.TemporaryDirectory(prefix="rtfarm-") as work:
-            mergers = {frame: ImageMerger(raytracer, Path(work), f"frame{frame}") for frame in waiting}
+            mergers = {
+                frame: ImageMerger(raytracer, Path(work), f"frame{frame}") for frame in waiting
+            }
 
             def add(part: Part, result: PartResult) -> None:
                 merger = mergers[part.frame]
                 merger.add(result.exr)
                 waiting[part.frame] -= 1
                 if waiting[part.frame] == 0:
-                    merger.write(folder / (arguments.name % part.frame), arguments.scene,
-                                 arguments.conventions)
+                    merger.write(
+                        folder / (arguments.name % part.frame),
+                        arguments.scene,
+                        arguments.conventions,
+                    )
                     merger.discard()
 
             _run(bundle, arguments, spp, options, parts, add)

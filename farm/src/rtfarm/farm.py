@@ -64,8 +64,10 @@ def connect(address: str | None) -> None:
             failure = error
     where = f" {address}" if address else ""
     if "InvalidAuthToken" in ray_messages.text:
-        raise FarmError(f"the Ray cluster{where} refused this machine's token: set RAY_AUTH_MODE=token "
-                        "and the cluster's token (~/.ray/auth_token or RAY_AUTH_TOKEN)")
+        raise FarmError(
+            f"the Ray cluster{where} refused this machine's token: set RAY_AUTH_MODE=token "
+            "and the cluster's token (~/.ray/auth_token or RAY_AUTH_TOKEN)"
+        )
     raise FarmError(f"cannot connect to the Ray cluster{where}: {_one_line(failure)}")
 
 
@@ -121,7 +123,9 @@ def _resources(options: ClusterOptions) -> dict[str, float]:
         gpus = 1.0 if total.get("GPU", 0) >= 1 else 0.0
     if gpus > 0:
         if total.get("GPU", 0) < gpus:
-            raise FarmError(f"--gpus-per-task {gpus:g}: the cluster has {total.get('GPU', 0):g} GPU(s)")
+            raise FarmError(
+                f"--gpus-per-task {gpus:g}: the cluster has {total.get('GPU', 0):g} GPU(s)"
+            )
         return {"num_gpus": gpus, "num_cpus": 0}
     if total.get("CPU", 0) < options.cpus_per_task:
         raise FarmError(
@@ -149,7 +153,9 @@ def _one_line(error: BaseException) -> str:
 class PartRunner:
     """Runs parts on the cluster and hands each result to `on_result` as it arrives."""
 
-    def __init__(self, bundle: Bundle, job: RenderJob, options: ClusterOptions, progress: ProgressLine):
+    def __init__(
+        self, bundle: Bundle, job: RenderJob, options: ClusterOptions, progress: ProgressLine
+    ):
         self.bundle = bundle
         self.job = job
         self.options = options
@@ -193,7 +199,9 @@ class PartRunner:
         try:
             here = ray.get_runtime_context().get_node_id()
             strategy = NodeAffinitySchedulingStrategy(node_id=here, soft=True)
-            return ray.remote(ProgressBoard).options(num_cpus=0, scheduling_strategy=strategy).remote()
+            return (
+                ray.remote(ProgressBoard).options(num_cpus=0, scheduling_strategy=strategy).remote()
+            )
         except Exception:
             return None
 
@@ -224,7 +232,9 @@ class PartRunner:
                 raise FarmError(_one_line(cause)) from None
             if isinstance(cause, RaytracerCrashed):
                 raise FarmError(f"{_one_line(cause)} ({attempts} attempts)") from None
-            raise FarmError(f"{part.describe()}: {type(cause).__name__}: {_one_line(cause)}") from None
+            raise FarmError(
+                f"{part.describe()}: {type(cause).__name__}: {_one_line(cause)}"
+            ) from None
         except ray.exceptions.RayError as error:
             raise FarmError(
                 f"{part.describe()}: failed {attempts} times, last: {type(error).__name__}: "

@@ -106,15 +106,37 @@ class LocalCluster:
         index = len(self.nodes)
         folder = self.root / f"node{index}"
         folder.mkdir()
-        role = ["--head", f"--port={self.port}", f"--ray-client-server-port={free_port()}",
-                "--include-dashboard=false"] if index == 0 else [f"--address={self.address}"]
-        command = [_RAY, "start", *role, "--node-ip-address=127.0.0.1",
-                   f"--num-cpus={self.cpus_per_node}", "--num-gpus=0", f"--temp-dir={folder}",
-                   f"--dashboard-agent-listen-port={free_port()}",
-                   f"--metrics-export-port={free_port()}", "--disable-usage-stats"]
+        role = (
+            [
+                "--head",
+                f"--port={self.port}",
+                f"--ray-client-server-port={free_port()}",
+                "--include-dashboard=false",
+            ]
+            if index == 0
+            else [f"--address={self.address}"]
+        )
+        command = [
+            _RAY,
+            "start",
+            *role,
+            "--node-ip-address=127.0.0.1",
+            f"--num-cpus={self.cpus_per_node}",
+            "--num-gpus=0",
+            f"--temp-dir={folder}",
+            f"--dashboard-agent-listen-port={free_port()}",
+            f"--metrics-export-port={free_port()}",
+            "--disable-usage-stats",
+        ]
         log = (self.root / f"node{index}.log").open("w")
-        starter = subprocess.Popen(command, env=self.env, stdout=log, stderr=subprocess.STDOUT,
-                                   stdin=subprocess.DEVNULL, start_new_session=True)
+        starter = subprocess.Popen(
+            command,
+            env=self.env,
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            stdin=subprocess.DEVNULL,
+            start_new_session=True,
+        )
         node = Node(index, folder, starter.pid)
         self.nodes.append(node)
         if starter.wait() != 0:
@@ -123,16 +145,24 @@ class LocalCluster:
 
     def wait_for_nodes(self, count: int, timeout: float = 120.0) -> None:
         """Until the head's GCS lists `count` live nodes."""
-        script = ("import ray,sys; ray.init(address=sys.argv[1], logging_level='ERROR');"
-                  "print(sum(n['Alive'] for n in ray.nodes()))")
+        script = (
+            "import ray,sys; ray.init(address=sys.argv[1], logging_level='ERROR');"
+            "print(sum(n['Alive'] for n in ray.nodes()))"
+        )
         deadline = time.monotonic() + timeout
         while True:
-            done = subprocess.run([sys.executable, "-c", script, self.address], env=self.env,
-                                  capture_output=True, text=True)
+            done = subprocess.run(
+                [sys.executable, "-c", script, self.address],
+                env=self.env,
+                capture_output=True,
+                text=True,
+            )
             if done.returncode == 0 and done.stdout.strip() == str(count):
                 return
             if time.monotonic() > deadline:
-                raise RuntimeError(f"{count} Ray nodes not up after {timeout:.0f} s: {done.stderr[-500:]}")
+                raise RuntimeError(
+                    f"{count} Ray nodes not up after {timeout:.0f} s: {done.stderr[-500:]}"
+                )
             time.sleep(1.0)
 
     def stop_node(self, node: Node) -> None:
@@ -152,13 +182,17 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--nodes", type=int, default=2)
     parser.add_argument("--cpus-per-node", type=int, default=1)
-    parser.add_argument("command", nargs=argparse.REMAINDER,
-                        help="-- COMMAND...; {address} becomes the cluster's address")
+    parser.add_argument(
+        "command",
+        nargs=argparse.REMAINDER,
+        help="-- COMMAND...; {address} becomes the cluster's address",
+    )
     arguments = parser.parse_args()
     command = arguments.command[1:] if arguments.command[:1] == ["--"] else arguments.command
     with LocalCluster(arguments.nodes, arguments.cpus_per_node) as cluster:
-        return subprocess.call([part.replace("{address}", cluster.address) for part in command],
-                               env=cluster.client_env)
+        return subprocess.call(
+            [part.replace("{address}", cluster.address) for part in command], env=cluster.client_env
+        )
 
 
 if __name__ == "__main__":

@@ -41,8 +41,13 @@ class ImageMerger:
         """The merged image, written atomically by the raytracer. 8-bit formats
         follow `scene`'s conventions (as its own render writes them)."""
         eight_bit = output.suffix.lower() in EIGHT_BIT_FORMATS
-        rt.merge(self.raytracer, self.files(), output, scene if eight_bit else None,
-                 conventions if eight_bit else None)
+        rt.merge(
+            self.raytracer,
+            self.files(),
+            output,
+            scene if eight_bit else None,
+            conventions if eight_bit else None,
+        )
 
     def discard(self) -> None:
         for path in self.files():

@@ -49,7 +49,9 @@ class Part:
 
     def describe(self) -> str:
         where = f"frame {self.frame} " if self.frame is not None else ""
-        tile = f" rows {self.region[1]}..{self.region[1] + self.region[3] - 1}" if self.region else ""
+        tile = (
+            f" rows {self.region[1]}..{self.region[1] + self.region[3] - 1}" if self.region else ""
+        )
         return f"part {self.index} ({where}samples {self.first_sample}:{self.end_sample}{tile})"
 
 

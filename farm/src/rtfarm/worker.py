@@ -130,8 +130,9 @@ class _Messages:
         return [line for line in self.lines if line.startswith("warning: ")]
 
 
-def _command(raytracer: str, scene: Path, output: Path, job: RenderJob, part: Part,
-             camera_path: Path | None) -> list[str]:
+def _command(
+    raytracer: str, scene: Path, output: Path, job: RenderJob, part: Part, camera_path: Path | None
+) -> list[str]:
     command = [raytracer, str(scene), str(output), *job.args, *part.raytracer_args()]
     if camera_path:
         command += ["--camera-path", str(camera_path)]
@@ -165,6 +166,33 @@ def _remove_orphans() -> None:
             shutil.rmtree(folder, ignore_errors=True)
 
 
+def _write_inputs(bundle: Bundle, folder: Path) -> tuple[Path, Path | None, dict[str, str]]:
+    """The bundle's files in `folder`: the scene's path, the camera path's,
+    and how their private paths are shown to the user."""
+    tree = folder / "scene"
+    scene = unpack(bundle, tree)
+    shown = {f"{tree}/": bundle.display_prefix}
+    camera_path = None
+    if bundle.camera_path is not None:
+        camera_path = folder / "camera-path.txt"
+        camera_path.write_bytes(bundle.camera_path)
+        shown[str(camera_path)] = bundle.camera_path_name
+    return scene, camera_path, shown
+
+
+def _check_exit(status: int, part: Part, messages: _Messages, output: Path) -> None:
+    """RaytracerCrashed (retried) for a raytracer killed from outside,
+    RenderFailed (not retried) for one that refused the part."""
+    node = socket.gethostname()
+    if status < 0:
+        name = signal.Signals(-status).name if -status in signal.valid_signals() else -status
+        raise RaytracerCrashed(f"{part.describe()}: raytracer killed by signal {name} on {node}")
+    if status != 0:
+        raise RenderFailed(last_error_line("\n".join(messages.lines)))
+    if not output.is_file():
+        raise RaytracerCrashed(f"{part.describe()}: raytracer wrote no image on {node}")
+
+
 def render_part(bundle: Bundle, job: RenderJob, part: Part, board=None) -> PartResult:
     """The Ray task: renders `part` of the bundle's scene; its EXR bytes."""
     try:
@@ -173,29 +201,18 @@ def render_part(bundle: Bundle, job: RenderJob, part: Part, board=None) -> PartR
         raise RenderFailed(str(error)) from None
     _remove_orphans()
     with tempfile.TemporaryDirectory(prefix=f"{_FOLDER_PREFIX}{os.getpid()}-") as folder:
-        tree = Path(folder) / "scene"
-        scene = unpack(bundle, tree)
-        camera_path = None
-        if bundle.camera_path is not None:
-            camera_path = Path(folder) / "camera-path.txt"
-            camera_path.write_bytes(bundle.camera_path)
+        scene, camera_path, shown = _write_inputs(bundle, Path(folder))
         output = Path(folder) / "part.exr"
-        replacements = {f"{tree}/": bundle.display_prefix}
-        if camera_path:
-            replacements[str(camera_path)] = bundle.camera_path_name
-        messages = _Messages(part, board, replacements)
+        messages = _Messages(part, board, shown)
         messages.report(0.0)  # running, before the raytracer's first line
         start = time.monotonic()
         status = _run(_command(raytracer, scene, output, job, part, camera_path), messages)
         seconds = time.monotonic() - start
-        node = socket.gethostname()
-        if status < 0:
-            raise RaytracerCrashed(
-                f"{part.describe()}: raytracer killed by {signal.Signals(-status).name} on {node}"
-            )
-        if status != 0:
-            raise RenderFailed(last_error_line("\n".join(messages.lines)))
-        if not output.is_file():
-            raise RaytracerCrashed(f"{part.describe()}: raytracer wrote no image on {node}")
-        return PartResult(output.read_bytes(), seconds, messages.pixel_samples, node,
-                          messages.warnings())
+        _check_exit(status, part, messages, output)
+        return PartResult(
+            output.read_bytes(),
+            seconds,
+            messages.pixel_samples,
+            socket.gethostname(),
+            messages.warnings(),
+        )
