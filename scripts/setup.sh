@@ -4,22 +4,11 @@
 # every entry-point script.
 set -euo pipefail
 
-PACKAGES=(
-  build-essential cmake ninja-build pkg-config
-  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
-  glslang-dev glslang-tools spirv-tools
-  libglfw3-dev libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
-  libcli11-dev doctest-dev libtinyexr-dev libfmt-dev libimgui-dev
-  xvfb xauth
-  # clang with its sanitizer and libFuzzer runtimes (scripts/build-sanitized.sh)
-  clang-14 libclang-rt-14-dev
-  clang-format
-  python3-venv  # rtfarm's virtual environment (farm_venv below)
-)
-
 # rtfarm (farm/, README "Render farm (Ray)") in build/farm-venv, with Debian's
 # python3 (every node of a Ray cluster needs the same Python and Ray); made
-# again only when farm/pyproject.toml or farm/constraints.txt change.
+# again only when farm/pyproject.toml or farm/constraints.txt change. It runs
+# last (an EXIT trap), once the packages below are in, however the script
+# ends well.
 farm_venv() {
   local root venv wanted
   root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -34,6 +23,20 @@ farm_venv() {
     -c "$root/farm/constraints.txt" -e "$root/farm[test]"
   echo "$wanted" >"$venv/.rtfarm-installed"
 }
+trap 'if (($? == 0)); then farm_venv; fi' EXIT
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
+  glslang-dev glslang-tools spirv-tools
+  libglfw3-dev libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
+  libcli11-dev doctest-dev libtinyexr-dev libfmt-dev libimgui-dev
+  xvfb xauth
+  # clang with its sanitizer and libFuzzer runtimes (scripts/build-sanitized.sh)
+  clang-14 libclang-rt-14-dev
+  clang-format
+  python3-venv  # rtfarm's virtual environment (farm_venv above)
+)
 
 missing=()
 for pkg in "${PACKAGES[@]}"; do
@@ -42,7 +45,6 @@ for pkg in "${PACKAGES[@]}"; do
 done
 
 if ((${#missing[@]} == 0)); then
-  farm_venv
   exit 0
 fi
 
@@ -54,4 +56,3 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
-farm_venv
