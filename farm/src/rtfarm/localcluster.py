@@ -62,14 +62,23 @@ class Node:
 
 
 class LocalCluster:
-    def __init__(self, nodes: int = 2, cpus_per_node: int = 1, env: dict[str, str] | None = None):
+    def __init__(
+        self,
+        nodes: int = 2,
+        cpus_per_node: int = 1,
+        env: dict[str, str] | None = None,
+        token: str | None = None,
+    ):
         # Short: Ray's Unix sockets live below it (108-byte path limit).
         self.root = Path(tempfile.mkdtemp(prefix="rtf-", dir="/tmp"))
         self.node_count = nodes
         self.cpus_per_node = cpus_per_node
         # Ray's token authentication, with a token of this cluster's own: the
         # same whatever ~/.ray/auth_token holds, and no one else's cluster.
-        self.auth = {"RAY_AUTH_MODE": "token", "RAY_AUTH_TOKEN": secrets.token_hex(32)}
+        # (A process that drives several clusters in turn needs one token for
+        # all: Ray keeps the first it read.)
+        token = token or secrets.token_hex(32)
+        self.auth = {"RAY_AUTH_MODE": "token", "RAY_AUTH_TOKEN": token}
         self.env = {**os.environ, **(env or {}), **self.auth}
         self.env.pop("RAY_ADDRESS", None)
         # The workers' temporary files go when the cluster does.

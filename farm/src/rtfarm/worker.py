@@ -58,6 +58,10 @@ class PartResult:
     pixel_samples: float  # pixels rendered x samples each
     node: str
     warnings: list[str] = field(default_factory=list)
+    # The task's span on the worker's clock (time.time()): what the farm adds
+    # around the raytracer (bench/run-farm.sh).
+    started: float = 0.0
+    finished: float = 0.0
 
 
 def _die_with_parent() -> None:
@@ -195,6 +199,7 @@ def _check_exit(status: int, part: Part, messages: _Messages, output: Path) -> N
 
 def render_part(bundle: Bundle, job: RenderJob, part: Part, board=None) -> PartResult:
     """The Ray task: renders `part` of the bundle's scene; its EXR bytes."""
+    started = time.time()
     try:
         raytracer = find_raytracer(job.raytracer)
     except FarmError as error:
@@ -209,10 +214,8 @@ def render_part(bundle: Bundle, job: RenderJob, part: Part, board=None) -> PartR
         status = _run(_command(raytracer, scene, output, job, part, camera_path), messages)
         seconds = time.monotonic() - start
         _check_exit(status, part, messages, output)
-        return PartResult(
-            output.read_bytes(),
-            seconds,
-            messages.pixel_samples,
-            socket.gethostname(),
-            messages.warnings(),
-        )
+        exr = output.read_bytes()
+    node = socket.gethostname()
+    return PartResult(
+        exr, seconds, messages.pixel_samples, node, messages.warnings(), started, time.time()
+    )
