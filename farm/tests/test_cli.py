@@ -81,6 +81,12 @@ def outputs(folder):
             r"^error: --frames 0:9: .*good\.path has 2 frame\(s\)$",
         ),
         (
+            "frame names in a missing folder",
+            ["animate", "{scene}", "{tmp}/good.path", "{tmp}/frames", "--name", "sub/f%d.png"],
+            1,
+            r"^error: .*frames/sub/f0\.png: folder .*frames/sub does not exist$",
+        ),
+        (
             "frame names without a number",
             ["animate", "{scene}", "{tmp}/good.path", "{tmp}/frames", "--name", "f.png"],
             1,

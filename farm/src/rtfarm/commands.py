@@ -227,6 +227,7 @@ def _output_dir(arguments) -> Path:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as error:
         raise FarmError(f"{folder}: cannot make the output folder: {error.strerror}") from None
+    _check_image_path(folder / (arguments.name % 0))  # a --name with a folder of its own
     return folder
 
 
