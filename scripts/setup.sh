@@ -2,7 +2,11 @@
 # Installs the Debian 12 packages the project needs, and Mesa 25's lavapipe
 # from bookworm-backports. Idempotent: does nothing when everything is
 # already installed, so it is cheap to call first in every entry-point script.
+#   setup.sh [--farm]   (--farm: also rtfarm's virtual environment, see below)
 set -euo pipefail
+with_farm=false
+[[ ${1:-} == --farm ]] && with_farm=true
+
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config
@@ -14,6 +18,7 @@ PACKAGES=(
   # clang with its sanitizer and libFuzzer runtimes (scripts/build-sanitized.sh)
   clang-14 libclang-rt-14-dev
   clang-format
+  python3-venv  # rtfarm's virtual environment (farm_venv above)
 )
 
 SUDO=""
@@ -58,3 +63,24 @@ if [[ -z "${RT_SYSTEM_MESA:-}" && "$codename" == bookworm ]] &&
   apt_update
   $SUDO apt-get install -y -qq --no-install-recommends -t bookworm-backports mesa-vulkan-drivers
 fi
+
+# With --farm: rtfarm (farm/, README "Render farm (Ray)") in build/farm-venv,
+# with Debian's python3 (every node of a Ray cluster needs the same Python
+# and Ray); made again only when farm/pyproject.toml or farm/constraints.txt
+# change. The test command asks for it; the render command does not need Ray.
+farm_venv() {
+  local root venv wanted
+  root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+  venv="$root/build/farm-venv"
+  wanted=$(cat "$root/farm/pyproject.toml" "$root/farm/constraints.txt" | sha256sum | cut -d' ' -f1)
+  if [[ -x "$venv/bin/rtfarm" && "$(cat "$venv/.rtfarm-installed" 2>/dev/null)" == "$wanted" ]]; then
+    return 0
+  fi
+  echo "setup: installing rtfarm and Ray into $venv" >&2
+  /usr/bin/python3 -m venv "$venv"
+  "$venv/bin/pip" install -q --disable-pip-version-check --no-input \
+    -c "$root/farm/constraints.txt" -e "$root/farm[test]"
+  echo "$wanted" >"$venv/.rtfarm-installed"
+}
+
+if $with_farm; then farm_venv; fi

@@ -25,6 +25,7 @@ gcc_ctest() {
   (cd "$root/build" && ctest --output-on-failure --parallel 2 --timeout 600)
 }
 
+stage "setup (packages, rtfarm's venv)" bash "$root/scripts/setup.sh" --farm
 stage "build (gcc)" bash "$root/scripts/build.sh" -DRT_WARNINGS_AS_ERRORS=ON -DRT_BUILD_TESTS=ON
 stage "ctest (gcc)" gcc_ctest
 stage "build (clang, ASan+UBSan, fuzzers)" bash "$root/scripts/build-sanitized.sh"

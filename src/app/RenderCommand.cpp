@@ -10,9 +10,11 @@
 #include <optional>
 #include <regex>
 #include <string>
+#include <vector>
 
 #include "app/CommandLine.hpp"
 #include "app/Commands.hpp"
+#include "app/PathFrames.hpp"
 #include "app/Progress.hpp"
 #include "encode/Conventions.hpp"
 #include "formats/SceneFile.hpp"
@@ -21,6 +23,7 @@
 #include "io/Image.hpp"
 #include "render/Renderer.hpp"
 #include "util/Error.hpp"
+#include "viewer/CameraPath.hpp"
 
 namespace {
 
@@ -42,6 +45,10 @@ struct CommandLine {
   std::optional<float> exposure;
   std::optional<float> indirectClamp;
   std::string sampleRange;
+  std::string region;
+  std::string cameraPath;
+  std::optional<uint32_t> frame;
+  bool frameCount = false;
   std::optional<double> timeBudget;
   std::optional<double> targetRmse;
   bool estimateRmse = false;
@@ -123,15 +130,52 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
   return options;
 }
 
+// --camera-path FILE --frame N: the scene's camera becomes the viewer's at
+// that frame, and the image takes the frame's size.
+void applyPathFrame(const CommandLine& cli, rt::Scene& scene, rt::RenderOptions& options) {
+  if (cli.cameraPath.empty()) return;
+  std::vector<rt::viewer::PathStep> steps = rt::viewer::loadCameraPath(cli.cameraPath);
+  uint32_t width = options.width ? options.width : scene.camera.width;
+  uint32_t height = options.height ? options.height : scene.camera.height;
+  rt::cli::PathFrame frame =
+      rt::cli::pathFrame(scene, steps, cli.cameraPath, cli.frame.value_or(0), width, height);
+  scene.camera = frame.camera;
+  options.width = frame.width;
+  options.height = frame.height;
+}
+
+// --region X,Y,W,H: only those pixels get samples (tiles of one image that
+// `raytracer merge` puts together, like sample ranges).
+void applyRegion(const CommandLine& cli, const rt::Scene& scene, rt::RenderOptions& options) {
+  if (cli.region.empty()) return;
+  uint32_t width = options.width ? options.width : scene.camera.width;
+  uint32_t height = options.height ? options.height : scene.camera.height;
+  rt::PixelRegion region = rt::parseRegion(cli.region, "--region");
+  try {
+    options.region = rt::resolveRegion(region, width, height);
+  } catch (const rt::Error& e) {
+    throw rt::Error(fmt::format("--region: {}", e.what()));
+  }
+}
+
+void printFrameCount(const CommandLine& cli) {
+  std::printf("%u\n", rt::cli::pathFrameCount(rt::viewer::loadCameraPath(cli.cameraPath)));
+}
+
 std::string rmseText(const rt::RenderStats& stats) {
   if (!stats.rmseEstimate) return "";
   return fmt::format("; estimated RMSE {:.5f}{}", *stats.rmseEstimate,
                      stats.reachedTarget ? " (target reached)" : "");
 }
 
-void printSummary(const rt::ImageF& image, const rt::Scene& scene, const rt::RenderStats& stats,
-                  const rt::VulkanContext& context) {
-  double samples = double(image.width) * image.height * stats.samplesDone;
+uint64_t renderedPixels(const rt::RenderOptions& options, uint32_t width, uint32_t height) {
+  if (options.region.wholeImage()) return uint64_t(width) * height;
+  return uint64_t(options.region.width) * options.region.height;
+}
+
+void printSummary(const rt::ImageF& image, uint64_t pixels, const rt::Scene& scene,
+                  const rt::RenderStats& stats, const rt::VulkanContext& context) {
+  double samples = double(pixels) * stats.samplesDone;
   std::fprintf(stderr,
                "rendered %ux%u at %u spp in %.3f s (%.2f Msamples/s) on %s; "
                "%u primitives, features: %s; conventions: %s (%s); setup %.3f s, "
@@ -155,6 +199,8 @@ int run(const CommandLine& cli) {
   rt::cli::applyConventionsOption(cli.conventions, scene);
   if (cli.indirectClamp) scene.settings.indirectClamp = *cli.indirectClamp;
   rt::RenderOptions options = renderOptions(cli, scene);
+  applyPathFrame(cli, scene, options);
+  applyRegion(cli, scene, options);
   options.displayMapping = rt::toneMappingFor(scene);
   if (cli.exposure) options.displayMapping->exposure *= *cli.exposure;
 
@@ -165,7 +211,7 @@ int run(const CommandLine& cli) {
   rt::Renderer renderer(context, compiler);
   uint32_t width = options.width ? options.width : scene.camera.width;
   uint32_t height = options.height ? options.height : scene.camera.height;
-  rt::ProgressBar progress(uint64_t(width) * height, !cli.quiet);
+  rt::ProgressBar progress(renderedPixels(options, width, height), !cli.quiet);
   rt::RenderStats stats;
   installInterruptHandlers();
   auto start = std::chrono::steady_clock::now();
@@ -186,7 +232,9 @@ int run(const CommandLine& cli) {
                  interrupted.load() ? "interrupted" : "time budget reached", stats.samplesDone,
                  cli.outputPath.c_str());
   }
-  if (!cli.quiet) printSummary(image, scene, stats, context);
+  if (!cli.quiet) {
+    printSummary(image, renderedPixels(options, width, height), scene, stats, context);
+  }
   if (context.validationMessageCount() > 0) {
     throw rt::Error(
         fmt::format("{} Vulkan validation message(s) reported", context.validationMessageCount()));
@@ -232,6 +280,17 @@ int runRenderCommand(int argc, char** argv) {
   app.add_option("--samples", cli.sampleRange,
                  "Render only sample indices FROM:TO of the --spp samples (merge the pieces "
                  "with `raytracer merge`; write .exr, whose alpha holds the sample count)");
+  app.add_option("--region", cli.region,
+                 "Render only the pixels X,Y,WIDTH,HEIGHT (the others keep no samples; merge "
+                 "tiles with `raytracer merge`, like sample ranges)");
+  auto* cameraPath =
+      app.add_option("--camera-path", cli.cameraPath,
+                     "Render a frame of a viewer camera path (see src/viewer/CameraPath.hpp)");
+  app.add_option("--frame", cli.frame, "The frame of --camera-path to render (default 0)")
+      ->needs(cameraPath);
+  app.add_flag("--frame-count", cli.frameCount,
+               "Print how many frames --camera-path lasts and exit")
+      ->needs(cameraPath);
   app.add_option("--time", cli.timeBudget, "Stop after this many seconds (whole passes kept)")
       ->check(rt::cli::positiveFiniteNumber());
   app.add_option("--target-rmse", cli.targetRmse,
@@ -247,6 +306,10 @@ int runRenderCommand(int argc, char** argv) {
   try {
     if (cli.device == "list") {
       listDevices();
+      return 0;
+    }
+    if (cli.frameCount) {
+      printFrameCount(cli);
       return 0;
     }
     if (cli.scenePath.empty() || cli.outputPath.empty()) {

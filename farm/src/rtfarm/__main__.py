@@ -1,0 +1,3 @@
+from rtfarm.cli import main
+
+raise SystemExit(main())
