@@ -10,12 +10,12 @@
 
 #include "encode/Conventions.hpp"
 #include "encode/FlatScene.hpp"
+#include "scene/Limits.hpp"
 #include "scene/Scene.hpp"
 
 namespace rt::cli {
 
-constexpr uint32_t kMaxImageSide = 16384;
-constexpr uint32_t kMaxSamples = 1u << 20;
+constexpr uint32_t kMaxSamples = kMaxSamplesPerPixel;
 
 // Parses argv into `app`. Returns an exit status when the command should end
 // now (--help, --version: 0; a usage error, reported in one line: 2).

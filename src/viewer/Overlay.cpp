@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "gpu/VulkanContext.hpp"
+#include "scene/Limits.hpp"
 #include "util/Error.hpp"
 #include "viewer/Swapchain.hpp"
 #include "viewer/ThirdParty.hpp"
@@ -14,7 +15,6 @@
 namespace rt::viewer {
 namespace {
 
-constexpr uint32_t kMaxBounces = 64;
 constexpr int kMaxSamplesTarget = 1 << 20;
 const ImVec4 kErrorColor(1.0f, 0.45f, 0.4f, 1.0f);
 

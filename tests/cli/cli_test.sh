@@ -165,7 +165,7 @@ expect_error "glTF: empty" 'empty\.gltf: empty file' "$SCRATCH/empty.gltf" "$SCR
 expect_error "glTF: syntax error" 'syntax\.gltf: byte 28: ' "$SCRATCH/syntax.gltf" "$SCRATCH/out.png"
 expect_error "glTF: noise" 'noise\.glb: ' "$SCRATCH/noise.glb" "$SCRATCH/out.png"
 expect_error "glTF: truncated GLB" 'truncated\.glb: GLB: truncated' "$SCRATCH/truncated.glb" "$SCRATCH/out.png"
-expect_error "glTF: a folder" 'folder\.gltf: cannot open: not a regular file' "$SCRATCH/folder.gltf" "$SCRATCH/out.png"
+expect_error "glTF: a folder" 'folder\.gltf: cannot open: Is a directory' "$SCRATCH/folder.gltf" "$SCRATCH/out.png"
 expect_error "glTF: missing" 'nope\.glb: cannot open' "$SCRATCH/nope.glb" "$SCRATCH/out.png"
 if [[ -d "$SHARED/assets/gltf-invalid" ]]; then
   invalid=$SHARED/assets/gltf-invalid

@@ -9,11 +9,6 @@ constexpr uint64_t kBaseBudget = uint64_t(64) << 20;
 constexpr uint64_t kBudgetPerBufferByte = 8;
 constexpr size_t kMaxPlacesListed = 6;
 
-std::string withWhere(const std::string& fileName, const std::string& where,
-                      const std::string& what) {
-  return where.empty() ? fileName + ": " + what : fileName + ": " + where + ": " + what;
-}
-
 }  // namespace
 
 std::string percentDecoded(const std::string& uri) {
@@ -44,19 +39,18 @@ std::string item(const char* array, size_t index) {
 }
 
 Context::Context(std::string fileName, const tinygltf::Model& model)
-    : fileName_(std::move(fileName)), model_(model), budgetLeft_(kBaseBudget) {
+    : diagnostics_(std::move(fileName)), model_(model), budgetLeft_(kBaseBudget) {
   for (const tinygltf::Buffer& buffer : model.buffers) {
     budgetLeft_ += kBudgetPerBufferByte * uint64_t(buffer.data.size());
   }
 }
 
 void Context::fail(const std::string& where, const std::string& what) const {
-  throw Error(withWhere(fileName_, where, what));
+  diagnostics_.fail(where, what);
 }
 
 void Context::warn(const std::string& where, const std::string& what) {
-  std::string line = withWhere(fileName_, where, what);
-  if (seen_.insert(line).second) warnings_.push_back(std::move(line));
+  diagnostics_.warn(where, what);
 }
 
 void Context::ignored(const std::string& feature, const std::string& where) {
@@ -87,7 +81,7 @@ std::vector<std::string> Context::takeWarnings() {
     warn("", feature + " ignored (" + list + ")");
   }
   ignored_.clear();
-  return std::move(warnings_);
+  return diagnostics_.takeWarnings();
 }
 
 }  // namespace rt::gltf

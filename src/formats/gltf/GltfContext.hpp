@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/common/Diagnostics.hpp"
 #include "formats/gltf/GltfTiny.hpp"
 
 namespace rt::gltf {
@@ -25,7 +26,7 @@ class Context {
   Context(std::string fileName, const tinygltf::Model& model);
 
   const tinygltf::Model& model() const { return model_; }
-  const std::string& fileName() const { return fileName_; }
+  const std::string& fileName() const { return diagnostics_.file(); }
 
   // Throws rt::Error "<file>: <where>: <what>" (or "<file>: <what>").
   [[noreturn]] void fail(const std::string& where, const std::string& what) const;
@@ -46,11 +47,9 @@ class Context {
   std::vector<std::string> takeWarnings();
 
  private:
-  std::string fileName_;
+  Diagnostics diagnostics_;
   const tinygltf::Model& model_;
   uint64_t budgetLeft_ = 0;
-  std::vector<std::string> warnings_;
-  std::set<std::string> seen_;
   struct Places {
     std::vector<std::string> first;  // the first few, for the message
     std::string last;                // repeats of the same place count once

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <utility>
 
+#include "formats/common/FileBytes.hpp"
+#include "formats/common/JsonSyntax.hpp"
 #include "formats/gltf/GltfContext.hpp"
 #include "util/Error.hpp"
 
@@ -19,10 +21,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Any file the loader reads (the model, its buffers, its images) is at most
-// this big: far above real assets, and below the 2^31 that tinygltf's int
-// sizes can describe.
-constexpr uint64_t kMaxFileBytes = uint64_t(1) << 30;
+// Any file the loader reads (the model, its buffers, its images) is read by
+// readFileBytes: at most 1 GiB, below the 2^31 that tinygltf's int sizes
+// can describe.
+static_assert(kMaxInputFileBytes < (uint64_t(1) << 31));
 // JSON deeper than this is rejected before parsing: tinygltf converts
 // `extras` recursively, so depth would otherwise become stack depth.
 constexpr int kMaxJsonDepth = 100;
@@ -61,7 +63,7 @@ std::string expandPath(const std::string& path, void*) { return path; }
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
                    void*) {
-  std::string problem = readRegularFile(path, *out);
+  std::string problem = readFileBytes(path, *out);
   if (problem.empty()) return true;
   if (err) *err += problem;
   return false;
@@ -360,12 +362,6 @@ void checkImageViews(std::string_view json, const std::string& fileName) {
   }
 }
 
-// nlohmann prefixes "[json.exception.parse_error.101] "; users need only the rest.
-std::string withoutExceptionId(std::string_view message) {
-  const size_t idEnd = message.find("] ");
-  return std::string(idEnd == std::string_view::npos ? message : message.substr(idEnd + 2));
-}
-
 // tinygltf reports JSON syntax errors as "[json.exception...] parse error at
 // line L, column C" (and an empty file as "JSON string too short"); messages
 // say where in bytes, as the scene loader's do. A parse that keeps nothing
@@ -373,23 +369,9 @@ std::string withoutExceptionId(std::string_view message) {
 void checkJsonSyntax(std::string_view json, const std::string& where) {
   if (json.empty()) throw Error(where + ": empty file");
   auto keepNothing = [](int, nlohmann::json::parse_event_t, nlohmann::json&) { return false; };
-  try {
+  withJsonSyntaxErrors(where, json, [&] {
     const nlohmann::json nothing = nlohmann::json::parse(json.begin(), json.end(), keepNothing);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw Error(where + ": byte " + std::to_string(error.byte) + ": " +
-                withoutExceptionId(error.what()));
-  } catch (const nlohmann::json::out_of_range& error) {
-    // A number beyond double ("number overflow parsing '1e999'") comes
-    // without an offset: point at the number's text.
-    const std::string message = withoutExceptionId(error.what());
-    const size_t open = message.find('\'');
-    const size_t close = message.rfind('\'');
-    const size_t found =
-        open < close ? json.find(std::string_view(message).substr(open + 1, close - open - 1))
-                     : std::string_view::npos;
-    throw Error(where + ": byte " +
-                std::to_string(found == std::string_view::npos ? 0 : found + 1) + ": " + message);
-  }
+  });
 }
 
 // Names of the top-level arrays whose objects tinygltf calls `type` in
@@ -520,24 +502,6 @@ tinygltf::TinyGLTF makeParser(tinygltf::Model& model) {
 
 }  // namespace
 
-std::string readRegularFile(const fs::path& path, std::vector<unsigned char>& out) {
-  std::error_code error;
-  fs::file_status status = fs::status(path, error);
-  if (error) return "cannot open: " + error.message();
-  if (!fs::is_regular_file(status)) return "cannot open: not a regular file";
-  uint64_t size = fs::file_size(path, error);
-  if (error) return "cannot open: " + error.message();
-  if (size > kMaxFileBytes) {
-    return "file is " + std::to_string(size >> 20) + " MiB, more than the 1024 MiB allowed";
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::string("cannot open: ") + std::strerror(errno);
-  out.resize(size_t(size));
-  in.read(reinterpret_cast<char*>(out.data()), std::streamsize(size));
-  if (uint64_t(in.gcount()) != size) return "cannot read the whole file";
-  return {};
-}
-
 bool isSupportedExtension(const std::string& name) {
   return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), name) !=
          kSupportedExtensions.end();
@@ -556,7 +520,7 @@ struct Source {
 Source readSource(const fs::path& file, const std::string& fileName,
                   std::vector<std::string>& warnings) {
   Source source;
-  if (std::string problem = readRegularFile(file, source.bytes); !problem.empty()) {
+  if (std::string problem = readFileBytes(file, source.bytes); !problem.empty()) {
     throw Error(fileName + ": " + problem);
   }
   source.glb = source.bytes.size() >= 4 && std::memcmp(source.bytes.data(), "glTF", 4) == 0;

@@ -11,10 +11,6 @@
 
 namespace rt::gltf {
 
-// Reads a regular file (never a device or FIFO, which could hang the load)
-// of at most 1 GiB into `out`. Returns "" or what went wrong, for messages.
-std::string readRegularFile(const std::filesystem::path& path, std::vector<unsigned char>& out);
-
 // Extensions whose meaning the loader implements (or may safely ignore).
 bool isSupportedExtension(const std::string& name);
 

@@ -16,6 +16,7 @@
 #include "formats/gltf/GltfMaterial.hpp"
 #include "formats/gltf/GltfMesh.hpp"
 #include "formats/gltf/GltfNodes.hpp"
+#include "scene/Limits.hpp"
 
 namespace rt {
 namespace {
@@ -243,7 +244,7 @@ class Importer {
     camera.width = kDefaultCameraWidth;
     if (lens.aspectRatio > 0.0) {
       double width = std::round(double(kCameraHeight) * lens.aspectRatio);
-      camera.width = static_cast<uint32_t>(std::clamp(width, 16.0, 16384.0));
+      camera.width = static_cast<uint32_t>(std::clamp(width, 16.0, double(kMaxImageSide)));
     }
     camera.fovYDegrees = static_cast<float>(glm::degrees(lens.yfov));
     camera.position = glm::vec3(world[3]);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/gtc/constants.hpp>
 
+#include "formats/common/FileBytes.hpp"
 #include "formats/gltf/GltfDocument.hpp"
 #include "util/Error.hpp"
 
@@ -288,7 +289,7 @@ ImageRgba8 MaterialTable::decodeImageData(int index, const std::string& where,
     fs::path path = baseDir_ / percentDecoded(image.uri);
     source = path.string();
     std::vector<unsigned char> bytes;
-    if (std::string problem = readRegularFile(path, bytes); !problem.empty()) {
+    if (std::string problem = readFileBytes(path, bytes); !problem.empty()) {
       throw Error(source + ": " + problem);
     }
     return decodeImageRgba8(bytes.data(), bytes.size(), source);

@@ -10,9 +10,6 @@ namespace rt {
 
 namespace {
 
-// Paths of values at the document root have no name; say so instead of printing "".
-constexpr std::string_view kRootPath = "(top level)";
-
 std::string describeType(const Json& value) {
   if (value.is_array()) return "an array of " + std::to_string(value.size());
   return value.type_name();
@@ -27,23 +24,6 @@ std::string formatNumber(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%g", value);
   return buffer;
-}
-
-std::string Diagnostics::format(std::string_view path, std::string_view what) const {
-  std::string line = file_;
-  line += ": ";
-  line += path.empty() ? kRootPath : path;
-  line += ": ";
-  line += what;
-  return line;
-}
-
-void Diagnostics::fail(std::string_view path, std::string_view what) const {
-  throw Error(format(path, what));
-}
-
-void Diagnostics::warn(std::string_view path, std::string_view what) {
-  warnings_.push_back(format(path, what));
 }
 
 void JsonNode::failType(std::string_view expected) const {

@@ -13,25 +13,12 @@
 #include <string_view>
 #include <vector>
 
+#include "formats/common/Diagnostics.hpp"
+
 namespace rt {
 
 // ordered_json keeps the file's key order, so warnings come out in file order.
 using Json = nlohmann::ordered_json;
-
-// Where messages go: the file name they start with, and the warning list.
-class Diagnostics {
- public:
-  explicit Diagnostics(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(std::string_view path, std::string_view what) const;
-  void warn(std::string_view path, std::string_view what);
-  std::string format(std::string_view path, std::string_view what) const;
-  std::vector<std::string> takeWarnings() { return std::move(warnings_); }
-
- private:
-  std::string file_;
-  std::vector<std::string> warnings_;
-};
 
 // Shortest faithful text for a number in a message: integers without a
 // fraction, everything else in %g form.
@@ -47,9 +34,13 @@ class JsonNode {
 
   const Json& raw() const { return *value_; }
   const std::string& path() const { return path_; }
+  // The path as messages give it: the document root has none, so it says so.
+  std::string_view where() const {
+    return path_.empty() ? std::string_view("(top level)") : std::string_view(path_);
+  }
   Diagnostics& diagnostics() const { return *diagnostics_; }
-  [[noreturn]] void fail(std::string_view what) const { diagnostics_->fail(path_, what); }
-  void warn(std::string_view what) const { diagnostics_->warn(path_, what); }
+  [[noreturn]] void fail(std::string_view what) const { diagnostics_->fail(where(), what); }
+  void warn(std::string_view what) const { diagnostics_->warn(where(), what); }
 
   double number() const;     // any finite number
   float floatValue() const;  // finite and within float range

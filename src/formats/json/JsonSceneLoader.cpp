@@ -13,10 +13,13 @@
 #include <memory>
 #include <system_error>
 
+#include "formats/common/FileBytes.hpp"
+#include "formats/common/JsonSyntax.hpp"
 #include "formats/common/MessageText.hpp"
 #include "formats/common/UnitVector.hpp"
 #include "formats/json/JsonReader.hpp"
 #include "formats/ply/PlyLoader.hpp"
+#include "scene/Limits.hpp"
 #include "util/Error.hpp"
 
 namespace rt {
@@ -25,12 +28,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Larger images are typos (or hostile files), not render requests.
-constexpr int64_t kMaxImageSide = 16384;
-constexpr int64_t kMaxBounces = 64;
 // Family B files may omit nbounces.
 constexpr uint32_t kDefaultBounces = 4;
-constexpr int64_t kMaxSamplesPerPixel = int64_t{1} << 20;
 // |sin| of the angle below which up and forward give no usable image plane.
 constexpr float kParallelTolerance = 1e-4f;
 
@@ -49,54 +48,8 @@ struct ShapeContext {
 
 // ---------------------------------------------------------------- JSON text
 
-std::string withoutExceptionId(const char* what) {
-  // nlohmann prefixes "[json.exception.parse_error.101] "; users need only the rest.
-  const std::string_view message = what;
-  const size_t end = message.find("] ");
-  return std::string(end == std::string_view::npos ? message : message.substr(end + 2));
-}
-
-// Number overflow (e.g. 1e400) comes without an offset; point at the number's text.
-size_t offsetOfOverflow(std::string_view text, const std::string& message) {
-  const size_t open = message.find('\'');
-  const size_t close = message.rfind('\'');
-  if (open == std::string::npos || close <= open) return 0;
-  const size_t found = text.find(std::string_view(message).substr(open + 1, close - open - 1));
-  return found == std::string_view::npos ? 0 : found + 1;
-}
-
 Json parseJson(std::string_view text, const std::string& file) {
-  try {
-    return Json::parse(text.begin(), text.end());
-  } catch (const Json::parse_error& error) {
-    throw Error(file + ": byte " + std::to_string(error.byte) + ": " +
-                withoutExceptionId(error.what()));
-  } catch (const Json::out_of_range& error) {
-    const std::string message = withoutExceptionId(error.what());
-    throw Error(file + ": byte " + std::to_string(offsetOfOverflow(text, message)) + ": " +
-                message);
-  }
-}
-
-std::string readFileText(const fs::path& file) {
-  const auto cannotOpen = [&file](int code) {
-    return Error(file.string() + ": cannot open: " + std::strerror(code));
-  };
-  std::error_code ignored;
-  if (fs::is_directory(file, ignored)) throw cannotOpen(EISDIR);
-  struct Closer {
-    void operator()(std::FILE* stream) const { std::fclose(stream); }
-  };
-  const std::unique_ptr<std::FILE, Closer> stream(std::fopen(file.c_str(), "rb"));
-  if (!stream) throw cannotOpen(errno);
-  std::string text;
-  std::array<char, 1 << 16> buffer;
-  size_t count = 0;
-  while ((count = std::fread(buffer.data(), 1, buffer.size(), stream.get())) > 0) {
-    text.append(buffer.data(), count);
-  }
-  if (std::ferror(stream.get())) throw cannotOpen(errno);
-  return text;
+  return withJsonSyntaxErrors(file, text, [&] { return Json::parse(text.begin(), text.end()); });
 }
 
 // ---------------------------------------------------------- family detection
@@ -1094,7 +1047,7 @@ Scene parseJsonScene(std::string_view jsonText, const fs::path& file) {
 }
 
 Scene loadJsonScene(const fs::path& file) {
-  return withPrintableErrors([&] { return readScene(readFileText(file), file); });
+  return withPrintableErrors([&] { return readScene(readFileOrThrow(file), file); });
 }
 
 std::optional<SamplerKind> samplerKindNamed(const std::string& name) {

@@ -17,6 +17,8 @@
 #include <utility>
 #include <vector>
 
+#include "formats/common/Diagnostics.hpp"
+#include "formats/common/FileBytes.hpp"
 #include "formats/common/MessageText.hpp"
 #include "formats/common/UnitVector.hpp"
 #include "util/Error.hpp"
@@ -33,17 +35,6 @@ constexpr uint64_t kMaxTriangles = uint64_t{1} << 31;
 constexpr uint32_t kStripRestart = std::numeric_limits<uint32_t>::max();
 
 // --------------------------------------------------------------- messages
-
-class Failure {
- public:
-  explicit Failure(std::string_view name) : name_(name) {}
-  [[noreturn]] void at(size_t offset, const std::string& what) const {
-    throw Error(name_ + ": byte " + std::to_string(offset) + ": " + what);
-  }
-
- private:
-  std::string name_;
-};
 
 // ------------------------------------------------------------------ types
 
@@ -209,22 +200,25 @@ std::string joined(const std::vector<std::string_view>& words) {
   return text.size() > 60 ? text.substr(0, 60) + "..." : text;
 }
 
-Format readFormat(const HeaderLine& line, const Failure& fail) {
-  if (line.words.size() != 3) fail.at(line.offset, "expected 'format <kind> 1.0'");
+Format readFormat(const HeaderLine& line, const Diagnostics& diagnostics) {
+  if (line.words.size() != 3) diagnostics.failAtByte(line.offset, "expected 'format <kind> 1.0'");
   if (line.words[2].empty() || line.words[2][0] != '1') {
-    fail.at(line.offset, "unsupported PLY version '" + std::string(line.words[2]) + "'");
+    diagnostics.failAtByte(line.offset,
+                           "unsupported PLY version '" + std::string(line.words[2]) + "'");
   }
   const std::string_view kind = line.words[1];
   if (kind == "ascii") return Format::Ascii;
   if (kind == "binary_little_endian") return Format::BinaryLittleEndian;
   if (kind == "binary_big_endian") return Format::BinaryBigEndian;
-  fail.at(line.offset, "unknown format '" + std::string(kind) +
-                           "' (expected ascii, binary_little_endian or binary_big_endian)");
+  diagnostics.failAtByte(line.offset,
+                         "unknown format '" + std::string(kind) +
+                             "' (expected ascii, binary_little_endian or binary_big_endian)");
 }
 
 Element readElement(const HeaderLine& line, const std::vector<Element>& before,
-                    const Failure& fail) {
-  if (line.words.size() != 3) fail.at(line.offset, "expected 'element <name> <count>'");
+                    const Diagnostics& diagnostics) {
+  if (line.words.size() != 3)
+    diagnostics.failAtByte(line.offset, "expected 'element <name> <count>'");
   Element element;
   element.name = line.words[1];
   element.offset = line.offset;
@@ -232,91 +226,94 @@ Element readElement(const HeaderLine& line, const std::vector<Element>& before,
   const auto [end, error] =
       std::from_chars(count.data(), count.data() + count.size(), element.count);
   if (error != std::errc() || end != count.data() + count.size()) {
-    fail.at(line.offset, "element '" + element.name +
-                             "': the count must be a non-negative integer, got '" +
-                             std::string(count) + "'");
+    diagnostics.failAtByte(line.offset, "element '" + element.name +
+                                            "': the count must be a non-negative integer, got '" +
+                                            std::string(count) + "'");
   }
   for (const Element& other : before) {
     if (other.name == element.name) {
-      fail.at(line.offset, "element '" + element.name + "' is declared twice");
+      diagnostics.failAtByte(line.offset, "element '" + element.name + "' is declared twice");
     }
   }
   return element;
 }
 
-Scalar readType(std::string_view word, size_t offset, const Failure& fail) {
+Scalar readType(std::string_view word, size_t offset, const Diagnostics& diagnostics) {
   if (const std::optional<Scalar> type = scalarNamed(word)) return *type;
-  fail.at(offset, "unknown property type '" + std::string(word) +
-                      "' (expected char, uchar, short, ushort, int, uint, float, double or "
-                      "int8, uint8, int16, uint16, int32, uint32, float32, float64)");
+  diagnostics.failAtByte(offset,
+                         "unknown property type '" + std::string(word) +
+                             "' (expected char, uchar, short, ushort, int, uint, float, double or "
+                             "int8, uint8, int16, uint16, int32, uint32, float32, float64)");
 }
 
-void addProperty(const HeaderLine& line, Element& element, const Failure& fail) {
+void addProperty(const HeaderLine& line, Element& element, const Diagnostics& diagnostics) {
   const std::vector<std::string_view>& words = line.words;
   Property property;
   if (words.size() == 5 && words[1] == "list") {
-    property.countType = readType(words[2], line.offset, fail);
+    property.countType = readType(words[2], line.offset, diagnostics);
     if (!isInteger(*property.countType)) {
-      fail.at(line.offset,
-              "a list length type must be an integer type, not " + std::string(words[2]));
+      diagnostics.failAtByte(
+          line.offset, "a list length type must be an integer type, not " + std::string(words[2]));
     }
-    property.type = readType(words[3], line.offset, fail);
+    property.type = readType(words[3], line.offset, diagnostics);
   } else if (words.size() == 3 && words[1] != "list") {
-    property.type = readType(words[1], line.offset, fail);
+    property.type = readType(words[1], line.offset, diagnostics);
   } else {
-    fail.at(line.offset,
-            "expected 'property <type> <name>' or 'property list <type> <type> <name>'");
+    diagnostics.failAtByte(
+        line.offset, "expected 'property <type> <name>' or 'property list <type> <type> <name>'");
   }
   property.name = words.back();
   if (element.find(property.name)) {
-    fail.at(line.offset,
-            "property '" + property.name + "' of element '" + element.name + "' is declared twice");
+    diagnostics.failAtByte(line.offset, "property '" + property.name + "' of element '" +
+                                            element.name + "' is declared twice");
   }
   element.properties.push_back(std::move(property));
 }
 
 // Returns true at end_header.
-bool readHeaderLine(const HeaderLine& line, Header& header, bool& haveFormat, const Failure& fail) {
+bool readHeaderLine(const HeaderLine& line, Header& header, bool& haveFormat,
+                    const Diagnostics& diagnostics) {
   const std::string_view keyword = line.words[0];
   if (keyword == "comment" || keyword == "obj_info") return false;
   if (keyword == "format") {
-    if (haveFormat) fail.at(line.offset, "a second 'format' line");
-    header.format = readFormat(line, fail);
+    if (haveFormat) diagnostics.failAtByte(line.offset, "a second 'format' line");
+    header.format = readFormat(line, diagnostics);
     haveFormat = true;
   } else if (keyword == "element") {
-    header.elements.push_back(readElement(line, header.elements, fail));
+    header.elements.push_back(readElement(line, header.elements, diagnostics));
   } else if (keyword == "property") {
-    if (header.elements.empty()) fail.at(line.offset, "a property before any element");
-    addProperty(line, header.elements.back(), fail);
+    if (header.elements.empty())
+      diagnostics.failAtByte(line.offset, "a property before any element");
+    addProperty(line, header.elements.back(), diagnostics);
   } else if (keyword == "end_header") {
-    if (!haveFormat) fail.at(line.offset, "the header has no 'format' line");
+    if (!haveFormat) diagnostics.failAtByte(line.offset, "the header has no 'format' line");
     return true;
   } else if (!header.elements.empty()) {
     // Before the first element such a line cannot change the data layout:
     // Blender 2.47 wrote its banner there without "comment".
-    fail.at(line.offset, "unknown header line '" + joined(line.words) + "'");
+    diagnostics.failAtByte(line.offset, "unknown header line '" + joined(line.words) + "'");
   }
   return false;
 }
 
-Header readHeader(std::string_view bytes, const Failure& fail) {
-  if (bytes.empty()) fail.at(0, "empty file");
+Header readHeader(std::string_view bytes, const Diagnostics& diagnostics) {
+  if (bytes.empty()) diagnostics.failAtByte(0, "empty file");
   HeaderLines lines(bytes);
   HeaderLine line;
   if (!lines.next(line) || line.words.size() != 1 || line.words[0] != "ply") {
-    fail.at(0, "not a PLY file (the first line must be 'ply')");
+    diagnostics.failAtByte(0, "not a PLY file (the first line must be 'ply')");
   }
   Header header;
   bool haveFormat = false;
   while (lines.next(line)) {
     if (line.words.empty()) continue;
-    if (readHeaderLine(line, header, haveFormat, fail)) {
+    if (readHeaderLine(line, header, haveFormat, diagnostics)) {
       header.endLine = line.offset;
       header.dataStart = lines.position();
       return header;
     }
   }
-  fail.at(bytes.size(), "the header has no 'end_header' line");
+  diagnostics.failAtByte(bytes.size(), "the header has no 'end_header' line");
 }
 
 // ------------------------------------------------------------------ plan
@@ -356,13 +353,13 @@ bool assignSlots(ElementPlan& plan, std::initializer_list<std::string_view> name
   return true;
 }
 
-ElementPlan planVertices(const Element& element, const Failure& fail) {
+ElementPlan planVertices(const Element& element, const Diagnostics& diagnostics) {
   ElementPlan plan{&element, Role::Vertices, std::vector<int>(element.properties.size(), kUnused)};
   for (std::string_view axis : {"x", "y", "z"}) {
     const Property* property = element.find(axis);
     if (!property || property->isList()) {
-      fail.at(element.offset,
-              "element 'vertex' needs a scalar property '" + std::string(axis) + "'");
+      diagnostics.failAtByte(
+          element.offset, "element 'vertex' needs a scalar property '" + std::string(axis) + "'");
     }
   }
   assignSlots(plan, {"x", "y", "z"}, kX);
@@ -371,24 +368,24 @@ ElementPlan planVertices(const Element& element, const Failure& fail) {
     if (assignSlots(plan, {u, v}, kU)) break;
   }
   if (element.count > kMaxVertices) {
-    fail.at(element.offset, "too many vertices (" + std::to_string(element.count) + "; at most " +
-                                std::to_string(kMaxVertices) + ")");
+    diagnostics.failAtByte(element.offset, "too many vertices (" + std::to_string(element.count) +
+                                               "; at most " + std::to_string(kMaxVertices) + ")");
   }
   return plan;
 }
 
-ElementPlan planIndexLists(const Element& element, Role role, const Failure& fail) {
+ElementPlan planIndexLists(const Element& element, Role role, const Diagnostics& diagnostics) {
   ElementPlan plan{&element, role, std::vector<int>(element.properties.size(), kUnused)};
   int index = propertyIndex(element, "vertex_indices");
   if (index < 0) index = propertyIndex(element, "vertex_index");
   if (index < 0) {
-    fail.at(element.offset,
-            "element '" + element.name + "' has no 'vertex_indices' or 'vertex_index' list");
+    diagnostics.failAtByte(element.offset, "element '" + element.name +
+                                               "' has no 'vertex_indices' or 'vertex_index' list");
   }
   const Property& list = element.properties[static_cast<size_t>(index)];
   if (!list.isList() || !isInteger(list.type)) {
-    fail.at(element.offset, "property '" + list.name + "' of element '" + element.name +
-                                "' must be a list of integers");
+    diagnostics.failAtByte(element.offset, "property '" + list.name + "' of element '" +
+                                               element.name + "' must be a list of integers");
   }
   plan.slots[static_cast<size_t>(index)] = 0;
   return plan;
@@ -400,27 +397,29 @@ bool hasFaces(const std::vector<ElementPlan>& plans) {
   });
 }
 
-std::vector<ElementPlan> planElements(const Header& header, const Failure& fail) {
+std::vector<ElementPlan> planElements(const Header& header, const Diagnostics& diagnostics) {
   std::vector<ElementPlan> plans;
   bool haveVertices = false;
   for (const Element& element : header.elements) {
     if (element.name == "vertex") {
-      plans.push_back(planVertices(element, fail));
+      plans.push_back(planVertices(element, diagnostics));
       haveVertices = true;
     } else if (element.name == "face") {
-      plans.push_back(planIndexLists(element, Role::Faces, fail));
+      plans.push_back(planIndexLists(element, Role::Faces, diagnostics));
     } else if (element.name == "tristrips") {
-      plans.push_back(planIndexLists(element, Role::Strips, fail));
+      plans.push_back(planIndexLists(element, Role::Strips, diagnostics));
     } else {
       plans.push_back({&element, Role::Skip, std::vector<int>(element.properties.size(), kUnused)});
     }
   }
   if (!hasFaces(plans)) {
-    fail.at(header.endLine,
-            "no faces: the header declares no 'face' or 'tristrips' records (a point cloud or "
-            "range scan is not a mesh)");
+    diagnostics.failAtByte(
+        header.endLine,
+        "no faces: the header declares no 'face' or 'tristrips' records (a point cloud or "
+        "range scan is not a mesh)");
   }
-  if (!haveVertices) fail.at(header.endLine, "the header declares no 'vertex' element");
+  if (!haveVertices)
+    diagnostics.failAtByte(header.endLine, "the header declares no 'vertex' element");
   return plans;
 }
 
@@ -443,7 +442,7 @@ uint64_t minimumRecordBytes(const ElementPlan& plan, Format format) {
 }
 
 void checkCountsFit(const std::vector<ElementPlan>& plans, Format format, uint64_t dataBytes,
-                    const Failure& fail) {
+                    const Diagnostics& diagnostics) {
   // The last ASCII number needs no separator after it.
   uint64_t budget = dataBytes + (format == Format::Ascii ? 1 : 0);
   for (const ElementPlan& plan : plans) {
@@ -451,9 +450,10 @@ void checkCountsFit(const std::vector<ElementPlan>& plans, Format format, uint64
     if (recordBytes == 0) continue;
     const uint64_t count = plan.element->count;
     if (count > budget / recordBytes) {
-      fail.at(plan.element->offset, "element '" + plan.element->name + "' declares " +
-                                        std::to_string(count) + " records, more than the " +
-                                        std::to_string(dataBytes) + " bytes of data can hold");
+      diagnostics.failAtByte(plan.element->offset,
+                             "element '" + plan.element->name + "' declares " +
+                                 std::to_string(count) + " records, more than the " +
+                                 std::to_string(dataBytes) + " bytes of data can hold");
     }
     budget -= count * recordBytes;
   }
@@ -465,12 +465,12 @@ void checkCountsFit(const std::vector<ElementPlan>& plans, Format format, uint64
 // and the failure reporter.
 class Cursor {
  public:
-  Cursor(std::string_view bytes, size_t start, const Failure& fail)
-      : bytes_(bytes), pos_(start), fail_(fail) {}
+  Cursor(std::string_view bytes, size_t start, const Diagnostics& diagnostics)
+      : bytes_(bytes), pos_(start), diagnostics_(diagnostics) {}
 
   std::string where() const { return element_->name + " " + std::to_string(record_); }
   [[noreturn]] void failValue(const std::string& what) const {
-    fail_.at(valueStart_, where() + ": " + what);
+    diagnostics_.failAtByte(valueStart_, where() + ": " + what);
   }
 
  protected:
@@ -491,7 +491,7 @@ class Cursor {
   std::string_view bytes_;
   size_t pos_;
   size_t valueStart_ = 0;
-  const Failure& fail_;
+  const Diagnostics& diagnostics_;
   const Element* element_ = nullptr;
   uint64_t record_ = 0;
 };
@@ -506,8 +506,8 @@ T decodeBinary(const char* data, bool reverse) {
 
 class BinaryReader : public Cursor {
  public:
-  BinaryReader(std::string_view bytes, size_t start, bool bigEndian, const Failure& fail)
-      : Cursor(bytes, start, fail),
+  BinaryReader(std::string_view bytes, size_t start, bool bigEndian, const Diagnostics& diagnostics)
+      : Cursor(bytes, start, diagnostics),
         reverse_(bigEndian != (std::endian::native == std::endian::big)) {}
 
   void startRecord(const Element& element, uint64_t record) { setRecord(element, record); }
@@ -543,16 +543,16 @@ class BinaryReader : public Cursor {
 
   void finish() const {
     if (pos_ == bytes_.size()) return;
-    fail_.at(pos_, std::to_string(bytes_.size() - pos_) + " bytes of unexpected data" +
-                       afterLastRecord());
+    diagnostics_.failAtByte(pos_, std::to_string(bytes_.size() - pos_) +
+                                      " bytes of unexpected data" + afterLastRecord());
   }
 
  private:
   void need(size_t size, const Property& property) {
     valueStart_ = pos_;
     if (bytes_.size() - pos_ >= size) return;
-    fail_.at(pos_, "the file ends inside " + where() + " at property '" + property.name + "'" +
-                       declared());
+    diagnostics_.failAtByte(pos_, "the file ends inside " + where() + " at property '" +
+                                      property.name + "'" + declared());
   }
 
   double value(Scalar type, const Property& property) {
@@ -583,13 +583,15 @@ class AsciiReader : public Cursor {
   void startRecord(const Element& element, uint64_t record) {
     setRecord(element, record);
     while (pos_ < bytes_.size() && isSpace(bytes_[pos_])) ++pos_;
-    if (pos_ == bytes_.size()) fail_.at(pos_, "the file ends before " + where() + declared());
+    if (pos_ == bytes_.size())
+      diagnostics_.failAtByte(pos_, "the file ends before " + where() + declared());
   }
 
   void endRecord() {
     while (pos_ < bytes_.size() && isBlank(bytes_[pos_])) ++pos_;
     if (pos_ < bytes_.size() && !isLineEnd(bytes_[pos_])) {
-      fail_.at(pos_, "the line of " + where() + " has more values than the header declares");
+      diagnostics_.failAtByte(
+          pos_, "the line of " + where() + " has more values than the header declares");
     }
   }
 
@@ -633,7 +635,7 @@ class AsciiReader : public Cursor {
 
   void finish() {
     while (pos_ < bytes_.size() && isSpace(bytes_[pos_])) ++pos_;
-    if (pos_ < bytes_.size()) fail_.at(pos_, "unexpected data" + afterLastRecord());
+    if (pos_ < bytes_.size()) diagnostics_.failAtByte(pos_, "unexpected data" + afterLastRecord());
   }
 
  private:
@@ -641,11 +643,12 @@ class AsciiReader : public Cursor {
     while (pos_ < bytes_.size() && isBlank(bytes_[pos_])) ++pos_;
     valueStart_ = pos_;
     if (pos_ == bytes_.size()) {
-      fail_.at(pos_, "the file ends inside " + where() + " before property '" + property.name +
-                         "'" + declared());
+      diagnostics_.failAtByte(pos_, "the file ends inside " + where() + " before property '" +
+                                        property.name + "'" + declared());
     }
     if (isLineEnd(bytes_[pos_])) {
-      fail_.at(pos_, "the line of " + where() + " ends before property '" + property.name + "'");
+      diagnostics_.failAtByte(
+          pos_, "the line of " + where() + " ends before property '" + property.name + "'");
     }
     while (pos_ < bytes_.size() && !isSpace(bytes_[pos_])) ++pos_;
     return bytes_.substr(valueStart_, pos_ - valueStart_);
@@ -832,43 +835,23 @@ uint64_t vertexCountOf(const std::vector<ElementPlan>& plans) {
   return 0;
 }
 
-Error cannotOpen(const fs::path& file, int code) {
-  return Error(file.string() + ": cannot open: " + std::strerror(code));
-}
-
-std::string readWholeFile(const fs::path& file) {
-  std::error_code ignored;
-  if (fs::is_directory(file, ignored)) throw cannotOpen(file, EISDIR);
-  struct Closer {
-    void operator()(std::FILE* stream) const { std::fclose(stream); }
-  };
-  const std::unique_ptr<std::FILE, Closer> stream(std::fopen(file.c_str(), "rb"));
-  if (!stream) throw cannotOpen(file, errno);
-  std::string bytes;
-  std::array<char, 1 << 16> buffer;
-  size_t count = 0;
-  while ((count = std::fread(buffer.data(), 1, buffer.size(), stream.get())) > 0) {
-    bytes.append(buffer.data(), count);
-  }
-  if (std::ferror(stream.get())) throw cannotOpen(file, errno);
-  return bytes;
-}
-
 TriangleMesh parseMesh(std::string_view bytes, std::string_view name) {
-  const Failure fail(name);
-  const Header header = readHeader(bytes, fail);
-  const std::vector<ElementPlan> plans = planElements(header, fail);
-  checkCountsFit(plans, header.format, bytes.size() - header.dataStart, fail);
+  const Diagnostics diagnostics{std::string(name)};
+  const Header header = readHeader(bytes, diagnostics);
+  const std::vector<ElementPlan> plans = planElements(header, diagnostics);
+  checkCountsFit(plans, header.format, bytes.size() - header.dataStart, diagnostics);
   MeshBuilder out;
   out.vertexCount = vertexCountOf(plans);
   if (header.format == Format::Ascii) {
-    AsciiReader reader(bytes, header.dataStart, fail);
+    AsciiReader reader(bytes, header.dataStart, diagnostics);
     readElements(reader, plans, out);
   } else {
-    BinaryReader reader(bytes, header.dataStart, header.format == Format::BinaryBigEndian, fail);
+    BinaryReader reader(bytes, header.dataStart, header.format == Format::BinaryBigEndian,
+                        diagnostics);
     readElements(reader, plans, out);
   }
-  if (out.mesh.faces.empty()) fail.at(bytes.size(), "no faces: every tristrip is degenerate");
+  if (out.mesh.faces.empty())
+    diagnostics.failAtByte(bytes.size(), "no faces: every tristrip is degenerate");
   normalizeNormals(out.mesh);
   return std::move(out.mesh);
 }
@@ -880,7 +863,7 @@ TriangleMesh parsePly(std::string_view bytes, std::string_view name) {
 }
 
 TriangleMesh loadPly(const fs::path& file) {
-  return withPrintableErrors([&] { return parseMesh(readWholeFile(file), file.string()); });
+  return withPrintableErrors([&] { return parseMesh(readFileOrThrow(file), file.string()); });
 }
 
 }  // namespace rt

@@ -1,0 +1,13 @@
+// What a scene may ask for, in one place for every loader and the command
+// line: larger values are typos or hostile files, not render requests.
+#pragma once
+
+#include <cstdint>
+
+namespace rt {
+
+constexpr uint32_t kMaxImageSide = 16384;  // pixels per side of an image
+constexpr uint32_t kMaxBounces = 64;       // nbounces, distributed bounces
+constexpr uint32_t kMaxSamplesPerPixel = 1u << 20;
+
+}  // namespace rt
