@@ -5,6 +5,10 @@
 #ifndef RT_BINARY_GLSL
 #define RT_BINARY_GLSL
 
+#include "gpu_types.h"
+#include "bindings.glsl"
+#include "traverse.glsl"
+
 vec3 binaryRadiance(Ray primary) {
   SurfaceHit hit;
   return closestHit(primary, 0.0, RT_FAR, hit) ? sceneInfo.binaryHitColor

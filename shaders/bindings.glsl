@@ -2,6 +2,8 @@
 #ifndef RT_BINDINGS_GLSL
 #define RT_BINDINGS_GLSL
 
+#include "gpu_types.h"
+
 // A uniform block: GpuSceneInfo has only vec3 + scalar pairs and scalars, so
 // its std140 layout is its std430 one. (CPU drivers read storage buffers
 // lane by lane inside loops and branches, even at a shared index.)

@@ -2,6 +2,10 @@
 #ifndef RT_CAMERA_GLSL
 #define RT_CAMERA_GLSL
 
+#include "gpu_types.h"
+#include "bindings.glsl"
+#include "intersect.glsl"
+
 // Uniform point on the unit disc (concentric mapping: keeps strata compact).
 vec2 concentricDisc(vec2 u) {
   vec2 offset = 2.0 * u - 1.0;

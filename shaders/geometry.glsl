@@ -2,7 +2,11 @@
 #ifndef RT_GEOMETRY_GLSL
 #define RT_GEOMETRY_GLSL
 
-float largestComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }
+#include "gpu_types.h"
+#include "math.glsl"
+#include "bindings.glsl"
+#include "traverse.glsl"
+
 
 // Bound on the error of each coordinate of a rebuilt hit position, and with
 // margin on the error the intersection routines make when a ray starts that
@@ -22,13 +26,13 @@ const float RT_RELATIVE_POSITION_ERROR = 1.0 / 1048576.0;  // 2^-20
 // only on the primitive's coordinates, not on the ray.
 vec4 hitPoint(Ray ray, SurfaceHit hit) {
   vec3 p = ray.origin + hit.t * ray.direction;
-  float magnitude = largestComponent(abs(p));
+  float magnitude = maxComponent(abs(p));
   uint kind = primitiveInfo(hit.primitiveIndex).x;
   vec4 a = primitiveRow(hit.primitiveIndex, 0u);
 #ifdef RT_FEATURE_SPHERES
   if (kind == RT_PRIM_SPHERE) {
     p = a.xyz + a.w * hit.normal;
-    magnitude = largestComponent(abs(a.xyz)) + a.w;
+    magnitude = maxComponent(abs(a.xyz)) + a.w;
   }
 #endif
 #ifdef RT_FEATURE_TRIANGLES
@@ -37,7 +41,7 @@ vec4 hitPoint(Ray ray, SurfaceHit hit) {
     vec3 v2 = primitiveRow(hit.primitiveIndex, 2u).xyz;
     vec3 weights = vec3(1.0 - hit.barycentric.x - hit.barycentric.y, hit.barycentric);
     p = weights.x * a.xyz + weights.y * v1 + weights.z * v2;
-    magnitude = largestComponent(max(abs(a.xyz), max(abs(v1), abs(v2))));
+    magnitude = maxComponent(max(abs(a.xyz), max(abs(v1), abs(v2))));
   }
 #endif
 #ifdef RT_FEATURE_CYLINDERS
@@ -48,7 +52,7 @@ vec4 hitPoint(Ray ray, SurfaceHit hit) {
     bool onCap = abs(dot(hit.normal, b.xyz)) > 0.5;
     float distance = onCap ? b.w : a.w;
     p += (distance - dot(p - a.xyz, hit.normal)) * hit.normal;
-    magnitude = largestComponent(abs(a.xyz)) + b.w + a.w;
+    magnitude = maxComponent(abs(a.xyz)) + b.w + a.w;
   }
 #endif
   return vec4(p, RT_RELATIVE_POSITION_ERROR * magnitude);

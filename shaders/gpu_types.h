@@ -1,9 +1,12 @@
 // The one definition of every structure the host shares with the shaders.
-// Included by C++ (src/render, src/gpu, tests) and by GLSL (shaders/*.comp).
-// Layout rule: std430 everywhere (buffers and push constants); every
-// vec3 starts on a 16-byte boundary and is followed by a 4-byte scalar, so the
-// C++ (glm, 4-byte aligned) and GLSL layouts coincide. The size asserts below
-// catch any drift at compile time.
+// Included by C++ (src/encode, src/render, src/gpu, tests) and by GLSL.
+// Layout rule: every vec3 starts on a 16-byte boundary and is followed by a
+// 4-byte scalar, so the C++ (glm, 4-byte aligned), std430 and std140 layouts
+// coincide. Scene arrays are read as RGBA32 texels (records of whole texels,
+// by the readers in bindings.glsl, lights.glsl, surface.glsl, textures.glsl),
+// GpuSceneInfo as a std140 uniform block, GpuFrameParams as push constants.
+// The asserts below check sizes at compile time; tests/gpu/test_gpu_layout
+// checks every field's offset through the shaders' own readers.
 #ifndef RT_GPU_TYPES_H
 #define RT_GPU_TYPES_H
 

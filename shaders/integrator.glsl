@@ -11,6 +11,22 @@
 #ifndef RT_INTEGRATOR_GLSL
 #define RT_INTEGRATOR_GLSL
 
+#include "gpu_types.h"
+#include "math.glsl"
+#include "frame.glsl"
+#include "rng.glsl"
+#include "camera.glsl"
+#include "geometry.glsl"
+#include "surface.glsl"
+#include "textures.glsl"
+#include "optics.glsl"
+#include "shading.glsl"
+
+// The pending rays of the ray tree; the host sizes it per scene (Features).
+#ifndef RT_WHITTED_STACK_SIZE
+#define RT_WHITTED_STACK_SIZE 1
+#endif
+
 struct PendingRay {
   Ray ray;
   vec3 weight;

@@ -4,6 +4,9 @@
 #ifndef RT_INTERSECT_GLSL
 #define RT_INTERSECT_GLSL
 
+#include "gpu_types.h"
+#include "bindings.glsl"
+
 struct Ray {
   vec3 origin;
   vec3 direction;  // unit length

@@ -12,8 +12,6 @@ layout(push_constant) uniform BatchParamsBlock { GpuBatchParams batch; };
 layout(std430, set = 0, binding = RT_BINDING_RAYS) readonly buffer RayBuffer { GpuRay rays[]; };
 layout(std430, set = 0, binding = RT_BINDING_HITS) writeonly buffer HitBuffer { GpuHit hits[]; };
 
-#include "bindings.glsl"
-#include "intersect.glsl"
 #include "traverse.glsl"
 
 void main() {

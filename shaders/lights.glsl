@@ -4,6 +4,11 @@
 #ifndef RT_LIGHTS_GLSL
 #define RT_LIGHTS_GLSL
 
+#include "gpu_types.h"
+#include "camera.glsl"
+#include "geometry.glsl"
+#include "surface.glsl"
+
 #ifdef RT_FEATURE_AREA_LIGHTS
 // Texel buffers (RGBA32UI), read per light sample.
 layout(set = 0, binding = RT_BINDING_AREA_LIGHTS) uniform utextureBuffer areaLightTexels;
@@ -76,7 +81,7 @@ LightPoint pointOnTriangle(GpuEmitter piece, vec2 u) {
   vec3 v1 = piece.b.xyz;
   vec3 v2 = piece.c.xyz;
   vec3 p = weights.x * v0 + weights.y * v1 + weights.z * v2;
-  float magnitude = largestComponent(max(abs(v0), max(abs(v1), abs(v2))));
+  float magnitude = maxComponent(max(abs(v0), max(abs(v1), abs(v2))));
   return LightPoint(p, RT_RELATIVE_POSITION_ERROR * magnitude,
                     normalize(cross(v1 - v0, v2 - v0)), -1.0, 1.0);
 }
@@ -86,7 +91,7 @@ LightPoint pointOnSphereByArea(vec3 center, float radius, vec2 u) {
   float r = sqrt(max(0.0, 1.0 - z * z));
   float phi = 2.0 * RT_PI * u.y;
   vec3 n = vec3(r * cos(phi), r * sin(phi), z);
-  float magnitude = largestComponent(abs(center)) + radius;
+  float magnitude = maxComponent(abs(center)) + radius;
   return LightPoint(center + radius * n, RT_RELATIVE_POSITION_ERROR * magnitude, n, -1.0, 1.0);
 }
 
@@ -119,7 +124,7 @@ LightPoint pointOnSphere(vec3 center, float radius, vec3 p, vec2 u) {
   // Nearest intersection along the direction, then onto the surface exactly.
   float along = distance * cosTheta - sqrt(max(0.0, radius * radius - distance2 * sin2Theta));
   vec3 n = normalize(p + along * direction - center);
-  float magnitude = largestComponent(abs(center)) + radius;
+  float magnitude = maxComponent(abs(center)) + radius;
   float coneOverDisc = 2.0 * oneMinusCosMax / sin2Max;  // 2 / (1 + cos theta_max)
   return LightPoint(center + radius * n, RT_RELATIVE_POSITION_ERROR * magnitude, n, distance,
                     coneOverDisc);
@@ -136,7 +141,7 @@ LightPoint pointOnCylinder(GpuEmitter piece, vec2 u) {
   tangentFrame(axis, tangent, bitangent);
   float side = 2.0 * halfHeight;
   float sideShare = side / (side + radius);  // side 2 pi r 2h against caps 2 pi r^2
-  float magnitude = largestComponent(abs(center)) + halfHeight + radius;
+  float magnitude = maxComponent(abs(center)) + halfHeight + radius;
   float error = RT_RELATIVE_POSITION_ERROR * magnitude;
   if (u.x < sideShare) {
     float phi = 2.0 * RT_PI * (u.x / sideShare);

@@ -4,6 +4,8 @@
 #ifndef RT_RNG_GLSL
 #define RT_RNG_GLSL
 
+#include "gpu_types.h"
+
 // Random dimensions used by the kernels (each a pair of numbers).
 #define RT_DIM_PIXEL 0u
 #define RT_DIM_LENS 2u

@@ -2,7 +2,16 @@
 #ifndef RT_SHADING_GLSL
 #define RT_SHADING_GLSL
 
-float maxComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }
+#include "gpu_types.h"
+#include "math.glsl"
+#include "frame.glsl"
+#include "rng.glsl"
+#include "traverse.glsl"
+#include "geometry.glsl"
+#include "surface.glsl"
+#include "textures.glsl"
+#include "optics.glsl"
+#include "lights.glsl"
 
 float lightAttenuation(float distance) {
   float attenuation = sceneInfo.lightScale;

@@ -2,6 +2,11 @@
 #ifndef RT_SURFACE_GLSL
 #define RT_SURFACE_GLSL
 
+#include "gpu_types.h"
+#include "bindings.glsl"
+#include "traverse.glsl"
+#include "geometry.glsl"
+
 #ifdef RT_FEATURE_VERTICES
 layout(set = 0, binding = RT_BINDING_VERTICES) uniform textureBuffer vertexTexels;
 

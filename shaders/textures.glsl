@@ -3,6 +3,9 @@
 #ifndef RT_TEXTURES_GLSL
 #define RT_TEXTURES_GLSL
 
+#include "gpu_types.h"
+#include "bindings.glsl"
+
 #ifdef RT_FEATURE_TEXTURES
 // Texel buffers: the table (RGBA32UI, one GpuTextureInfo a texel) and every
 // texture's texels (R32UI, each a packed RGBA8 sRGB-encoded texel).

@@ -8,10 +8,6 @@
 
 layout(local_size_x = RT_WORKGROUP_SIZE_X, local_size_y = RT_WORKGROUP_SIZE_Y) in;
 
-layout(push_constant) uniform FrameParamsBlock { GpuFrameParams frameBlock; };
-// frameBlock through opaqueZero() (see bindings.glsl), set first in main().
-GpuFrameParams frame;
-
 // Storage texel buffers (one RGBA32F texel per pixel): CPU drivers read a
 // storage buffer lane by lane, an image with one gather.
 layout(rgba32f, set = 0, binding = RT_BINDING_ACCUMULATION) uniform restrict imageBuffer
@@ -25,28 +21,12 @@ layout(std430, set = 0, binding = RT_BINDING_RAY_COUNTER) buffer RayCounterBuffe
 };
 #endif
 
-#include "bindings.glsl"
-#include "rng.glsl"
-#include "intersect.glsl"
-#include "traverse.glsl"
-#include "geometry.glsl"
-#include "surface.glsl"
-#include "textures.glsl"
-#include "camera.glsl"
-#include "optics.glsl"
-#include "lights.glsl"
-#include "shading.glsl"
-#include "integrator.glsl"
+// Each file includes what it uses (include guards keep one copy).
 #include "binary.glsl"
-
-void loadFrameParams() {
-  uint z = opaqueZero();
-  GpuFrameParams b = frameBlock;
-  frame = GpuFrameParams(opaqueUint(b.tileOrigin, z), opaqueUint(b.tileSize, z),
-                         opaqueUint(b.groupStride, z), opaqueUint(b.sampleBegin, z),
-                         opaqueUint(b.sampleCount, z), opaqueUint(b.samplesTotal, z),
-                         opaqueUint(b.seed, z), opaqueUint(b.samplerKind, z), 0u);
-}
+#include "camera.glsl"
+#include "frame.glsl"
+#include "geometry.glsl"
+#include "integrator.glsl"
 
 void main() {
   loadSceneInfo();

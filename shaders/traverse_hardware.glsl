@@ -14,6 +14,8 @@
 
 #extension GL_EXT_ray_query : require
 
+#include "hits.glsl"
+
 layout(set = 0, binding = RT_BINDING_TLAS) uniform accelerationStructureEXT sceneTopLevel;
 
 bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out SurfaceHit hit) {

@@ -14,14 +14,6 @@ using namespace rt;
 
 namespace {
 
-std::filesystem::path scratchShaderDir(const std::string& name) {
-  std::filesystem::path dir = std::filesystem::path(RT_TEST_OUTPUT_DIR) / "shaders" / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  std::filesystem::copy(RT_SOURCE_SHADER_DIR, dir, std::filesystem::copy_options::recursive);
-  return dir;
-}
-
 int lineOf(const std::filesystem::path& file, const std::string& needle) {
   std::ifstream in(file);
   std::string line;
@@ -53,6 +45,35 @@ ShaderDefines allFeatures() {
 }  // namespace
 
 TEST_SUITE("shader-compiler") {
+  TEST_CASE("every .glsl file includes what it uses: each compiles on its own") {
+    // A kernel of one #include, with no features and with every feature: a
+    // file that relied on another being included first fails here.
+    std::filesystem::path dir = test::scratchShaderDir("standalone");
+    ShaderFeatures every;
+    every.spheres = every.triangles = every.cylinders = every.meshes = true;
+    every.looseTriangles = every.instanceTransforms = every.reflection = true;
+    every.refraction = every.thinLens = every.vertices = every.textures = true;
+    every.areaLights = every.diffuseBounces = true;
+    every.emitterKinds = 0xfu;
+    every.whittedStackSize = 8;
+    size_t files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(RT_SOURCE_SHADER_DIR)) {
+      if (entry.path().extension() != ".glsl") continue;
+      const std::string name = entry.path().filename().string();
+      std::ofstream(dir / "standalone.comp")
+          << "#version 460\n#extension GL_GOOGLE_include_directive : require\n"
+          << "layout(local_size_x = 1) in;\n#include \"" << name << "\"\nvoid main() {}\n";
+      ShaderCompiler compiler(dir, "");
+      for (const ShaderDefines& defines : {ShaderDefines{}, every.defines()}) {
+        CAPTURE(name);
+        CAPTURE(defines.size());
+        CHECK_NOTHROW(compiler.compile("standalone.comp", defines));
+      }
+      ++files;
+    }
+    CHECK(files >= 14);
+  }
+
   TEST_CASE("every kernel compiles with all features, and the device accepts it") {
     struct Entry {
       const char* file;
@@ -86,7 +107,7 @@ TEST_SUITE("shader-compiler") {
   }
 
   TEST_CASE("a compile error names the included file and its line") {
-    auto dir = scratchShaderDir("broken");
+    auto dir = test::scratchShaderDir("broken");
     const std::string statement = "float attenuation = sceneInfo.lightScale;";
     int line = lineOf(dir / "shading.glsl", statement);
     REQUIRE(line > 0);
@@ -105,7 +126,7 @@ TEST_SUITE("shader-compiler") {
   }
 
   TEST_CASE("the cache returns the same SPIR-V and follows source edits") {
-    auto dir = scratchShaderDir("cached");
+    auto dir = test::scratchShaderDir("cached");
     auto cache = std::filesystem::path(RT_TEST_OUTPUT_DIR) / "shaders" / "cache";
     std::filesystem::remove_all(cache);
     ShaderCompiler compiler(dir, cache);

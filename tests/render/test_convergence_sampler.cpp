@@ -33,10 +33,7 @@ struct ProbeParams {
 // The shaders plus the probe kernel in one scratch folder.
 const ShaderCompiler& probeCompiler() {
   static const ShaderCompiler compiler = [] {
-    std::filesystem::path dir = std::filesystem::path(RT_TEST_OUTPUT_DIR) / "shaders" / "probe";
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    std::filesystem::copy(RT_SOURCE_SHADER_DIR, dir, std::filesystem::copy_options::recursive);
+    std::filesystem::path dir = test::scratchShaderDir("probe");
     std::filesystem::copy_file(std::filesystem::path(RT_SOURCE_SHADER_DIR) / ".." / "tests" /
                                    "render" / "sampler_probe.comp",
                                dir / "sampler_probe.comp");

@@ -68,6 +68,14 @@ const ShaderCompiler& shaderCompiler() {
   return compiler;
 }
 
+std::filesystem::path scratchShaderDir(const std::string& name) {
+  std::filesystem::path dir = std::filesystem::path(RT_TEST_OUTPUT_DIR) / "shaders" / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy(RT_SOURCE_SHADER_DIR, dir, std::filesystem::copy_options::recursive);
+  return dir;
+}
+
 void checkNoValidationMessages() {
   static uint32_t seen = 0;
   uint32_t now = gpu().validationMessageCount();

@@ -40,6 +40,10 @@ doctest::skip needsRayQueries();
 VulkanContext& gpu();
 const ShaderCompiler& shaderCompiler();
 
+// A fresh copy of shaders/ under the test output folder, for kernels of the
+// tests' own (probes) and for edits that must not touch the source tree.
+std::filesystem::path scratchShaderDir(const std::string& name);
+
 // Fails the current test if the validation layer said anything since the
 // last call.
 void checkNoValidationMessages();
