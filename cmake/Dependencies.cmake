@@ -8,6 +8,9 @@ find_package(nlohmann_json REQUIRED CONFIG)
 find_package(CLI11 REQUIRED CONFIG)
 find_package(fmt REQUIRED CONFIG)
 find_package(tinyexr REQUIRED CONFIG)
+# tinyobjloader: header-only use (src/formats/obj/ObjTiny.cpp compiles its
+# implementation), so that sanitizer and fuzzer builds instrument it too.
+find_path(TINYOBJLOADER_INCLUDE_DIR tiny_obj_loader.h REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
 pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)

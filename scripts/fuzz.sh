@@ -6,13 +6,13 @@
 # A crash, sanitizer report, leak, timeout (10 s for one input) or memory
 # blow-up (2 GiB) keeps its input in build-asan/fuzz/findings/<target>/ and
 # fails the script; re-run that input alone with the printed command.
-# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (targets: scene_json ply gltf)
+# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (targets: scene_json ply gltf obj)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 seconds=${1:-60}
 shift || true
 targets=("$@")
-((${#targets[@]})) || targets=(scene_json ply gltf)
+((${#targets[@]})) || targets=(scene_json ply gltf obj)
 if ! [[ $seconds =~ ^[0-9]+$ ]] || ((seconds < 1)); then
   echo "fuzz.sh: SECONDS must be a positive integer, got '$seconds'" >&2
   exit 2
@@ -30,6 +30,7 @@ seed_files() {
     ply) find "$shared/assets/ply" "$shared/scene-format" -name '*.ply' -size -128k ;;
     gltf) find "$shared/assets/gltf" "$shared/assets/gltf-invalid" \
       \( -name '*.gltf' -o -name '*.glb' \) -size -256k ;;
+    obj) find "$root/assets/models" "$root/tests/fuzz/regressions/obj" -name '*.obj' ;;
   esac
 }
 

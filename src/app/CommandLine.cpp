@@ -120,6 +120,12 @@ void addConventionsOption(CLI::App& app, std::string& name) {
       ->check(CLI::IsMember({"coursework-a", "coursework-b", "textbook"}));
 }
 
+void addStrictOption(CLI::App& app, bool& strict) {
+  app.add_flag("--strict", strict,
+               "Every warning about the scene file (a missing texture or mesh file, a default "
+               "taken for a missing key, an unknown key) is an error: exit 1, nothing rendered");
+}
+
 void applyConventionsOption(const std::string& name, Scene& scene) {
   if (name.empty()) return;
   std::optional<Conventions> conventions = conventionsNamed(name);

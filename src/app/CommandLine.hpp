@@ -54,6 +54,9 @@ AccelKind accelNamed(const std::string& name);
 
 // --conventions NAME (coursework-a, coursework-b, textbook) into `name`.
 void addConventionsOption(CLI::App& app, std::string& name);
+// --strict into `strict`: every warning about the scene file is an error.
+void addStrictOption(CLI::App& app, bool& strict);
+
 // Gives a loaded scene the conventions --conventions named, if any.
 void applyConventionsOption(const std::string& name, Scene& scene);
 

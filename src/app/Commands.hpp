@@ -12,3 +12,6 @@ int runViewCommand(int argc, char** argv);
 
 // raytracer converge SCENE [options] (argv[0] is "converge")
 int runConvergeCommand(int argc, char** argv);
+
+// raytracer check SCENE [options] (argv[0] is "check")
+int runCheckCommand(int argc, char** argv);

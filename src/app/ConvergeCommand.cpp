@@ -35,6 +35,7 @@ constexpr uint32_t kReferenceFactor = 8;             // default reference: 8x th
 
 struct CommandLine {
   std::string scenePath;
+  bool strict = false;
   std::string referencePath;
   std::optional<uint32_t> referenceSamples;
   std::string region;
@@ -129,7 +130,7 @@ void printSummaryTable(const std::vector<rt::ConvergencePoint>& points,
 }
 
 int run(const CommandLine& cli) {
-  rt::Scene scene = rt::loadSceneFile(cli.scenePath);
+  rt::Scene scene = rt::loadSceneFile(cli.scenePath, {cli.strict});
   rt::cli::applyConventionsOption(cli.conventions, scene);
   rt::ConvergenceSetup setup = convergenceSetup(cli, scene);
   std::vector<uint32_t> counts = sampleCounts(cli);
@@ -189,7 +190,8 @@ int run(const CommandLine& cli) {
 }
 
 void addOptions(CLI::App& app, CommandLine& cli) {
-  app.add_option("scene", cli.scenePath, "Scene file (.json, or a .gltf/.glb model)")->required();
+  app.add_option("scene", cli.scenePath, "Scene file (.json, a .gltf/.glb or .obj model)")
+      ->required();
   auto* reference =
       app.add_option("--reference", cli.referencePath,
                      "Reference image (.exr as written by `raytracer SCENE REF.exr`)");
@@ -224,6 +226,7 @@ void addOptions(CLI::App& app, CommandLine& cli) {
   app.add_option("--shading", cli.shading, "Shading model (default: the conventions')")
       ->check(CLI::IsMember({"standard", "coursework"}));
   rt::cli::addConventionsOption(app, cli.conventions);
+  rt::cli::addStrictOption(app, cli.strict);
   app.add_option("--device", cli.device, "The number of the Vulkan device to use");
   app.add_flag("--validation", cli.validation, "Enable the Vulkan validation layer");
   app.add_option("--shader-dir", cli.shaderDir, "Folder with the GLSL shaders");

@@ -6,10 +6,10 @@
 
 #include "app/CommandLine.hpp"
 #include "app/Commands.hpp"
-#include "imaging/Merge.hpp"
-#include "io/Image.hpp"
 #include "encode/Conventions.hpp"
 #include "formats/SceneFile.hpp"
+#include "imaging/Merge.hpp"
+#include "io/Image.hpp"
 #include "util/Error.hpp"
 
 namespace {

@@ -32,6 +32,7 @@ using rt::cli::kMaxSamples;
 
 struct CommandLine {
   std::string scenePath;
+  bool strict = false;
   std::string outputPath;
   std::optional<uint32_t> samples;
   std::string size;
@@ -193,7 +194,7 @@ int run(const CommandLine& cli) {
     throw rt::Error(fmt::format("{}: unsupported output format (use .png, .ppm, .exr or .hdr)",
                                 cli.outputPath));
   }
-  rt::Scene scene = rt::loadSceneFile(cli.scenePath);
+  rt::Scene scene = rt::loadSceneFile(cli.scenePath, {cli.strict});
   for (const std::string& warning : scene.warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
   rt::cli::applyConventionsOption(cli.conventions, scene);
@@ -248,7 +249,7 @@ int runRenderCommand(int argc, char** argv) {
   CommandLine cli;
   CLI::App app{"GPU compute ray tracer (Vulkan). Renders a JSON scene to an image.", "raytracer"};
   app.set_version_flag("--version", std::string("raytracer ") + RT_VERSION);
-  app.add_option("scene", cli.scenePath, "Scene file (.json, or a .gltf/.glb model)");
+  app.add_option("scene", cli.scenePath, "Scene file (.json, a .gltf/.glb or .obj model)");
   app.add_option("output", cli.outputPath, "Output image: .png, .ppm, .exr or .hdr");
   app.add_option("--spp", cli.samples, "Samples per pixel (default: the scene's, else 16)")
       ->check(CLI::Range(1u, kMaxSamples));
@@ -263,6 +264,7 @@ int runRenderCommand(int argc, char** argv) {
                  "standard otherwise)")
       ->check(CLI::IsMember({"standard", "coursework"}));
   rt::cli::addConventionsOption(app, cli.conventions);
+  rt::cli::addStrictOption(app, cli.strict);
   rt::cli::addAccelOption(app, cli.accel);
   app.add_flag("--offscreen", cli.offscreen, "Render without a window (the default)");
   app.add_option("--device", cli.device, "'list' to list Vulkan devices, or the number to use");

@@ -6,6 +6,8 @@
 
 #include "formats/gltf/GltfLoader.hpp"
 #include "formats/json/JsonSceneLoader.hpp"
+#include "formats/obj/ObjLoader.hpp"
+#include "util/Error.hpp"
 
 namespace rt {
 
@@ -16,8 +18,20 @@ bool isGltfFile(const std::filesystem::path& file) {
   return ext == ".gltf" || ext == ".glb";
 }
 
-Scene loadSceneFile(const std::filesystem::path& file) {
-  return isGltfFile(file) ? loadGltfScene(file) : loadJsonScene(file);
+Scene loadSceneFile(const std::filesystem::path& file, const SceneLoadOptions& options) {
+  Scene scene = isGltfFile(file)  ? loadGltfScene(file)
+                : isObjFile(file) ? loadObjScene(file)
+                                  : loadJsonScene(file);
+  if (options.strict && !scene.warnings.empty()) {
+    throw Error(scene.warnings.front() + " (--strict: every warning is an error)");
+  }
+  return scene;
+}
+
+const char* sceneFileKind(const std::filesystem::path& file) {
+  if (isGltfFile(file)) return "glTF";
+  if (isObjFile(file)) return "OBJ";
+  return "coursework JSON";
 }
 
 }  // namespace rt

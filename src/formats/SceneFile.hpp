@@ -1,5 +1,6 @@
 // Any scene file the renderer reads, chosen by extension: .gltf/.glb as a
-// glTF scene of its own, everything else as a coursework JSON scene.
+// glTF scene of its own, .obj as an OBJ model (framed the same way),
+// everything else as a coursework JSON scene.
 #pragma once
 
 #include <filesystem>
@@ -8,7 +9,17 @@
 
 namespace rt {
 
-Scene loadSceneFile(const std::filesystem::path& file);
+struct SceneLoadOptions {
+  // Lenient by default: what a loader can read around (a missing texture or
+  // mesh file, a missing key with an obvious default, an unknown key) is a
+  // warning in Scene::warnings. Strict: the first such warning is the error.
+  bool strict = false;
+};
+
+Scene loadSceneFile(const std::filesystem::path& file, const SceneLoadOptions& options = {});
+
+// What kind of file loadSceneFile reads it as: "coursework JSON", "glTF", "OBJ".
+const char* sceneFileKind(const std::filesystem::path& file);
 
 bool isGltfFile(const std::filesystem::path& file);
 

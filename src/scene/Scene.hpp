@@ -82,6 +82,9 @@ struct Shape {
   Geometry geometry;
   uint32_t material = 0;  // index into Scene::materials
   std::string label;      // optional `id` from the file, for messages
+  // Where the file describes it ("scene.shapes[3]", "crate.obj: material
+  // 'wood'"), for `raytracer check`; empty when the label says enough.
+  std::string origin;
 };
 
 struct PointLight {
@@ -187,6 +190,9 @@ struct Scene {
   std::vector<TriangleMesh> meshes;
   std::vector<Texture> textures;
   std::vector<std::string> warnings;  // unknown keys and ignored features, one line each
+  // Every value the JSON loader read, "path = value" in reading order
+  // ("camera.fov = 45"): where each setting came from, for `raytracer check`.
+  std::vector<std::string> valuesRead;
 };
 
 // Gives the scene its conventions, and the camera the image right they

@@ -139,8 +139,9 @@ expect_error "PLY: 1e12 faces declared" "mesh-huge-count\.json: scene\.shapes\[0
 expect_error "PLY: truncated binary" 'mesh-short\.json: scene\.shapes\[0\]\.file: .*short\.ply: byte [0-9]+' "$SCRATCH/mesh-short.json" "$SCRATCH/out.png"
 expect_error "PLY: empty" 'mesh-empty\.json: scene\.shapes\[0\]\.file: .*empty\.ply: byte 0: empty file' "$SCRATCH/mesh-empty.json" "$SCRATCH/out.png"
 expect_error "PLY: noise" 'mesh-noise\.json: scene\.shapes\[0\]\.file: .*noise\.ply: byte 0: not a PLY file' "$SCRATCH/mesh-noise.json" "$SCRATCH/out.png"
-expect_error "PLY: a folder" 'mesh-folder\.json: scene\.shapes\[0\]\.file: mesh file not found: folder\.ply' "$SCRATCH/mesh-folder.json" "$SCRATCH/out.png"
-expect_error "PLY: missing" 'mesh-missing\.json: scene\.shapes\[0\]\.file: mesh file not found: missing\.ply' "$SCRATCH/mesh-missing.json" "$SCRATCH/out.png"
+# A mesh file that is not there: a warning (the shape is left out); with --strict, the error.
+expect_error "PLY: a folder" 'mesh-folder\.json: scene\.shapes\[0\]\.file: mesh file not found: folder\.ply' "$SCRATCH/mesh-folder.json" "$SCRATCH/out.png" --strict
+expect_error "PLY: missing" 'mesh-missing\.json: scene\.shapes\[0\]\.file: mesh file not found: missing\.ply' "$SCRATCH/mesh-missing.json" "$SCRATCH/out.png" --strict
 write empty.png ''
 head -c 256 /dev/urandom >"$SCRATCH/noise.png"
 printf '\x89PNG\r\n\x1a\n\0\0\0\rIHDR\x7f\xff\xff\xff\x7f\xff\xff\xff\x08\x06\0\0\0' >"$SCRATCH/giant.png"
@@ -151,8 +152,9 @@ done
 for texture in empty noise giant; do
   expect_error "texture: $texture" "texture-$texture\.json: scene\.shapes\[0\]\.material\.tPath: cannot use texture: .*$texture\.png" "$SCRATCH/texture-$texture.json" "$SCRATCH/out.png"
 done
+# A texture file that is not there: a warning (the missing-texture squares); with --strict, the error.
 for texture in folder missing; do
-  expect_error "texture: $texture" "texture-$texture\.json: scene\.shapes\[0\]\.material\.tPath: texture file not found: $texture\.png" "$SCRATCH/texture-$texture.json" "$SCRATCH/out.png"
+  expect_error "texture: $texture" "texture-$texture\.json: scene\.shapes\[0\]\.material\.tPath: texture file not found: $texture\.png" "$SCRATCH/texture-$texture.json" "$SCRATCH/out.png" --strict
 done
 
 # --- hostile input: glTF ------------------------------------------------------
@@ -188,6 +190,42 @@ write area-zero.json "${AREA/\"v0\":\[-1,2,-2\],\"v1\":\[1,2,-2\],\"v2\":\[1,2,-
 expect_error "area light: no area" 'area-zero\.json: scene\.lightsources\[0\]: area light has no area' "$SCRATCH/area-zero.json" "$SCRATCH/out.png"
 
 # --- official scenes load and render (small) -------------------------------
+# --- student scenes: lenient by default, --strict, check, OBJ -------------
+LENIENT='{"camera":{"width":32,"height":24,"fov":45,"position":[0,0,0],"lookat":[0,0,-1],"up":[0,1,0]},
+"scene":{"lightsources":[{"type":"pointlight","position":[0,2,0],"intensity":5}],
+"shapes":[{"type":"sphere","center":[0,0,-3],"radius":1,"material":{"diffusecolor":[0.8,0.2,0.2],"texture":"C:/Users/me/wood.ppm"}},
+{"type":"mesh","file":"models/gone.obj"}]}}'
+write lenient.json "$LENIENT"
+if "$RAYTRACER" "$SCRATCH/lenient.json" "$SCRATCH/lenient.png" --spp 1 -q 2>"$SCRATCH/stderr" && [[ -s "$SCRATCH/lenient.png" ]] &&
+  grep -q "^warning: .*camera.type: missing; taken as \"pinhole\"" "$SCRATCH/stderr" &&
+  grep -q "^warning: .*texture file not found: C:/Users/me/wood.ppm.*; drawn with the missing-texture squares" "$SCRATCH/stderr" &&
+  grep -q "^warning: .*mesh file not found: models/gone.obj.*; the shape is left out" "$SCRATCH/stderr"; then
+  pass
+else
+  fail "lenient render: $(cat "$SCRATCH/stderr")"
+fi
+expect_error "--strict" "^error: .*lenient.json: .*\(--strict: every warning is an error\)$" \
+  "$SCRATCH/lenient.json" "$SCRATCH/out.png" --strict
+"$RAYTRACER" check "$SCRATCH/lenient.json" >"$SCRATCH/check" 2>&1; status=$?
+if [[ $status -eq 0 ]] && grep -q "^conventions: coursework-a (" "$SCRATCH/check" &&
+  grep -q "^camera: pinhole 32x24, vertical fov 45 degrees" "$SCRATCH/check" &&
+  grep -q "^  0 \[scene.shapes\[0\]\]: sphere centre (0, 0, -3) radius 1" "$SCRATCH/check" &&
+  grep -q "^  scene.lightsources\[0\].intensity = 5" "$SCRATCH/check" &&
+  grep -q "^warnings (defaults taken, files missing, keys ignored): " "$SCRATCH/check" &&
+  grep -q "^kernel features: spheres" "$SCRATCH/check"; then
+  pass
+else
+  fail "check: status $status: $(cat "$SCRATCH/check")"
+fi
+"$RAYTRACER" check "$SCRATCH/lenient.json" --strict >/dev/null 2>&1; [[ $? -eq 1 ]] && pass || fail "check --strict must exit 1"
+expect_failure nothing "check of a broken file" "^error: .*broken.json: byte " check "$SCRATCH/broken.json"
+CRATE="$(dirname "${BASH_SOURCE[0]}")/../../assets/models/crate.obj"
+if "$RAYTRACER" "$CRATE" "$SCRATCH/crate.png" --size 64x48 --spp 1 -q 2>"$SCRATCH/stderr" && [[ -s "$SCRATCH/crate.png" ]]; then
+  pass
+else
+  fail "OBJ render: $(cat "$SCRATCH/stderr")"
+fi
+
 if [[ -d "$SHARED/scene-format/official" ]]; then
   while IFS= read -r scene; do
     name=$(basename "$scene" .json)

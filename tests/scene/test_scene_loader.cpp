@@ -101,32 +101,7 @@ size_t checkCorruptionsFailCleanly(const Json& document, const fs::path& file = 
   return tried;
 }
 
-// A scratch folder under the system temp dir, removed again at scope exit.
-class TempDir {
- public:
-  TempDir() {
-    const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-    path_ = fs::temp_directory_path() / ("rt_scene_loader_" + std::to_string(stamp));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  const fs::path& path() const { return path_; }
-  fs::path write(const fs::path& relative, const std::string& text) const {
-    const fs::path file = path_ / relative;
-    fs::create_directories(file.parent_path());
-    std::ofstream(file) << text;
-    return file;
-  }
-
- private:
-  fs::path path_;
-};
+using rt::test::TempDir;
 
 }  // namespace
 
@@ -318,25 +293,30 @@ TEST_SUITE("scene loader: student files") {
       }
       return "";
     };
-    const auto expectRejected = [&](const char* relative, const std::string& why) {
-      const std::string error = errorOfFile(relative);
+    // Loads (leniently), with a warning that says what was read around.
+    const auto expectWarned = [&](const char* relative, const std::string& why) {
+      const fs::path file = student / relative;
+      if (!fs::exists(file)) return;
       CAPTURE(relative);
-      CHECK((error == "(absent)" || contains(error, why)));
+      const rt::Scene scene = rt::loadJsonScene(file);
+      bool found = false;
+      for (const std::string& warning : scene.warnings) found = found || contains(warning, why);
+      CHECK(found);
     };
     CHECK(errorOfFile("PeihengLu__CG_CW2/examples/example.json").empty());
     CHECK(errorOfFile("chxag__CGR-Raytracing-CW2/Code/Jsons/complex_one.json").empty());
     CHECK(errorOfFile("julie-o__CG-cw/demo.json").empty());
     // The author did not publish the bear model.
-    expectRejected("PeihengLu__CG_CW2/examples/example_trimesh.json",
-                   "scene.shapes[5].mPath: mesh file not found: ../ply_models/bear.ply (looked in");
+    expectWarned("PeihengLu__CG_CW2/examples/example_trimesh.json",
+                 "scene.shapes[5].mPath: mesh file not found: ../ply_models/bear.ply (looked in");
     CHECK(errorOfFile("TsFreddie__RayTracer/examples/monkey_bvh_test.json").empty());
     CHECK(errorOfFile("TsFreddie__RayTracer/examples/dof_test.json").empty());
     CHECK(errorOfFile("TsFreddie__RayTracer/examples/softshadow_test.json").empty());
     // The author's textures are not in the repository.
-    expectRejected("PFNK__RayTracer/examples/test.json",
-                   "scene.shapes[0].material.tPath: texture file not found: ../textures/map.ppm");
-    expectRejected("nizqleo__RayTracer/examples/triangle.json", "unknown shape type 'Traingle'");
-    expectRejected("TsFreddie__RayTracer/input_format.json", ": byte ");
+    expectWarned("PFNK__RayTracer/examples/test.json",
+                 "texture file not found: ../textures/map.ppm");
+    expectWarned("TsFreddie__RayTracer/input_format.json", "comments (// or /* */) are not JSON");
+    CHECK(errorOfFile("nizqleo__RayTracer/examples/triangle.json").empty());  // "Traingle"
 
     const fs::path thinLens = student / "PeihengLu__CG_CW2/examples/example_thinlens.json";
     if (fs::exists(thinLens)) {
@@ -402,8 +382,6 @@ TEST_SUITE("scene loader: in-memory scenes") {
 
   TEST_CASE("missing required keys") {
     Json scene = minimalScene();
-    firstMaterial(scene).erase("kd");
-    CHECK(errorOf(scene) == "mem.json: scene.shapes[0].material.kd: missing required key");
     scene = minimalScene();
     scene.erase("camera");
     CHECK(errorOf(scene) == "mem.json: camera: missing required key");
@@ -526,9 +504,9 @@ TEST_SUITE("scene loader: in-memory scenes") {
 
   TEST_CASE("render mode") {
     Json scene = minimalScene();
-    scene["rendermode"] = "whitted";
+    scene["rendermode"] = "raymarch";
     CHECK(errorOf(scene) ==
-          "mem.json: rendermode: unknown rendermode 'whitted' (expected \"binary\", \"phong\" "
+          "mem.json: rendermode: unknown rendermode 'raymarch' (expected \"binary\", \"phong\" "
           "or \"pathtracer\")");
     scene["rendermode"] = "binary";
     firstShape(scene).erase("material");
@@ -573,12 +551,12 @@ TEST_SUITE("scene loader: in-memory scenes") {
 
   TEST_CASE("shape types") {
     Json scene = minimalScene();
-    firstShape(scene)["type"] = "PlanerQuad";
-    CHECK(contains(errorOf(scene), "scene.shapes[0].type: unknown shape type 'PlanerQuad'"));
+    firstShape(scene)["type"] = "Blob";
+    CHECK(contains(errorOf(scene), "scene.shapes[0].type: unknown shape type 'Blob'"));
     firstShape(scene)["type"] = "ply";
     CHECK(errorOf(scene) ==
-          "mem.json: scene.shapes[0].file: missing: a ply shape needs its file (file, path, mPath "
-          "or plyPath)");
+          "mem.json: scene.shapes[0].file: missing: a ply shape needs its file (file, path, mPath, "
+          "plyPath or filename)");
 
     scene = minimalScene();
     firstShape(scene) = {{"type", "plane"}, {"v2", {1, 1, 0}}, {"v0", {0, 0, 0}},
@@ -653,8 +631,12 @@ TEST_SUITE("scene loader: in-memory scenes") {
 
     scene = minimalScene();
     firstShape(scene) = {{"type", "trimesh"}, {"plyPath", "../meshes/apple.ply"}};
-    CHECK(contains(errorOf(scene),
+    const rt::Scene withoutMesh = parse(scene);
+    CHECK(withoutMesh.shapes.empty());
+    CHECK(
+        hasWarning(withoutMesh,
                    "mem.json: scene.shapes[0].plyPath: mesh file not found: ../meshes/apple.ply"));
+    CHECK(hasWarning(withoutMesh, "; the shape is left out"));
 
     scene = minimalScene();
     firstShape(scene) = {{"type", "trimesh"},
@@ -747,14 +729,17 @@ TEST_SUITE("scene loader: in-memory scenes") {
     CHECK(loaded.materials[0].texture == (dir.path() / "examples/b.png").lexically_normal());
 
     firstMaterial(scene)["texture"] = "missing.png";
-    try {
-      rt::parseJsonScene(scene.dump(), sceneFile);
-      FAIL("a missing texture must fail");
-    } catch (const rt::Error& error) {
-      CHECK(contains(error.what(), sceneFile.string() +
-                                       ": scene.shapes[0].material.texture: texture file not "
-                                       "found: missing.png"));
-    }
+    loaded = rt::parseJsonScene(scene.dump(), sceneFile);
+    REQUIRE(loaded.warnings.size() == 1);
+    CHECK(contains(loaded.warnings[0], sceneFile.string() +
+                                           ": scene.shapes[0].material.texture: texture file not "
+                                           "found: missing.png"));
+    CHECK(contains(loaded.warnings[0], "drawn with the missing-texture squares"));
+    REQUIRE(loaded.materials[0].diffuseTexture >= 0);
+    const rt::ImageRgba8& squares =
+        loaded.textures[size_t(loaded.materials[0].diffuseTexture)].image;
+    CHECK(std::vector<uint8_t>(squares.rgba.begin(), squares.rgba.begin() + 4) ==
+          std::vector<uint8_t>{255, 0, 255, 255});
 
     firstMaterial(scene)["texture"] = "../textures/corrupt.png";
     try {
@@ -870,7 +855,7 @@ TEST_SUITE("scene loader: in-memory scenes") {
 
   TEST_CASE("unknown keys are warnings, renderer settings are silent") {
     Json scene = minimalScene();
-    scene["pixel_sample_num"] = 30;
+    scene["photon_count"] = 30;
     firstMaterial(scene)["anisotropy"] = 0.5;
     scene["bvh"] = true;
     scene["output"] = "out.ppm";
@@ -880,7 +865,7 @@ TEST_SUITE("scene loader: in-memory scenes") {
     CHECK(loaded.warnings ==
           std::vector<std::string>{
               "mem.json: scene.shapes[0].material.anisotropy: unknown key 'anisotropy' ignored",
-              "mem.json: pixel_sample_num: unknown key 'pixel_sample_num' ignored"});
+              "mem.json: photon_count: unknown key 'photon_count' ignored"});
   }
 
   TEST_CASE("family detection") {
@@ -1257,7 +1242,9 @@ TEST_SUITE("scene loader: PLY meshes") {
                                 ": face 0: vertex index 7 is out of range (the file has 3 "
                                 "vertices)");
     scene["scene"]["shapes"][1]["mPath"] = "../meshes/none.ply";
-    CHECK(contains(errorIn(scene),
+    const rt::Scene withoutMesh = rt::parseJsonScene(scene.dump(), sceneFile);
+    CHECK(withoutMesh.shapes.size() == 1);
+    CHECK(contains(withoutMesh.warnings.at(0),
                    "scene.shapes[1].mPath: mesh file not found: ../meshes/none.ply (looked in"));
     scene["scene"]["shapes"][1]["mPath"] = "";
     CHECK(contains(errorIn(scene), "scene.shapes[1].mPath: must not be an empty string"));
@@ -1265,7 +1252,7 @@ TEST_SUITE("scene loader: PLY meshes") {
     scene["scene"]["shapes"][1]["vertices"] = {{0, 0, 0}};
     CHECK(contains(errorIn(scene),
                    "scene.shapes[1].vertices: conflicts with 'scene.shapes[1].mPath': give inline "
-                   "vertices or a PLY file"));
+                   "vertices or a mesh file"));
     scene["scene"]["shapes"][1] = plyShape("trimesh", "mPath", "../meshes/bad.ply");
     scene["scene"]["shapes"][1]["file"] = "../meshes/bad.ply";
     CHECK(contains(errorIn(scene), "scene.shapes[1].file: conflicts with"));

@@ -3,8 +3,10 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <glm/geometric.hpp>
 #include <memory>
 #include <random>
@@ -66,6 +68,27 @@ VulkanContext& gpu() {
 const ShaderCompiler& shaderCompiler() {
   static ShaderCompiler compiler(RT_SOURCE_SHADER_DIR, RT_TEST_SHADER_CACHE);
   return compiler;
+}
+
+TempDir::TempDir() {
+  static int made = 0;
+  const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
+  path_ = std::filesystem::temp_directory_path() /
+          ("rt_test_" + std::to_string(stamp) + "_" + std::to_string(++made));
+  std::filesystem::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
+std::filesystem::path TempDir::write(const std::filesystem::path& relative,
+                                     const std::string& text) const {
+  const std::filesystem::path file = path_ / relative;
+  std::filesystem::create_directories(file.parent_path());
+  std::ofstream(file, std::ios::binary) << text;
+  return file;
 }
 
 std::filesystem::path scratchShaderDir(const std::string& name) {

@@ -40,6 +40,22 @@ doctest::skip needsRayQueries();
 VulkanContext& gpu();
 const ShaderCompiler& shaderCompiler();
 
+// A scratch folder under the system temp dir, removed again at scope exit.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+  // Writes `text` to path() / relative (making its folders) and returns the file.
+  std::filesystem::path write(const std::filesystem::path& relative, const std::string& text) const;
+
+ private:
+  std::filesystem::path path_;
+};
+
 // A fresh copy of shaders/ under the test output folder, for kernels of the
 // tests' own (probes) and for edits that must not touch the source tree.
 std::filesystem::path scratchShaderDir(const std::string& name);

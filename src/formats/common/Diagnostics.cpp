@@ -1,5 +1,7 @@
 #include "formats/common/Diagnostics.hpp"
 
+#include <algorithm>
+
 #include "util/Error.hpp"
 
 namespace rt {
@@ -24,13 +26,38 @@ void Diagnostics::failAtByte(size_t offset, std::string_view what) const {
 }
 
 void Diagnostics::warn(std::string_view where, std::string_view what) {
-  std::string line = format(where, what);
-  if (seen_.insert(line).second) warnings_.push_back(std::move(line));
+  auto [entry, added] = byWhat_.try_emplace(std::string(what), warnings_.size());
+  if (added) warnings_.push_back({std::string(what), {}, {}});
+  Warning& warning = warnings_[entry->second];
+  if (warning.seen.emplace(where).second) warning.places.emplace_back(where);
 }
 
 std::vector<std::string> Diagnostics::takeWarnings() {
-  seen_.clear();
-  return std::move(warnings_);
+  // A line names at most this many places, then how many more there are.
+  constexpr size_t kPlacesNamed = 3;
+  std::vector<std::string> lines;
+  for (const Warning& warning : warnings_) {
+    std::string places;
+    for (size_t i = 0; i < std::min(warning.places.size(), kPlacesNamed); ++i) {
+      if (warning.places[i].empty()) continue;
+      if (!places.empty()) places += ", ";
+      places += warning.places[i];
+    }
+    if (warning.places.size() > kPlacesNamed) {
+      places += " and " + std::to_string(warning.places.size() - kPlacesNamed) + " more";
+    }
+    lines.push_back(format(places, warning.what));
+  }
+  warnings_.clear();
+  byWhat_.clear();
+  return lines;
+}
+
+void Diagnostics::noteRead(std::string_view where, std::string_view value) {
+  std::string line(where);
+  line += " = ";
+  line += value;
+  reads_.push_back(std::move(line));
 }
 
 std::string byteOffset(size_t offset) { return "byte " + std::to_string(offset); }

@@ -2,10 +2,13 @@
 // "<file>: <where>: <what>" ("<file>: <what>" when `where` is empty), where
 // `where` is a JSON path ("scene.shapes[3].kd"), a glTF item
 // ("meshes[0].primitives[1]") or a byte offset ("byte 212"). Errors are
-// thrown as rt::Error; warnings are collected, each distinct line once.
+// thrown as rt::Error; warnings are collected, each distinct line once, and
+// the same warning at several places becomes one line that lists them
+// ("<file>: scene.shapes[1].material.ks, scene.shapes[2].material.ks: missing; ...").
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <set>
 #include <string>
 #include <string_view>
@@ -23,13 +26,22 @@ class Diagnostics {
   // A failure at byte `offset` of the file: "<file>: byte <offset>: <what>".
   [[noreturn]] void failAtByte(size_t offset, std::string_view what) const;
   void warn(std::string_view where, std::string_view what);
-  // The warnings so far, in the order first given.
+  // The warnings so far, grouped by what they say, in the order first given.
   std::vector<std::string> takeWarnings();
+  // A value the loader read ("camera.fov = 45"), for `raytracer check`.
+  void noteRead(std::string_view where, std::string_view value);
+  std::vector<std::string> takeReads() { return std::move(reads_); }
 
  private:
+  struct Warning {
+    std::string what;
+    std::vector<std::string> places;  // each `where` once, in order
+    std::set<std::string, std::less<>> seen;
+  };
   std::string file_;
-  std::vector<std::string> warnings_;
-  std::set<std::string> seen_;
+  std::vector<Warning> warnings_;
+  std::map<std::string, size_t, std::less<>> byWhat_;  // index into warnings_
+  std::vector<std::string> reads_;
 };
 
 // "byte <offset>", the `where` of a message about a place in a file's bytes.

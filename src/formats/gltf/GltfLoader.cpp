@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "formats/common/MessageText.hpp"
+#include "formats/common/ModelFraming.hpp"
 #include "formats/gltf/GltfContext.hpp"
 #include "formats/gltf/GltfDocument.hpp"
 #include "formats/gltf/GltfMaterial.hpp"
@@ -25,10 +26,6 @@ namespace fs = std::filesystem;
 using gltf::Context;
 using gltf::item;
 
-constexpr float kBackgroundGrey = 0.5f;
-constexpr uint32_t kCameraHeight = 600;
-constexpr uint32_t kDefaultCameraWidth = 800;
-constexpr float kDefaultFovDegrees = 45.0f;
 constexpr float kDirectionalLightRadii = 100.0f;
 // World coordinates (vertices, lights, cameras) beyond this are refused:
 // whatever is derived from them (framing distance, distant lights at 100
@@ -37,21 +34,10 @@ constexpr double kMaxCoordinate = 1e18;
 // Shape labels are for messages; a node name of megabytes is not copied per instance.
 constexpr size_t kMaxLabelLength = 80;
 
-// In double precision: the corners of a placed box may not fit a float.
-struct Bounds {
-  glm::dvec3 lo{std::numeric_limits<double>::max()};
-  glm::dvec3 hi{std::numeric_limits<double>::lowest()};
-
-  bool empty() const { return lo.x > hi.x; }
-  void grow(glm::dvec3 p) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  glm::vec3 center() const { return empty() ? glm::vec3(0.0f) : glm::vec3(0.5 * (lo + hi)); }
-  float radius() const {
-    return empty() ? 1.0f : static_cast<float>(std::max(0.5 * glm::length(hi - lo), 1e-3));
-  }
-};
+using Bounds = ModelBounds;
+// glTF cameras: this height, the width from their aspect ratio.
+constexpr uint32_t kCameraHeight = 600;
+constexpr uint32_t kDefaultCameraWidth = 800;
 
 bool inRange(glm::dvec3 p) {
   return std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
@@ -352,69 +338,17 @@ Imported importFile(const fs::path& file, const glm::dmat4& placement) {
   });
 }
 
-// Fov 45, 800x600, looking at the bounding sphere's centre from above the +z
-// side, at the distance where the sphere fits the vertical field of view.
-Camera defaultCamera(const Bounds& bounds) {
-  Camera camera;
-  camera.width = kDefaultCameraWidth;
-  camera.height = kCameraHeight;
-  camera.fovYDegrees = kDefaultFovDegrees;
-  glm::vec3 toCamera = glm::normalize(glm::vec3(0.0f, 0.5f, 1.0f));
-  float distance = 1.05f * bounds.radius() / std::sin(glm::radians(kDefaultFovDegrees) / 2.0f);
-  camera.position = bounds.center() + toCamera * distance;
-  camera.forward = -toCamera;
-  camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
-  return camera;
-}
-
-// White, intensity 1, above and to the right of the camera (at half the
-// camera's distance to the scene centre along each axis), so that surfaces
-// facing the camera are lit and shapes show some shading.
-PointLight defaultLight(const Camera& camera, const Bounds& bounds) {
-  glm::vec3 forward = glm::normalize(camera.forward);
-  glm::vec3 right = glm::cross(forward, camera.up);
-  if (!(glm::length(right) > 1e-6f)) right = glm::cross(forward, glm::vec3(1.0f, 0.0f, 0.0f));
-  if (!(glm::length(right) > 1e-6f)) right = glm::cross(forward, glm::vec3(0.0f, 0.0f, 1.0f));
-  right = glm::normalize(right);
-  glm::vec3 up = glm::cross(right, forward);
-  float distance = glm::length(bounds.center() - camera.position);
-  if (!(distance > 0.0f)) distance = 1.0f;
-  glm::vec3 position = camera.position + distance * (0.5f * up + 0.5f * right);
-  return {position, glm::vec3(1.0f), glm::vec3(1.0f)};
-}
-
-// Appends `part` to `scene`, shifting the indices that point into its lists.
-void merge(Scene& scene, Scene&& part) {
-  auto materialBase = static_cast<uint32_t>(scene.materials.size());
-  auto meshBase = static_cast<uint32_t>(scene.meshes.size());
-  auto textureBase = static_cast<int32_t>(scene.textures.size());
-  for (Material& material : part.materials) {
-    if (material.diffuseTexture >= 0) material.diffuseTexture += textureBase;
-    scene.materials.push_back(std::move(material));
-  }
-  for (Shape& shape : part.shapes) {
-    shape.material += materialBase;
-    if (auto* instance = std::get_if<MeshInstance>(&shape.geometry)) instance->mesh += meshBase;
-    scene.shapes.push_back(std::move(shape));
-  }
-  std::move(part.meshes.begin(), part.meshes.end(), std::back_inserter(scene.meshes));
-  std::move(part.textures.begin(), part.textures.end(), std::back_inserter(scene.textures));
-  std::move(part.pointLights.begin(), part.pointLights.end(),
-            std::back_inserter(scene.pointLights));
-  std::move(part.warnings.begin(), part.warnings.end(), std::back_inserter(scene.warnings));
-}
-
 }  // namespace
 
 Scene loadGltfScene(const fs::path& file) {
   Imported imported = importFile(file, glm::dmat4(1.0));
   Scene& scene = imported.scene;
   scene.sourcePath = file;
-  scene.backgroundColor = glm::vec3(kBackgroundGrey);
+  scene.backgroundColor = glm::vec3(kModelBackgroundGrey);
   const ImportResult& found = imported.result;
-  scene.camera = found.camera ? *found.camera : defaultCamera(found.bounds);
+  scene.camera = found.camera ? *found.camera : framingCamera(found.bounds);
   if (scene.pointLights.empty())
-    scene.pointLights.push_back(defaultLight(scene.camera, found.bounds));
+    scene.pointLights.push_back(framingLight(scene.camera, found.bounds));
   if (scene.shapes.empty()) scene.warnings.push_back(file.string() + ": nothing to draw");
   setConventions(scene, Conventions::Textbook, "a glTF file");
   return std::move(imported.scene);
@@ -423,7 +357,7 @@ Scene loadGltfScene(const fs::path& file) {
 void appendGltf(Scene& scene, const fs::path& file, const glm::mat4& placement) {
   // Imported apart and merged at the end: a failing file leaves `scene` as it was.
   Imported imported = importFile(file, glm::dmat4(placement));
-  merge(scene, std::move(imported.scene));
+  appendScenePart(scene, std::move(imported.scene));
 }
 
 }  // namespace rt

@@ -142,10 +142,34 @@ std::string JsonObject::childPath(std::string_view key) const {
 
 bool JsonObject::has(std::string_view key) const { return node_.raw().contains(key); }
 
+namespace {
+
+// A value short enough to show in `raytracer check`: a scalar or a short
+// list of scalars, else nothing (objects and meshes are shown by their keys).
+std::optional<std::string> shownValue(const Json& value) {
+  constexpr size_t kLongest = 60;
+  if (value.is_object()) return std::nullopt;
+  if (value.is_array()) {
+    if (value.size() > 4) return std::nullopt;
+    for (const Json& item : value) {
+      if (item.is_structured()) return std::nullopt;
+    }
+  }
+  std::string text = value.dump();
+  if (text.size() > kLongest) text = text.substr(0, kLongest) + "...";
+  return text;
+}
+
+}  // namespace
+
 std::optional<JsonNode> JsonObject::optional(std::string_view key) {
   const auto found = node_.raw().find(key);
   if (found == node_.raw().end()) return std::nullopt;
-  read_.emplace(key);
+  if (read_.emplace(key).second) {
+    if (std::optional<std::string> shown = shownValue(*found)) {
+      diagnostics().noteRead(childPath(key), *shown);
+    }
+  }
   return JsonNode(*found, childPath(key), diagnostics());
 }
 

@@ -13,11 +13,16 @@
 #include <memory>
 #include <system_error>
 
+#include "formats/SceneFile.hpp"
 #include "formats/common/FileBytes.hpp"
 #include "formats/common/JsonSyntax.hpp"
 #include "formats/common/MessageText.hpp"
+#include "formats/common/ModelFraming.hpp"
+#include "formats/common/SceneTextures.hpp"
 #include "formats/common/UnitVector.hpp"
+#include "formats/gltf/GltfLoader.hpp"
 #include "formats/json/JsonReader.hpp"
+#include "formats/obj/ObjLoader.hpp"
 #include "formats/ply/PlyLoader.hpp"
 #include "scene/Limits.hpp"
 #include "util/Error.hpp"
@@ -48,8 +53,20 @@ struct ShapeContext {
 
 // ---------------------------------------------------------------- JSON text
 
-Json parseJson(std::string_view text, const std::string& file) {
-  return withJsonSyntaxErrors(file, text, [&] { return Json::parse(text.begin(), text.end()); });
+// Some students' parsers skip // and /* */ comments, which JSON lacks: such
+// a file is read with a warning. Any other syntax error is reported as the
+// plain JSON parse sees it.
+Json parseJson(std::string_view text, const std::string& file, Diagnostics& diagnostics) {
+  return withJsonSyntaxErrors(file, text, [&] {
+    try {
+      return Json::parse(text.begin(), text.end());
+    } catch (const nlohmann::json::parse_error&) {
+      Json withComments = Json::parse(text.begin(), text.end(), nullptr, false, true);
+      if (withComments.is_discarded()) throw;
+      diagnostics.warn("", "comments (// or /* */) are not JSON; skipped");
+      return withComments;
+    }
+  });
 }
 
 // ---------------------------------------------------------- family detection
@@ -62,6 +79,12 @@ const Json* findKey(const Json& object, std::string_view key) {
 
 bool anyElement(const Json* array, bool (*predicate)(const Json&)) {
   return array && array->is_array() && std::any_of(array->begin(), array->end(), predicate);
+}
+
+std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
 }
 
 // TsFreddie's renderer (metallic/transmit/roughness materials) lit its
@@ -95,10 +118,10 @@ struct ChosenConventions {
 // The conventions a file asks for with `conventions`, else those of the
 // family its keys belong to:
 //  - family B ("Rendering", 2023-24): a top-level `rendermode`; a camera
-//    `lookAt`, `upVector` or `exposure` (family A writes `lookat` and `up`
-//    and has no exposure); or lights with `intensity` beside family-B shape
-//    keys (a cylinder, material `specularcolor`/`isreflective`/`isrefractive`).
-//    `intensity` alone decides nothing: the family-A 2019 file uses it too;
+//    `lookAt` (without family A's `up`), `upVector` or `exposure` (family A
+//    writes `lookat` and `up` and has no exposure); or lights with `intensity` beside family-B
+//    shape keys (a cylinder, material `specularcolor`/`isreflective`/`isrefractive`). `intensity`
+//    alone decides nothing: the family-A 2019 file uses it too;
 //  - TsFreddie's renderer (`intensity` lights beside metallic/transmit/
 //    roughness materials): textbook;
 //  - everything else is family A ("Path of Light").
@@ -116,7 +139,9 @@ ChosenConventions chooseConventions(JsonObject& top, const Json& root) {
   if (findKey(root, "rendermode")) return {Conventions::CourseworkB, "family B key 'rendermode'"};
   if (const Json* camera = findKey(root, "camera")) {
     for (const char* key : {"lookAt", "upVector", "exposure"}) {
-      if (findKey(*camera, key)) {
+      // nizqleo's files pair `lookAt` with family A's `up`, and its renders
+      // put image right along forward x up, as family A does.
+      if (findKey(*camera, key) && !(std::string_view(key) == "lookAt" && findKey(*camera, "up"))) {
         return {Conventions::CourseworkB, std::string("family B key 'camera.") + key + "'"};
       }
     }
@@ -137,6 +162,18 @@ ChosenConventions chooseConventions(JsonObject& top, const Json& root) {
   return {Conventions::CourseworkA, "no family B key (family A, Path of Light)"};
 }
 
+// The first of `keys` present; when none is, a warning that `taken` is used.
+std::optional<JsonNode> optionalOrDefault(JsonObject& object,
+                                          std::initializer_list<std::string_view> keys,
+                                          std::string_view taken) {
+  std::optional<JsonNode> node = object.optionalOneOf(keys);
+  if (!node) {
+    object.diagnostics().warn(object.childPath(*keys.begin()),
+                              "missing; taken as " + std::string(taken));
+  }
+  return node;
+}
+
 // ----------------------------------------------------------------- settings
 
 // Settings of the students' own renderers: accepted so their files load; no effect here.
@@ -144,16 +181,21 @@ void ignoreRendererKeys(JsonObject& object) {
   object.ignore({"bvh", "BVH", "use_bvh", "useBVH", "output"});
 }
 
+// Render mode spellings (any case).
 RenderMode readRenderMode(JsonObject& top) {
-  const std::optional<JsonNode> node = top.optional("rendermode");
-  if (!node) return RenderMode::Phong;
-  const std::string mode = node->string();
+  const std::optional<JsonNode> node =
+      top.optionalOneOf({"rendermode", "render_mode", "renderMode"});
+  if (!node) return top.has("path_sample_num") ? RenderMode::PathTracer : RenderMode::Phong;
+  const std::string mode = lowercase(node->string());
   if (mode == "binary") return RenderMode::Binary;
-  if (mode == "phong") return RenderMode::Phong;
-  if (mode == "pathtracer" || mode == "pathtracing" || mode == "path") {
-    return RenderMode::PathTracer;
+  if (mode == "phong" || mode == "whitted" || mode == "blinnphong" || mode == "blinn-phong") {
+    return RenderMode::Phong;
   }
-  node->fail("unknown rendermode '" + mode +
+  for (const char* name : {"pathtracer", "pathtracing", "path", "pathtrace", "pathtraced",
+                           "path_tracer", "path_tracing", "path-tracer", "path-tracing"}) {
+    if (mode == name) return RenderMode::PathTracer;
+  }
+  node->fail("unknown rendermode '" + node->string() +
              "' (expected \"binary\", \"phong\" or \"pathtracer\")");
 }
 
@@ -211,12 +253,26 @@ bool readSampling(JsonObject& top, JsonObject& camera, RenderSettings& settings)
     return object.optionalOneOf({"sampler", "method"});
   };
   const auto samplesAt = [](JsonObject& object) {
-    return object.optionalOneOf({"nsamples", "samples", "spp"});
+    return object.optionalOneOf(
+        {"nsamples", "samples", "spp", "pixel_sample_num", "samples_per_pixel"});
   };
-  const auto sampler = readFromEither(samplerAt(top), samplerAt(camera), parseSampler);
+  std::optional<SamplerKind> sampler =
+      readFromEither(samplerAt(top), samplerAt(camera), parseSampler);
+  if (const std::optional<JsonNode> random = top.optional("random"); random && !sampler) {
+    if (random->boolean()) sampler = SamplerKind::Random;  // nizqleo: "random": 1
+  }
   if (sampler) settings.sampler = *sampler;
   if (const auto samples = readFromEither(samplesAt(top), samplesAt(camera), parseSampleCount)) {
     settings.samplesPerPixel = *samples;
+  }
+  // nizqleo's path tracer: path_sample_num paths for each of pixel_sample_num samples.
+  if (const std::optional<JsonNode> paths = top.optional("path_sample_num")) {
+    const uint64_t total = uint64_t{std::max(settings.samplesPerPixel, 1u)} *
+                           static_cast<uint64_t>(paths->integer(1, kMaxSamplesPerPixel));
+    settings.samplesPerPixel =
+        static_cast<uint32_t>(std::min<uint64_t>(total, kMaxSamplesPerPixel));
+    paths->warn("read as " + std::to_string(settings.samplesPerPixel) +
+                " samples per pixel (pixel_sample_num times path_sample_num)");
   }
   return sampler.has_value();
 }
@@ -233,7 +289,7 @@ glm::vec3 unitVector(const JsonNode& node) {
 // (both verified against the official renders; see README).
 glm::vec3 readForward(JsonObject& camera, glm::vec3 position) {
   const std::optional<JsonNode> direction = camera.optional("lookat");
-  const std::optional<JsonNode> target = camera.optional("lookAt");
+  const std::optional<JsonNode> target = camera.optionalOneOf({"lookAt", "look_at", "target"});
   if (direction && target) {
     target->fail(
         "conflicts with 'camera.lookat': lookat is a view direction, lookAt a target point");
@@ -250,7 +306,7 @@ glm::vec3 readForward(JsonObject& camera, glm::vec3 position) {
 // `up` is kept as given (the ray builder orthogonalises it) but must span an
 // image plane with the view direction.
 glm::vec3 readUp(JsonObject& camera, glm::vec3 forward) {
-  const std::optional<JsonNode> node = camera.optionalOneOf({"up", "upVector"});
+  const std::optional<JsonNode> node = camera.optionalOneOf({"up", "upVector", "up_vector"});
   const glm::vec3 up = node ? node->vec3() : kDefaultUp;
   const std::string path = node ? node->path() : camera.childPath("up");
   glm::vec3 direction = up;
@@ -265,11 +321,15 @@ glm::vec3 readUp(JsonObject& camera, glm::vec3 forward) {
   return up;
 }
 
+// Camera type spellings (any case): a thin lens by many names.
 CameraType readCameraType(const JsonNode& node) {
-  const std::string type = node.string();
-  if (type == "pinhole") return CameraType::Pinhole;
-  if (type == "thinlens" || type == "thinlen") return CameraType::ThinLens;
-  node.fail("unknown camera type '" + type + "' (expected \"pinhole\" or \"thinlens\")");
+  const std::string type = lowercase(node.string());
+  if (type == "pinhole" || type == "perspective") return CameraType::Pinhole;
+  for (const char* name : {"thinlens", "thinlen", "thin_lens", "thin-lens", "lens", "aperture",
+                           "finite-aperture", "finite_aperture", "finiteaperture"}) {
+    if (type == name) return CameraType::ThinLens;
+  }
+  node.fail("unknown camera type '" + node.string() + "' (expected \"pinhole\" or \"thinlens\")");
 }
 
 uint32_t readImageSide(const JsonNode& node) {
@@ -294,13 +354,15 @@ struct LensKeys {
 };
 
 std::optional<JsonNode> readFocusDistanceKey(JsonObject& camera) {
-  return camera.optionalOneOf({"focusdistance", "focus_dist", "focalDistance", "focal_length"});
+  return camera.optionalOneOf({"focusdistance", "focus_dist", "focalDistance", "focal_length",
+                               "focus_distance", "focalLength", "focusDistance"});
 }
 
 LensKeys readLensKeys(JsonObject& camera) {
   LensKeys keys;
-  keys.aperture = camera.optionalOneOf({"aperture", "size"});  // `size`: TsFreddie's files
-  keys.lensRadius = camera.optional("lensRadius");
+  // `size`: TsFreddie's files
+  keys.aperture = camera.optionalOneOf({"aperture", "size", "aperture_size", "apertureSize"});
+  keys.lensRadius = camera.optionalOneOf({"lensRadius", "lensradius", "lens_radius"});
   if (keys.aperture && keys.lensRadius) {
     keys.lensRadius->fail(
         "conflicts with 'camera.aperture': give the lens diameter (aperture) or its radius "
@@ -370,19 +432,47 @@ void readThinLens(JsonObject& camera, Camera& out) {
 }
 
 void warnLensKeysOnPinhole(JsonObject& camera) {
-  for (const char* key : {"aperture", "size", "lensRadius", "focusdistance", "focus_dist",
-                          "focalDistance", "focal_length", "f", "focal", "d"}) {
+  for (const char* key :
+       {"aperture", "size", "aperture_size", "apertureSize", "lensRadius", "lensradius",
+        "lens_radius", "focusdistance", "focus_dist", "focalDistance", "focal_length",
+        "focus_distance", "focalLength", "focusDistance", "f", "focal", "d"}) {
     camera.ignoreWithWarning(
         key, std::string("thin lens key '") + key + "' ignored: the camera type is \"pinhole\"");
   }
 }
 
+// Camera keys students leave out.
+constexpr uint32_t kDefaultWidth = 800;
+constexpr uint32_t kDefaultHeight = 600;
+constexpr float kDefaultFovDegrees = 45.0f;
+
+bool hasLensKeys(const JsonObject& camera) {
+  for (const char* key : {"aperture", "aperture_size", "lensRadius", "lensradius", "lens_radius"}) {
+    if (camera.has(key)) return true;
+  }
+  return false;
+}
+
 Camera readCamera(JsonObject& camera) {
   Camera out;
-  out.type = readCameraType(camera.required("type"));
-  out.width = readImageSide(camera.required("width"));
-  out.height = readImageSide(camera.required("height"));
-  out.fovYDegrees = readFov(camera.required("fov"));
+  if (const std::optional<JsonNode> type = camera.optional("type")) {
+    out.type = readCameraType(*type);
+  } else {
+    out.type = hasLensKeys(camera) ? CameraType::ThinLens : CameraType::Pinhole;
+    camera.diagnostics().warn(camera.childPath("type"),
+                              out.type == CameraType::ThinLens
+                                  ? "missing; taken as \"thinlens\" (the camera has lens keys)"
+                                  : "missing; taken as \"pinhole\"");
+  }
+  const auto side = [&](const char* key, uint32_t fallback) {
+    const std::optional<JsonNode> node = optionalOrDefault(camera, {key}, std::to_string(fallback));
+    return node ? readImageSide(*node) : fallback;
+  };
+  out.width = side("width", kDefaultWidth);
+  out.height = side("height", kDefaultHeight);
+  const std::optional<JsonNode> fov =
+      optionalOrDefault(camera, {"fov", "field_of_view", "fieldOfView"}, "45 degrees");
+  out.fovYDegrees = fov ? readFov(*fov) : kDefaultFovDegrees;
   const std::optional<JsonNode> position = camera.optional("position");
   out.position = position ? position->vec3() : kDefaultPosition;
   out.forward = readForward(camera, out.position);
@@ -398,6 +488,47 @@ Camera readCamera(JsonObject& camera) {
   return out;
 }
 
+// ------------------------------------------------------------------ corners
+
+// Corner spellings: v0..v3 (official), point1..point4 (nizqleo), c1..c4.
+constexpr std::array<std::array<const char*, 4>, 3> kCornerKeys = {{
+    {"v0", "v1", "v2", "v3"},
+    {"point1", "point2", "point3", "point4"},
+    {"c1", "c2", "c3", "c4"},
+}};
+
+// The corners of the first spelling whose first key is present: `lowest`
+// required, up to `highest`; nullopt when no spelling is used.
+std::optional<std::vector<glm::vec3>> readNamedCorners(JsonObject& object, size_t lowest,
+                                                       size_t highest) {
+  for (const auto& keys : kCornerKeys) {
+    if (!object.has(keys[0])) continue;
+    std::vector<glm::vec3> corners;
+    for (size_t i = 0; i < highest; ++i) {
+      if (i < lowest) {
+        corners.push_back(object.required(keys[i]).vec3());
+      } else if (const std::optional<JsonNode> node = object.optional(keys[i])) {
+        corners.push_back(node->vec3());
+      }
+    }
+    return corners;
+  }
+  return std::nullopt;
+}
+
+// Some students list a quad's corners row by row (v0 v1 / v2 v3) rather than
+// around it: then v1 and v3 lie on the same side of the diagonal v0-v2, and
+// the quad would be a bow tie. Read such corners as v0 v1 v3 v2.
+Quad cyclicQuad(const Quad& q, const JsonObject& shape) {
+  const glm::vec3 n1 = glm::cross(q.v1 - q.v0, q.v2 - q.v0);
+  const glm::vec3 n2 = glm::cross(q.v2 - q.v0, q.v3 - q.v0);
+  if (!(glm::dot(n1, n2) < 0.0f)) return q;
+  shape.diagnostics().warn(shape.path(),
+                           "quad corners given row by row, not around the quad: read in the "
+                           "order 0 1 3 2");
+  return {q.v0, q.v1, q.v3, q.v2};
+}
+
 // ------------------------------------------------------------------- lights
 
 bool isAreaLightType(std::string type) {
@@ -411,6 +542,13 @@ struct LightIntensity {
   glm::vec3 specular{1.0f};
 };
 
+// A light intensity: an RGB triple, or one number for white light (as some
+// students write it).
+glm::vec3 intensityOf(const JsonNode& node) {
+  if (node.raw().is_number()) return glm::vec3(node.nonNegativeFloat());
+  return node.nonNegativeVec3();
+}
+
 // `intensity` (2019 and family B) sets both terms; family A gives `is`
 // (specular) and `id` (diffuse) separately.
 LightIntensity readIntensity(JsonObject& light) {
@@ -421,7 +559,7 @@ LightIntensity readIntensity(JsonObject& light) {
     if (specular || diffuse) {
       (specular ? specular : diffuse)->fail("conflicts with 'intensity': give intensity or is/id");
     }
-    const glm::vec3 both = intensity->nonNegativeVec3();
+    const glm::vec3 both = intensityOf(*intensity);
     return {both, both};
   }
   if (!specular && !diffuse) {
@@ -429,8 +567,8 @@ LightIntensity readIntensity(JsonObject& light) {
                              "missing: a light needs 'intensity', or both 'is' and 'id'");
   }
   LightIntensity out;
-  out.specular = light.required("is").nonNegativeVec3();
-  out.diffuse = light.required("id").nonNegativeVec3();
+  out.specular = intensityOf(light.required("is"));
+  out.diffuse = intensityOf(light.required("id"));
   return out;
 }
 
@@ -464,6 +602,22 @@ void readLightSampler(JsonObject& light, std::optional<SamplerKind>& lightSample
   lightSampler = kind;
 }
 
+// A rectangle centred on `position` facing `normal`, `width` (or `w`) by
+// `height` (or `h`) (1 when not given), its width along the horizontal
+// (the world x-z plane) where it can be.
+Quad facingRectangle(JsonObject& light, glm::vec3 position, glm::vec3 normal) {
+  const std::optional<JsonNode> width = light.optionalOneOf({"width", "w"});
+  const std::optional<JsonNode> height = light.optionalOneOf({"height", "h"});
+  const float w = width ? width->positiveFloat() : 1.0f;
+  const float h = height ? height->positiveFloat() : 1.0f;
+  glm::vec3 across = glm::cross(glm::vec3(0.0f, 1.0f, 0.0f), normal);
+  if (!normalizeInPlace(across)) across = glm::vec3(1.0f, 0.0f, 0.0f);
+  const glm::vec3 u = across * w;
+  const glm::vec3 v = glm::normalize(glm::cross(normal, across)) * h;
+  const glm::vec3 corner = position - 0.5f * (u + v);
+  return {corner, corner + u, corner + u + v, corner + v};
+}
+
 // The emitting surface of an area light written with its own geometry:
 //   v0 v1 v2 [v3]        a triangle or a planar quad (julie-o, PFNK);
 //   position u v [width height]
@@ -472,15 +626,20 @@ void readLightSampler(JsonObject& light, std::optional<SamplerKind>& lightSample
 //   position radius      a sphere;
 //   position size        a sphere of diameter size (TsFreddie).
 Geometry readAreaLightGeometry(JsonObject& light) {
-  if (light.has("v0")) {
-    const glm::vec3 v0 = light.required("v0").vec3();
-    const glm::vec3 v1 = light.required("v1").vec3();
-    const glm::vec3 v2 = light.required("v2").vec3();
-    if (const std::optional<JsonNode> v3 = light.optional("v3"))
-      return Quad{v0, v1, v2, v3->vec3()};
-    return Triangle{v0, v1, v2};
+  if (const auto c = readNamedCorners(light, 3, 4)) {
+    if (c->size() == 4) return cyclicQuad({(*c)[0], (*c)[1], (*c)[2], (*c)[3]}, light);
+    return Triangle{(*c)[0], (*c)[1], (*c)[2]};
+  }
+  if (light.has("e0") || light.has("e1")) {  // a corner and its two edges
+    const glm::vec3 p = light.required("p").vec3();
+    const glm::vec3 e0 = light.required("e0").vec3();
+    const glm::vec3 e1 = light.required("e1").vec3();
+    return Quad{p, p + e0, p + e0 + e1, p + e1};
   }
   const glm::vec3 position = light.required("position").vec3();
+  if (const std::optional<JsonNode> normal = light.optional("normal")) {
+    return facingRectangle(light, position, unitVector(*normal));
+  }
   if (light.has("u") || light.has("v")) {
     glm::vec3 u = light.required("u").vec3();
     glm::vec3 v = light.required("v").vec3();
@@ -502,19 +661,36 @@ Geometry readAreaLightGeometry(JsonObject& light) {
                            "and v, position with radius or size, or the id of a shape");
 }
 
-// Area of a light's own surface (spheres, triangles, quads).
-float surfaceArea(const Geometry& geometry) {
+// Of any shape; meshes are looked up in `meshes`.
+float surfaceArea(const Geometry& geometry, const std::vector<TriangleMesh>& meshes) {
+  constexpr float kPi = 3.14159265f;
   const auto triangleArea = [](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
     return 0.5f * glm::length(glm::cross(b - a, c - a));
   };
-  if (const auto* t = std::get_if<Triangle>(&geometry)) return triangleArea(t->v0, t->v1, t->v2);
-  if (const auto* q = std::get_if<Quad>(&geometry)) {
-    return triangleArea(q->v0, q->v1, q->v2) + triangleArea(q->v0, q->v2, q->v3);
-  }
-  if (const auto* sphere = std::get_if<Sphere>(&geometry)) {
-    return 4.0f * 3.14159265f * sphere->radius * sphere->radius;
-  }
-  return 1.0f;
+  return std::visit(
+      [&](const auto& g) -> float {
+        using T = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<T, Triangle>) {
+          return triangleArea(g.v0, g.v1, g.v2);
+        } else if constexpr (std::is_same_v<T, Quad>) {
+          return triangleArea(g.v0, g.v1, g.v2) + triangleArea(g.v0, g.v2, g.v3);
+        } else if constexpr (std::is_same_v<T, Sphere>) {
+          return 4.0f * kPi * g.radius * g.radius;
+        } else if constexpr (std::is_same_v<T, Cylinder>) {  // side and both caps
+          return 2.0f * kPi * g.radius * (2.0f * g.halfHeight) + 2.0f * kPi * g.radius * g.radius;
+        } else {
+          const TriangleMesh& mesh = meshes.at(g.mesh);
+          float area = 0.0f;
+          for (const glm::uvec3& f : mesh.faces) {
+            const auto placed = [&](uint32_t i) {
+              return glm::vec3(g.objectToWorld * glm::vec4(mesh.positions[i], 1.0f));
+            };
+            area += triangleArea(placed(f.x), placed(f.y), placed(f.z));
+          }
+          return area;
+        }
+      },
+      geometry);
 }
 
 // A light source in the file, kept until the shapes are read (area lights
@@ -550,7 +726,7 @@ void readAreaLight(JsonObject& light, LightList& lights) {
   pending.shapeId = light.optionalOneOf({"shape", "shapeid", "shapeId", "shape_id"});
   if (!pending.shapeId) {
     pending.geometry = readAreaLightGeometry(light);
-    if (!(surfaceArea(*pending.geometry) > 0.0f)) light.fail("area light has no area");
+    if (!(surfaceArea(*pending.geometry, {}) > 0.0f)) light.fail("area light has no area");
   }
   lights.areaLights.push_back(std::move(pending));
 }
@@ -585,9 +761,11 @@ fs::path seenFromSubfolder(const fs::path& written, const fs::path& sceneDir) {
 // so "../textures/x.jpg" works from the scene's own folder; the README also
 // allows the folder above it. Students' mesh paths follow the same habit
 // ("examples/monkey.ply" from examples/), and some ran from a folder inside
-// the scene's. `kind` names the file in messages.
-fs::path resolveRelative(const JsonNode& node, const fs::path& sceneDir, std::string_view kind) {
-  const fs::path written = node.nonEmptyString();
+// the scene's. Backslashes (Windows) are folder separators.
+std::optional<fs::path> findRelative(const JsonNode& node, const fs::path& sceneDir) {
+  std::string text = node.nonEmptyString();
+  std::replace(text.begin(), text.end(), '\\', '/');
+  const fs::path written = text;
   const fs::path parentDir = sceneDir.parent_path();
   for (const fs::path& candidate :
        {(sceneDir / written).lexically_normal(), (parentDir / written).lexically_normal(),
@@ -595,13 +773,16 @@ fs::path resolveRelative(const JsonNode& node, const fs::path& sceneDir, std::st
     std::error_code ignored;
     if (!candidate.empty() && fs::is_regular_file(candidate, ignored)) return candidate;
   }
-  const std::string notFound = std::string(kind) + " file not found: " + written.string();
-  if (written.is_absolute()) node.fail(notFound);
-  node.fail(notFound + " (looked in " + sceneDir.string() + " and " + parentDir.string() + ")");
+  return std::nullopt;
 }
 
-fs::path resolveTexture(const JsonNode& node, const fs::path& sceneDir) {
-  return resolveRelative(node, sceneDir, "texture");
+// "<kind> file not found: <path> (looked in ...)"; `kind` names the file.
+std::string notFoundMessage(const JsonNode& node, const fs::path& sceneDir, std::string_view kind) {
+  const fs::path written = node.raw().get<std::string>();
+  const std::string notFound = std::string(kind) + " file not found: " + written.string();
+  if (written.is_absolute()) return notFound;
+  return notFound + " (looked in " + sceneDir.string() + " and " + sceneDir.parent_path().string() +
+         ")";
 }
 
 // TsFreddie's files may name a texture ("checkerboard") where a weight belongs.
@@ -654,45 +835,30 @@ void readRefraction(JsonObject& material, Material& out) {
 
 // Decodes the texture once per file, however many materials use it.
 int32_t addTexture(const JsonNode& node, const fs::path& file, Scene& scene) {
-  for (size_t i = 0; i < scene.textures.size(); ++i) {
-    if (scene.textures[i].source == file.string()) return static_cast<int32_t>(i);
-  }
   try {
-    scene.textures.push_back({file.string(), readImageRgba8(file)});
+    return addTextureFile(scene, file);
   } catch (const Error& error) {
     node.fail(std::string("cannot use texture: ") + error.what());
   }
-  return static_cast<int32_t>(scene.textures.size() - 1);
 }
 
-// TsFreddie's procedural "checkerboard": 8 x 8 squares over the unit square.
-int32_t addCheckerboard(Scene& scene) {
-  for (size_t i = 0; i < scene.textures.size(); ++i) {
-    if (scene.textures[i].source == "checkerboard") return static_cast<int32_t>(i);
-  }
-  constexpr uint32_t kSide = 64;
-  constexpr uint32_t kSquare = 8;
-  ImageRgba8 image;
-  image.width = image.height = kSide;
-  image.rgba.resize(size_t{kSide} * kSide * 4);
-  for (uint32_t y = 0; y < kSide; ++y) {
-    for (uint32_t x = 0; x < kSide; ++x) {
-      const uint8_t value = ((x / kSquare + y / kSquare) % 2) ? 255 : 32;
-      uint8_t* pixel = &image.rgba[(size_t{y} * kSide + x) * 4];
-      pixel[0] = pixel[1] = pixel[2] = value;
-      pixel[3] = 255;
-    }
-  }
-  scene.textures.push_back({"checkerboard", std::move(image)});
-  return static_cast<int32_t>(scene.textures.size() - 1);
-}
+// Material keys students leave out: the usual textbook values, with a warning.
+constexpr float kDefaultKs = 0.2f;
+constexpr float kDefaultKd = 0.8f;
+constexpr float kDefaultSpecularExponent = 10.0f;
 
 Material readMaterial(JsonObject& material, const fs::path& sceneDir, Scene& scene) {
   Material out;
-  out.ks = material.required("ks").nonNegativeFloat();
-  out.kd = material.required("kd").nonNegativeFloat();
-  out.specularExponent = material.required("specularexponent").nonNegativeFloat();
-  out.diffuseColor = material.required("diffusecolor").nonNegativeVec3();
+  const auto weight = [&](std::initializer_list<std::string_view> keys, float fallback) {
+    const std::optional<JsonNode> node = optionalOrDefault(material, keys, formatNumber(fallback));
+    return node ? node->nonNegativeFloat() : fallback;
+  };
+  out.ks = weight({"ks"}, kDefaultKs);
+  out.kd = weight({"kd"}, kDefaultKd);
+  out.specularExponent = weight({"specularexponent"}, kDefaultSpecularExponent);
+  const std::optional<JsonNode> diffuse =
+      optionalOrDefault(material, {"diffusecolor"}, "white (1, 1, 1)");
+  out.diffuseColor = diffuse ? diffuse->nonNegativeVec3() : glm::vec3(1.0f);
   if (const std::optional<JsonNode> specular = material.optional("specularcolor")) {
     out.specularColor = specular->nonNegativeVec3();
   }
@@ -703,9 +869,14 @@ Material readMaterial(JsonObject& material, const fs::path& sceneDir, Scene& sce
     if (texture->raw() == "checkerboard") {
       out.texture = "checkerboard";
       out.diffuseTexture = addCheckerboard(scene);
-    } else {
-      out.texture = resolveTexture(*texture, sceneDir);
+    } else if (const std::optional<fs::path> file = findRelative(*texture, sceneDir)) {
+      out.texture = *file;
       out.diffuseTexture = addTexture(*texture, out.texture, scene);
+    } else {
+      texture->warn(notFoundMessage(*texture, sceneDir, "texture") +
+                    "; drawn with the missing-texture squares");
+      out.texture = texture->string();
+      out.diffuseTexture = addMissingTexture(scene);
     }
   }
   // The coursework's texture sizes do not match the real images; the image file decides.
@@ -753,20 +924,19 @@ std::optional<std::vector<glm::vec3>> readCornerArray(JsonObject& shape, size_t 
 // Four corners in cyclic order; three (v0 and its two neighbours, as
 // TsFreddie writes planes) span a parallelogram.
 Quad readQuad(JsonObject& shape) {
-  if (const auto corners = readCornerArray(shape, 3, 4)) {
-    const std::vector<glm::vec3>& c = *corners;
-    if (c.size() == 4) return {c[0], c[1], c[2], c[3]};
-    return {c[0], c[1], c[1] + c[2] - c[0], c[2]};
-  }
-  return {shape.required("v0").vec3(), shape.required("v1").vec3(), shape.required("v2").vec3(),
-          shape.required("v3").vec3()};
+  std::optional<std::vector<glm::vec3>> corners = readCornerArray(shape, 3, 4);
+  if (!corners) corners = readNamedCorners(shape, 4, 4);
+  if (!corners) shape.diagnostics().fail(shape.childPath("v0"), "missing required key");
+  const std::vector<glm::vec3>& c = *corners;
+  if (c.size() == 4) return cyclicQuad({c[0], c[1], c[2], c[3]}, shape);
+  return {c[0], c[1], c[1] + c[2] - c[0], c[2]};
 }
 
 Triangle readTriangle(JsonObject& shape) {
-  if (const auto corners = readCornerArray(shape, 3, 3)) {
-    return {(*corners)[0], (*corners)[1], (*corners)[2]};
-  }
-  return {shape.required("v0").vec3(), shape.required("v1").vec3(), shape.required("v2").vec3()};
+  std::optional<std::vector<glm::vec3>> corners = readCornerArray(shape, 3, 3);
+  if (!corners) corners = readNamedCorners(shape, 3, 3);
+  if (!corners) shape.diagnostics().fail(shape.childPath("v0"), "missing required key");
+  return {(*corners)[0], (*corners)[1], (*corners)[2]};
 }
 
 // Family B `height` is the half-length: the caps are at center +- axis * height.
@@ -845,8 +1015,8 @@ glm::mat4 readPlacement(JsonObject& shape) {
 
 // Reads each PLY file once, however many shapes place it. PLY errors keep
 // their "<file>: byte <offset>: ..." and gain the JSON path in front.
-uint32_t addPlyMesh(const JsonNode& fileNode, ShapeContext& context, Scene& scene) {
-  const fs::path file = resolveRelative(fileNode, context.sceneDir, "mesh");
+uint32_t addPlyMesh(const JsonNode& fileNode, const fs::path& file, ShapeContext& context,
+                    Scene& scene) {
   if (const auto found = context.plyMeshes.find(file); found != context.plyMeshes.end()) {
     return found->second;
   }
@@ -860,50 +1030,150 @@ uint32_t addPlyMesh(const JsonNode& fileNode, ShapeContext& context, Scene& scen
   return index;
 }
 
-// A `trimesh` lists its vertices and faces inline or names a PLY file; a
-// `ply` shape (TsFreddie's files) always names one.
-MeshInstance readMesh(const JsonNode& typeNode, JsonObject& shape, ShapeContext& context,
-                      Scene& scene) {
-  const std::optional<JsonNode> file = shape.optionalOneOf({"mPath", "plyPath", "file", "path"});
-  if (!file && typeNode.string() == "ply") {
-    shape.diagnostics().fail(shape.childPath("file"),
-                             "missing: a ply shape needs its file (file, path, mPath or plyPath)");
-  }
-  if (!file) {
-    scene.meshes.push_back(readInlineMesh(shape));
-    return {static_cast<uint32_t>(scene.meshes.size() - 1), glm::mat4(1.0f)};
-  }
-  for (const char* key : {"vertices", "faces"}) {
-    if (shape.has(key)) {
-      shape.diagnostics().fail(shape.childPath(key), "conflicts with '" + file->path() +
-                                                         "': give inline vertices or a PLY file");
+// An OBJ or glTF model placed in the scene: its own shapes, with its own
+// materials unless the JSON shape gives one for all of them.
+void addModelShapes(const JsonNode& fileNode, const fs::path& file, JsonObject& shape,
+                    ShapeContext& context, Scene& scene) {
+  const glm::mat4 placement = readPlacement(shape);
+  const size_t firstShape = scene.shapes.size();
+  try {
+    if (isObjFile(file)) {
+      appendScenePart(scene, loadObjPart(file, placement));
+    } else {
+      appendGltf(scene, file, placement);
     }
+  } catch (const Error& error) {
+    fileNode.fail(error.what());
   }
-  const uint32_t mesh = addPlyMesh(*file, context, scene);
-  return {mesh, readPlacement(shape)};
+  if (shape.has("material")) {
+    const uint32_t material = addShapeMaterial(shape, context, scene);
+    for (size_t i = firstShape; i < scene.shapes.size(); ++i) scene.shapes[i].material = material;
+  }
+  std::string label;
+  if (const std::optional<JsonNode> id = shape.optional("id")) label = id->string();
+  for (size_t i = firstShape; i < scene.shapes.size(); ++i) {
+    if (!label.empty()) scene.shapes[i].label = label;
+  }
 }
 
-Geometry readGeometry(const JsonNode& typeNode, JsonObject& shape, ShapeContext& context,
+// Mesh file keys as the students spelled them.
+std::optional<JsonNode> meshFileKey(JsonObject& shape) {
+  return shape.optionalOneOf({"mPath", "plyPath", "file", "path", "filename", "objPath", "model"});
+}
+
+// A mesh shape that names a file: a PLY mesh as one shape, an OBJ or glTF
+// model as its own shapes. A file that is not there is a warning and the
+// shape is left out (`false`).
+bool readMeshFileShape(const JsonNode& fileNode, JsonObject& shape, ShapeContext& context,
+                       Scene& scene) {
+  for (const char* key : {"vertices", "faces"}) {
+    if (shape.has(key)) {
+      shape.diagnostics().fail(shape.childPath(key), "conflicts with '" + fileNode.path() +
+                                                         "': give inline vertices or a mesh file");
+    }
+  }
+  const std::optional<fs::path> file = findRelative(fileNode, context.sceneDir);
+  if (!file) {
+    fileNode.warn(notFoundMessage(fileNode, context.sceneDir, "mesh") + "; the shape is left out");
+    readPlacement(shape);
+    shape.ignore({"id", "material"});
+    return false;
+  }
+  if (isObjFile(*file) || isGltfFile(*file)) {
+    addModelShapes(fileNode, *file, shape, context, scene);
+    return false;
+  }
+  Shape out;
+  out.geometry = MeshInstance{addPlyMesh(fileNode, *file, context, scene), readPlacement(shape)};
+  if (const std::optional<JsonNode> id = shape.optional("id")) out.label = id->string();
+  out.material = addShapeMaterial(shape, context, scene);
+  scene.shapes.push_back(std::move(out));
+  return true;
+}
+
+// Shape type spellings, matched without regard to case: the canonical name
+// first. "ply" and "obj" shapes always name a file.
+const std::vector<std::vector<std::string_view>> kShapeTypes = {
+    {"sphere"},
+    {"plane", "planarquad", "planerquad", "planar_quad", "quad", "rectangle", "rect"},
+    {"triangle", "traingle", "tri"},
+    {"cylinder"},
+    {"trimesh", "mesh", "ply", "obj", "model"},
+};
+
+// The canonical shape type of `typeNode`, e.g. "plane" for "PlanerQuad".
+std::string shapeType(const JsonNode& typeNode) {
+  const std::string written = lowercase(typeNode.string());
+  for (const std::vector<std::string_view>& names : kShapeTypes) {
+    if (std::find(names.begin(), names.end(), written) != names.end()) {
+      return std::string(names.front());
+    }
+  }
+  typeNode.fail("unknown shape type '" + typeNode.string() +
+                "' (expected sphere, plane, triangle, cylinder, trimesh, mesh or ply; README "
+                "'Student scenes' lists the other spellings)");
+}
+
+Geometry readGeometry(const JsonNode& typeNode, const std::string& type, JsonObject& shape,
                       Scene& scene) {
-  const std::string type = typeNode.string();
   if (type == "sphere") return readSphere(shape);
   if (type == "plane") return readQuad(shape);
   if (type == "triangle") return readTriangle(shape);
   if (type == "cylinder") return readCylinder(shape);
-  if (type == "trimesh" || type == "ply") return readMesh(typeNode, shape, context, scene);
-  typeNode.fail("unknown shape type '" + type +
-                "' (expected sphere, plane, triangle, cylinder, trimesh or ply)");
+  const std::string written = lowercase(typeNode.string());
+  if (written == "ply" || written == "obj") {
+    shape.diagnostics().fail(shape.childPath("file"), "missing: a " + written +
+                                                          " shape needs its file (file, path, "
+                                                          "mPath, plyPath or filename)");
+  }
+  scene.meshes.push_back(readInlineMesh(shape));
+  return MeshInstance{static_cast<uint32_t>(scene.meshes.size() - 1), glm::mat4(1.0f)};
+}
+
+// A shape that glows (nizqleo's path-traced scenes: "emittence": [r, g, b],
+// its radiance) becomes an area light of that surface: a Lambertian light
+// whose intensity gives the surface that radiance (a Lambertian light of
+// intensity I over area A has radiance 2 pi I / (4 pi A) = I / (2 A),
+// README "Area lights").
+void readShapeEmission(JsonObject& object, Scene& scene) {
+  const std::optional<JsonNode> emitted =
+      object.optionalOneOf({"emittence", "emittance", "emissive"});
+  if (!emitted) return;
+  const glm::vec3 radiance = intensityOf(*emitted);
+  if (radiance == glm::vec3(0.0f)) return;
+  const auto shape = static_cast<uint32_t>(scene.shapes.size() - 1);
+  const float area = surfaceArea(scene.shapes[shape].geometry, scene.meshes);
+  if (!(area > 0.0f)) emitted->fail("the shape has no area to emit from");
+  AreaLight light;
+  light.shape = shape;
+  light.diffuseIntensity = light.specularIntensity = 2.0f * area * radiance;
+  light.profile = EmissionProfile::Lambertian;
+  light.samples = 4;
+  scene.areaLights.push_back(light);
 }
 
 void readShape(const JsonNode& node, ShapeContext& context, Scene& scene) {
   JsonObject object = node.object();
-  Shape shape;
-  shape.geometry = readGeometry(object.required("type"), object, context, scene);
-  if (const std::optional<JsonNode> id = object.optional("id")) shape.label = id->string();
-  shape.material = addShapeMaterial(object, context, scene);
+  const JsonNode typeNode = object.required("type");
+  const std::string type = shapeType(typeNode);
+  const std::optional<JsonNode> file = type == "trimesh" ? meshFileKey(object) : std::nullopt;
+  const size_t firstShape = scene.shapes.size();
+  if (file) {
+    readMeshFileShape(*file, object, context, scene);
+  } else {
+    Shape shape;
+    shape.geometry = readGeometry(typeNode, type, object, scene);
+    if (const std::optional<JsonNode> id = object.optional("id")) shape.label = id->string();
+    shape.material = addShapeMaterial(object, context, scene);
+    scene.shapes.push_back(std::move(shape));
+    readShapeEmission(object, scene);
+  }
+  for (size_t i = firstShape; i < scene.shapes.size(); ++i) {
+    std::string& origin = scene.shapes[i].origin;
+    origin = origin.empty() ? node.path() : node.path() + " (" + origin + ")";
+  }
   ignoreRendererKeys(object);
   object.reportUnknownKeys();
-  scene.shapes.push_back(std::move(shape));
 }
 
 // -------------------------------------------------------------------- scene
@@ -1013,7 +1283,7 @@ fs::path absoluteFolderOf(const fs::path& file) {
 
 Scene readScene(std::string_view jsonText, const fs::path& file) {
   Diagnostics diagnostics(file.string());
-  const Json document = parseJson(jsonText, file.string());
+  const Json document = parseJson(jsonText, file.string(), diagnostics);
   Scene scene;
   scene.sourcePath = file;
   JsonObject top = JsonNode(document, "", diagnostics).object();
@@ -1035,8 +1305,11 @@ Scene readScene(std::string_view jsonText, const fs::path& file) {
   setConventions(scene, chosen.conventions, std::move(chosen.reason));
   ignoreRendererKeys(top);
   top.reportUnknownKeys();
-  scene.warnings = diagnostics.takeWarnings();
-  makePrintable(scene.warnings);
+  // Models read from other files (OBJ, glTF) brought their own warnings.
+  std::vector<std::string> own = diagnostics.takeWarnings();
+  makePrintable(own);
+  scene.warnings.insert(scene.warnings.begin(), own.begin(), own.end());
+  scene.valuesRead = diagnostics.takeReads();
   return scene;
 }
 

@@ -19,8 +19,8 @@
 
 #include "formats/common/Diagnostics.hpp"
 #include "formats/common/FileBytes.hpp"
+#include "formats/common/MeshNormals.hpp"
 #include "formats/common/MessageText.hpp"
-#include "formats/common/UnitVector.hpp"
 #include "util/Error.hpp"
 
 namespace rt {
@@ -804,30 +804,6 @@ void readElements(Reader& reader, const std::vector<ElementPlan>& plans, MeshBui
   reader.finish();
 }
 
-// Files store normals of any length, and zero for vertices the writer had none
-// for; the latter get the area-weighted normal of the faces around them.
-void normalizeNormals(TriangleMesh& mesh) {
-  std::vector<glm::vec3>& normals = mesh.normals;
-  std::vector<bool> missing(normals.size(), false);
-  bool anyMissing = false;
-  for (size_t i = 0; i < normals.size(); ++i) {
-    missing[i] = !normalizeInPlace(normals[i]);
-    anyMissing = anyMissing || missing[i];
-    if (missing[i]) normals[i] = glm::vec3(0.0f);
-  }
-  if (!anyMissing) return;
-  for (const glm::uvec3& face : mesh.faces) {
-    const glm::vec3& a = mesh.positions[face.x];
-    const glm::vec3 weighted = glm::cross(mesh.positions[face.y] - a, mesh.positions[face.z] - a);
-    for (int corner = 0; corner < 3; ++corner) {
-      if (missing[face[corner]]) normals[face[corner]] += weighted;
-    }
-  }
-  for (size_t i = 0; i < normals.size(); ++i) {
-    if (missing[i] && !normalizeInPlace(normals[i])) normals[i] = glm::vec3(0, 0, 1);
-  }
-}
-
 uint64_t vertexCountOf(const std::vector<ElementPlan>& plans) {
   for (const ElementPlan& plan : plans) {
     if (plan.role == Role::Vertices) return plan.element->count;
@@ -852,7 +828,7 @@ TriangleMesh parseMesh(std::string_view bytes, std::string_view name) {
   }
   if (out.mesh.faces.empty())
     diagnostics.failAtByte(bytes.size(), "no faces: every tristrip is degenerate");
-  normalizeNormals(out.mesh);
+  completeVertexNormals(out.mesh);
   return std::move(out.mesh);
 }
 

@@ -1,0 +1,169 @@
+// raytracer check SCENE: how the renderer reads a scene file, without
+// rendering: what the student runs when the image does not look like their
+// own renderer's. Exit 0 when the scene loads (1 with --strict and a
+// warning), 1 on an error.
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <string>
+#include <variant>
+
+#include "app/CommandLine.hpp"
+#include "app/Commands.hpp"
+#include "encode/Conventions.hpp"
+#include "encode/Features.hpp"
+#include "encode/FlatScene.hpp"
+#include "formats/SceneFile.hpp"
+#include "formats/json/JsonSceneLoader.hpp"
+#include "util/Error.hpp"
+
+namespace {
+
+struct CommandLine {
+  std::string scenePath;
+  std::string conventions;
+  bool strict = false;
+};
+
+// + 0.0f: no "-0" in what people read.
+std::string vec(glm::vec3 v) {
+  return fmt::format("({:g}, {:g}, {:g})", v.x + 0.0f, v.y + 0.0f, v.z + 0.0f);
+}
+
+const char* modeName(rt::RenderMode mode) {
+  switch (mode) {
+    case rt::RenderMode::Binary: return "binary";
+    case rt::RenderMode::Phong: return "phong (Whitted)";
+    case rt::RenderMode::PathTracer: return "path tracer";
+  }
+  return "?";
+}
+
+std::string geometryText(const rt::Geometry& geometry, const rt::Scene& scene) {
+  return std::visit(
+      [&](const auto& g) -> std::string {
+        using T = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<T, rt::Sphere>) {
+          return fmt::format("sphere centre {} radius {:g}", vec(g.center), g.radius);
+        } else if constexpr (std::is_same_v<T, rt::Triangle>) {
+          return fmt::format("triangle {} {} {}", vec(g.v0), vec(g.v1), vec(g.v2));
+        } else if constexpr (std::is_same_v<T, rt::Quad>) {
+          return fmt::format("quad {} {} {} {}", vec(g.v0), vec(g.v1), vec(g.v2), vec(g.v3));
+        } else if constexpr (std::is_same_v<T, rt::Cylinder>) {
+          return fmt::format("cylinder centre {} axis {} radius {:g} half height {:g}",
+                             vec(g.center), vec(g.axis), g.radius, g.halfHeight);
+        } else {
+          const rt::TriangleMesh& mesh = scene.meshes.at(g.mesh);
+          return fmt::format("mesh of {} triangles{}{}", mesh.faces.size(),
+                             mesh.normals.empty() ? "" : ", smooth normals",
+                             mesh.uvs.empty() ? "" : ", texture coordinates");
+        }
+      },
+      geometry);
+}
+
+std::string materialText(const rt::Material& m) {
+  std::string text =
+      fmt::format("kd {:g} diffuse {}, ks {:g} specular {} exponent {:g}", m.kd,
+                  vec(m.diffuseColor), m.ks, vec(m.specularColor), m.specularExponent);
+  if (m.reflectivity > 0.0f) text += fmt::format(", mirror {:g}", m.reflectivity);
+  if (m.transmission > 0.0f) text += fmt::format(", glass {:g} ior {:g}", m.transmission, m.ior);
+  if (!m.texture.empty()) text += ", texture " + m.texture.string();
+  return text;
+}
+
+void printCamera(const rt::Scene& scene) {
+  const rt::Camera& c = scene.camera;
+  const rt::CameraBasis basis = rt::cameraBasis(c);
+  std::printf("camera: %s %ux%u, vertical fov %g degrees\n",
+              c.type == rt::CameraType::ThinLens ? "thin lens" : "pinhole", c.width, c.height,
+              double(c.fovYDegrees));
+  std::printf("  position %s, looking along %s, image right %s, image up %s\n",
+              vec(c.position).c_str(), vec(basis.forward).c_str(), vec(basis.right).c_str(),
+              vec(basis.up).c_str());
+  if (c.type == rt::CameraType::ThinLens) {
+    std::printf("  lens radius %g, in focus at distance %g\n", double(c.apertureRadius),
+                double(c.focusDistance));
+  }
+  if (c.exposure != 1.0f) std::printf("  exposure %g\n", double(c.exposure));
+}
+
+void printLights(const rt::Scene& scene) {
+  std::printf("lights: %zu point, %zu area\n", scene.pointLights.size(), scene.areaLights.size());
+  for (size_t i = 0; i < scene.pointLights.size(); ++i) {
+    const rt::PointLight& light = scene.pointLights[i];
+    std::printf("  point light %zu at %s, diffuse %s, specular %s\n", i,
+                vec(light.position).c_str(), vec(light.diffuseIntensity).c_str(),
+                vec(light.specularIntensity).c_str());
+  }
+  for (size_t i = 0; i < scene.areaLights.size(); ++i) {
+    const rt::AreaLight& light = scene.areaLights[i];
+    std::printf("  area light %zu: shape %u, diffuse %s, specular %s, %u shadow ray(s), %s\n", i,
+                light.shape, vec(light.diffuseIntensity).c_str(),
+                vec(light.specularIntensity).c_str(), light.samples,
+                light.profile == rt::EmissionProfile::Isotropic ? "isotropic" : "lambertian");
+  }
+}
+
+void printShapes(const rt::Scene& scene) {
+  std::printf("shapes: %zu\n", scene.shapes.size());
+  for (size_t i = 0; i < scene.shapes.size(); ++i) {
+    const rt::Shape& shape = scene.shapes[i];
+    std::string from = shape.origin.empty() ? shape.label : shape.origin;
+    if (!shape.label.empty() && shape.label != from) from += " '" + shape.label + "'";
+    std::printf("  %zu%s: %s\n", i, from.empty() ? "" : (" [" + from + "]").c_str(),
+                geometryText(shape.geometry, scene).c_str());
+    std::printf("     material: %s\n", materialText(scene.materials.at(shape.material)).c_str());
+  }
+}
+
+void printList(const char* title, const std::vector<std::string>& lines) {
+  std::printf("%s: %zu\n", title, lines.size());
+  for (const std::string& line : lines) std::printf("  %s\n", line.c_str());
+}
+
+int run(const CommandLine& cli) {
+  rt::Scene scene = rt::loadSceneFile(cli.scenePath, {cli.strict});
+  rt::cli::applyConventionsOption(cli.conventions, scene);
+  std::printf("scene: %s, read as %s\n", cli.scenePath.c_str(), rt::sceneFileKind(cli.scenePath));
+  std::printf("conventions: %s (%s)\n", rt::conventionsName(scene.conventions),
+              scene.conventionsReason.c_str());
+  const rt::RenderSettings& s = scene.settings;
+  std::printf("mode: %s, %u bounces, %s, sampler %s\n", modeName(s.mode), s.maxBounces,
+              s.samplesPerPixel ? fmt::format("{} samples per pixel", s.samplesPerPixel).c_str()
+                                : "samples per pixel not given (16 unless --spp)",
+              rt::samplerKindName(s.sampler));
+  std::printf("background: %s\n", vec(scene.backgroundColor).c_str());
+  printCamera(scene);
+  printLights(scene);
+  printShapes(scene);
+  printList("values read (key = value)", scene.valuesRead);
+  printList("warnings (defaults taken, files missing, keys ignored)", scene.warnings);
+  const rt::FlatScene flat = rt::flattenScene(scene);
+  printList("left out on the GPU", flat.warnings);
+  std::printf("kernel features: %s\n", rt::detectFeatures(scene, flat).summary().c_str());
+  return 0;
+}
+
+}  // namespace
+
+int runCheckCommand(int argc, char** argv) {
+  CommandLine cli;
+  CLI::App app{
+      "Prints how a scene file is read (conventions and why, camera, lights, shapes with "
+      "where each value came from, defaults taken, warnings, the kernel features it needs) "
+      "without rendering.",
+      "raytracer check"};
+  app.add_option("scene", cli.scenePath, "Scene file (.json, a .gltf/.glb or .obj model)")
+      ->required();
+  rt::cli::addConventionsOption(app, cli.conventions);
+  rt::cli::addStrictOption(app, cli.strict);
+  if (std::optional<int> status = rt::cli::parse(app, argc, argv)) return *status;
+  try {
+    return run(cli);
+  } catch (const std::exception& error) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "error: %s\n", error.what());
+    return 1;
+  }
+}

@@ -1,0 +1,64 @@
+#include "formats/common/ModelFraming.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+namespace rt {
+namespace {
+constexpr uint32_t kFramingWidth = 800;
+constexpr uint32_t kFramingHeight = 600;
+constexpr float kFramingFovDegrees = 45.0f;
+}  // namespace
+
+float ModelBounds::radius() const {
+  return empty() ? 1.0f : static_cast<float>(std::max(0.5 * glm::length(hi - lo), 1e-3));
+}
+
+Camera framingCamera(const ModelBounds& bounds) {
+  Camera camera;
+  camera.width = kFramingWidth;
+  camera.height = kFramingHeight;
+  camera.fovYDegrees = kFramingFovDegrees;
+  glm::vec3 toCamera = glm::normalize(glm::vec3(0.0f, 0.5f, 1.0f));
+  float distance = 1.05f * bounds.radius() / std::sin(glm::radians(kFramingFovDegrees) / 2.0f);
+  camera.position = bounds.center() + toCamera * distance;
+  camera.forward = -toCamera;
+  camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
+  return camera;
+}
+
+PointLight framingLight(const Camera& camera, const ModelBounds& bounds) {
+  glm::vec3 forward = glm::normalize(camera.forward);
+  glm::vec3 right = glm::cross(forward, camera.up);
+  if (!(glm::length(right) > 1e-6f)) right = glm::cross(forward, glm::vec3(1.0f, 0.0f, 0.0f));
+  if (!(glm::length(right) > 1e-6f)) right = glm::cross(forward, glm::vec3(0.0f, 0.0f, 1.0f));
+  right = glm::normalize(right);
+  glm::vec3 up = glm::cross(right, forward);
+  float distance = glm::length(bounds.center() - camera.position);
+  if (!(distance > 0.0f)) distance = 1.0f;
+  glm::vec3 position = camera.position + distance * (0.5f * up + 0.5f * right);
+  return {position, glm::vec3(1.0f), glm::vec3(1.0f)};
+}
+
+void appendScenePart(Scene& scene, Scene&& part) {
+  auto materialBase = static_cast<uint32_t>(scene.materials.size());
+  auto meshBase = static_cast<uint32_t>(scene.meshes.size());
+  auto textureBase = static_cast<int32_t>(scene.textures.size());
+  for (Material& material : part.materials) {
+    if (material.diffuseTexture >= 0) material.diffuseTexture += textureBase;
+    scene.materials.push_back(std::move(material));
+  }
+  for (Shape& shape : part.shapes) {
+    shape.material += materialBase;
+    if (auto* instance = std::get_if<MeshInstance>(&shape.geometry)) instance->mesh += meshBase;
+    scene.shapes.push_back(std::move(shape));
+  }
+  std::move(part.meshes.begin(), part.meshes.end(), std::back_inserter(scene.meshes));
+  std::move(part.textures.begin(), part.textures.end(), std::back_inserter(scene.textures));
+  std::move(part.pointLights.begin(), part.pointLights.end(),
+            std::back_inserter(scene.pointLights));
+  std::move(part.warnings.begin(), part.warnings.end(), std::back_inserter(scene.warnings));
+}
+
+}  // namespace rt

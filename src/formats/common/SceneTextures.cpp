@@ -1,0 +1,63 @@
+#include "formats/common/SceneTextures.hpp"
+
+#include <array>
+#include <string>
+
+namespace rt {
+namespace {
+
+constexpr const char* kMissingTextureName = "missing texture";
+constexpr const char* kCheckerboardName = "checkerboard";
+
+std::optional<int32_t> findTexture(const Scene& scene, const std::string& source) {
+  for (size_t i = 0; i < scene.textures.size(); ++i) {
+    if (scene.textures[i].source == source) return static_cast<int32_t>(i);
+  }
+  return std::nullopt;
+}
+
+// 8 x 8 squares over a 64 x 64 image, alternating `even` and `odd` (sRGB).
+ImageRgba8 squares(std::array<uint8_t, 3> even, std::array<uint8_t, 3> odd) {
+  constexpr uint32_t kSide = 64;
+  constexpr uint32_t kSquare = 8;
+  ImageRgba8 image;
+  image.width = image.height = kSide;
+  image.rgba.resize(size_t{kSide} * kSide * 4);
+  for (uint32_t y = 0; y < kSide; ++y) {
+    for (uint32_t x = 0; x < kSide; ++x) {
+      const std::array<uint8_t, 3>& colour = ((x / kSquare + y / kSquare) % 2) ? odd : even;
+      uint8_t* pixel = &image.rgba[(size_t{y} * kSide + x) * 4];
+      pixel[0] = colour[0];
+      pixel[1] = colour[1];
+      pixel[2] = colour[2];
+      pixel[3] = 255;
+    }
+  }
+  return image;
+}
+
+int32_t addGenerated(Scene& scene, const char* name, ImageRgba8 (*make)()) {
+  if (const std::optional<int32_t> found = findTexture(scene, name)) return *found;
+  scene.textures.push_back({name, make()});
+  return static_cast<int32_t>(scene.textures.size() - 1);
+}
+
+}  // namespace
+
+int32_t addTextureFile(Scene& scene, const std::filesystem::path& file) {
+  if (const std::optional<int32_t> found = findTexture(scene, file.string())) return *found;
+  scene.textures.push_back({file.string(), readImageRgba8(file)});
+  return static_cast<int32_t>(scene.textures.size() - 1);
+}
+
+int32_t addMissingTexture(Scene& scene) {
+  return addGenerated(scene, kMissingTextureName, [] { return squares({255, 0, 255}, {0, 0, 0}); });
+}
+
+int32_t addCheckerboard(Scene& scene) {
+  return addGenerated(scene, kCheckerboardName, [] {
+    return squares({32, 32, 32}, {255, 255, 255});
+  });
+}
+
+}  // namespace rt

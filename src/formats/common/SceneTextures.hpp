@@ -1,0 +1,25 @@
+// The textures of a scene's materials, as every loader adds them: each file
+// decoded once however many materials use it, and the stand-ins drawn where
+// a file names a texture that is not there or a procedural one.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+
+#include "scene/Scene.hpp"
+
+namespace rt {
+
+// Index of `file` in scene.textures, decoding it on first use. Throws
+// rt::Error (the image reader's message) when it cannot be decoded.
+int32_t addTextureFile(Scene& scene, const std::filesystem::path& file);
+
+// The stand-in for a texture file that is not there: magenta and black
+// squares, 8 x 8 over the unit square, that no real texture looks like (README
+// "Student scenes").
+int32_t addMissingTexture(Scene& scene);
+
+// TsFreddie's procedural "checkerboard": 8 x 8 light and dark grey squares.
+int32_t addCheckerboard(Scene& scene);
+
+}  // namespace rt

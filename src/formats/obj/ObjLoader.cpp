@@ -1,0 +1,353 @@
+#include "formats/obj/ObjLoader.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "formats/common/Diagnostics.hpp"
+#include "formats/common/FileBytes.hpp"
+#include "formats/common/MeshNormals.hpp"
+#include "formats/common/MessageText.hpp"
+#include "formats/common/ModelFraming.hpp"
+#include "formats/common/SceneTextures.hpp"
+#include "util/Error.hpp"
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wconversion"
+#include <tiny_obj_loader.h>
+#pragma GCC diagnostic pop
+
+namespace rt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// tinyobjloader's warnings name a line each; a broken file can have a million.
+constexpr size_t kMaxParserWarnings = 8;
+
+std::string firstLine(const std::string& text) {
+  const size_t end = text.find('\n');
+  return end == std::string::npos ? text : text.substr(0, end);
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (!line.empty()) out.push_back(line);
+  }
+  return out;
+}
+
+// Names after every `mtllib` (several per line are allowed), each once.
+std::vector<std::string> materialLibraries(std::string_view obj) {
+  std::vector<std::string> names;
+  size_t start = 0;
+  while (start < obj.size()) {
+    size_t end = obj.find('\n', start);
+    if (end == std::string_view::npos) end = obj.size();
+    std::string_view line = obj.substr(start, end - start);
+    start = end + 1;
+    size_t first = line.find_first_not_of(" \t");
+    if (first == std::string_view::npos || line.substr(first, 7) != "mtllib ") continue;
+    std::istringstream words{std::string(line.substr(first + 7))};
+    for (std::string name; words >> name;) {
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    }
+  }
+  return names;
+}
+
+// OBJ files written on Windows give texture paths with backslashes.
+fs::path portablePath(std::string written) {
+  std::replace(written.begin(), written.end(), '\\', '/');
+  return fs::path(written);
+}
+
+glm::vec3 colour(const tinyobj::real_t* rgb) {
+  glm::vec3 c(rgb[0], rgb[1], rgb[2]);
+  for (int i = 0; i < 3; ++i) c[i] = std::isfinite(c[i]) ? std::max(c[i], 0.0f) : 0.0f;
+  return c;
+}
+
+float finiteOr(float value, float fallback) { return std::isfinite(value) ? value : fallback; }
+
+class ObjImporter {
+ public:
+  ObjImporter(const fs::path& file, const glm::mat4& placement)
+      : file_(file),
+        folder_(file.parent_path()),
+        placement_(placement),
+        diagnostics_(file.string()) {}
+
+  Scene run(std::string_view obj, std::string_view mtl) {
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = true;
+    config.vertex_color = false;
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromString(std::string(obj), std::string(mtl), config)) {
+      const std::string error = firstLine(reader.Error());
+      diagnostics_.fail("", error.empty() ? "not a readable OBJ file" : error);
+    }
+    reportParserWarnings(reader.Warning());
+    const tinyobj::attrib_t& attrib = reader.GetAttrib();
+    addMaterials(reader.GetMaterials());
+    for (const tinyobj::shape_t& shape : reader.GetShapes()) addFaces(shape, attrib);
+    finishMeshes();
+    if (scene_.shapes.empty()) diagnostics_.warn("", "no faces: nothing to draw");
+    scene_.warnings = diagnostics_.takeWarnings();
+    return std::move(scene_);
+  }
+
+ private:
+  // Corners sharing position, texture coordinate and normal become one vertex.
+  using CornerKey = std::tuple<int, int, int>;
+
+  struct PendingMesh {
+    TriangleMesh mesh;
+    std::map<CornerKey, uint32_t> vertexOf;
+    bool allNormals = true;
+    bool allUvs = true;
+    std::string label;
+  };
+
+  void reportParserWarnings(const std::string& text) {
+    const std::vector<std::string> all = lines(text);
+    for (size_t i = 0; i < std::min(all.size(), kMaxParserWarnings); ++i) {
+      diagnostics_.warn("", all[i]);
+    }
+    if (all.size() > kMaxParserWarnings) {
+      diagnostics_.warn("", std::to_string(all.size() - kMaxParserWarnings) +
+                                " more warnings of the OBJ reader not shown");
+    }
+  }
+
+  void addMaterials(const std::vector<tinyobj::material_t>& materials) {
+    for (const tinyobj::material_t& source : materials) {
+      Material out;
+      out.kd = 1.0f;
+      out.diffuseColor = colour(source.diffuse);
+      out.specularColor = colour(source.specular);
+      out.ks = glm::length(out.specularColor) > 0.0f ? 1.0f : 0.0f;
+      out.specularExponent = std::clamp(finiteOr(source.shininess, 1.0f), 0.0f, 1e4f);
+      const float opacity = std::clamp(finiteOr(source.dissolve, 1.0f), 0.0f, 1.0f);
+      out.transmission = 1.0f - opacity;
+      out.ior = std::clamp(finiteOr(source.ior, 1.0f), 1e-3f, 1e3f);
+      if (!source.diffuse_texname.empty()) addDiffuseTexture(source, out);
+      materialNames_.push_back(source.name);
+      scene_.materials.push_back(std::move(out));
+    }
+    defaultMaterial_ = static_cast<uint32_t>(scene_.materials.size());
+    scene_.materials.push_back(Material{});
+  }
+
+  void addDiffuseTexture(const tinyobj::material_t& source, Material& out) {
+    const fs::path written = portablePath(source.diffuse_texname);
+    const fs::path found = (folder_ / written).lexically_normal();
+    std::error_code ignored;
+    out.textureTintedByColor = true;
+    if (!fs::is_regular_file(found, ignored)) {
+      diagnostics_.warn("material '" + source.name + "'",
+                        "texture file not found: " + written.string() +
+                            "; drawn with the missing-texture squares");
+      out.texture = written;
+      out.diffuseTexture = addMissingTexture(scene_);
+      return;
+    }
+    out.texture = found;
+    try {
+      out.diffuseTexture = addTextureFile(scene_, found);
+    } catch (const Error& error) {
+      diagnostics_.fail("material '" + source.name + "'",
+                        std::string("cannot use texture: ") + error.what());
+    }
+  }
+
+  uint32_t materialSlot(int id) const {
+    if (id < 0 || static_cast<size_t>(id) >= defaultMaterial_) return defaultMaterial_;
+    return static_cast<uint32_t>(id);
+  }
+
+  // The index, checked against the attribute's count (tinyobjloader has
+  // already made relative indices absolute; -1 means "not given").
+  int checkedIndex(int index, size_t count, const char* what, const std::string& where) const {
+    if (index < -1 || (index >= 0 && static_cast<size_t>(index) >= count)) {
+      diagnostics_.fail(where, std::string("refers to ") + what + " " + std::to_string(index + 1) +
+                                   ", the file has " + std::to_string(count));
+    }
+    return index;
+  }
+
+  uint32_t vertexOf(PendingMesh& pending, const tinyobj::index_t& corner,
+                    const tinyobj::attrib_t& attrib, const std::string& where) {
+    const int v = checkedIndex(corner.vertex_index, attrib.vertices.size() / 3, "vertex", where);
+    if (v < 0) diagnostics_.fail(where, "has a corner without a vertex");
+    const int t = checkedIndex(corner.texcoord_index, attrib.texcoords.size() / 2,
+                               "texture coordinate", where);
+    const int n = checkedIndex(corner.normal_index, attrib.normals.size() / 3, "normal", where);
+    const CornerKey key{v, t, n};
+    if (const auto found = pending.vertexOf.find(key); found != pending.vertexOf.end()) {
+      return found->second;
+    }
+    const size_t vi = static_cast<size_t>(v);
+    glm::vec3 position(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1],
+                       attrib.vertices[3 * vi + 2]);
+    if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z)) {
+      diagnostics_.fail(where, "vertex " + std::to_string(v + 1) + " is not a finite point");
+    }
+    TriangleMesh& mesh = pending.mesh;
+    mesh.positions.push_back(position);
+    glm::vec3 normal(0.0f);
+    if (n >= 0) {
+      const size_t ni = static_cast<size_t>(n);
+      normal =
+          glm::vec3(attrib.normals[3 * ni], attrib.normals[3 * ni + 1], attrib.normals[3 * ni + 2]);
+    }
+    pending.allNormals = pending.allNormals && n >= 0;
+    mesh.normals.push_back(normal);
+    glm::vec2 uv(0.0f);
+    if (t >= 0) {
+      const size_t ti = static_cast<size_t>(t);
+      uv = glm::vec2(finiteOr(attrib.texcoords[2 * ti], 0.0f),
+                     finiteOr(attrib.texcoords[2 * ti + 1], 0.0f));
+    }
+    pending.allUvs = pending.allUvs && t >= 0;
+    // OBJ's v runs up the image; the renderer's rows run down.
+    mesh.uvs.emplace_back(uv.x, 1.0f - uv.y);
+    const auto index = static_cast<uint32_t>(mesh.positions.size() - 1);
+    pending.vertexOf.emplace(key, index);
+    return index;
+  }
+
+  void addFaces(const tinyobj::shape_t& shape, const tinyobj::attrib_t& attrib) {
+    const tinyobj::mesh_t& source = shape.mesh;
+    size_t offset = 0;
+    for (size_t face = 0; face < source.num_face_vertices.size(); ++face) {
+      const size_t corners = source.num_face_vertices[face];
+      const std::string where = (shape.name.empty() ? "" : "object '" + shape.name + "' ") +
+                                "face " + std::to_string(face + 1);
+      if (offset + corners > source.indices.size()) diagnostics_.fail(where, "is cut short");
+      if (corners == 3) {
+        const int id = face < source.material_ids.size() ? source.material_ids[face] : -1;
+        PendingMesh& pending = meshFor(materialSlot(id));
+        glm::uvec3 triangle;
+        for (size_t c = 0; c < 3; ++c) {
+          triangle[static_cast<int>(c)] =
+              vertexOf(pending, source.indices[offset + c], attrib, where);
+        }
+        pending.mesh.faces.push_back(triangle);
+      }
+      offset += corners;
+    }
+  }
+
+  PendingMesh& meshFor(uint32_t material) {
+    auto found = pending_.find(material);
+    if (found != pending_.end()) return found->second;
+    PendingMesh& added = pending_[material];
+    added.label = material < materialNames_.size() ? "material '" + materialNames_[material] + "'"
+                                                   : std::string("no material");
+    return added;
+  }
+
+  void finishMeshes() {
+    for (auto& [material, pending] : pending_) {
+      TriangleMesh& mesh = pending.mesh;
+      if (mesh.faces.empty()) continue;
+      if (pending.allNormals) {
+        completeVertexNormals(mesh);
+      } else {
+        mesh.normals.clear();
+      }
+      if (!pending.allUvs) mesh.uvs.clear();
+      scene_.meshes.push_back(std::move(mesh));
+      Shape shape;
+      shape.geometry = MeshInstance{static_cast<uint32_t>(scene_.meshes.size() - 1), placement_};
+      shape.material = material;
+      shape.label = file_.filename().string() + ": " + pending.label;
+      scene_.shapes.push_back(std::move(shape));
+    }
+  }
+
+  fs::path file_;
+  fs::path folder_;
+  glm::mat4 placement_;
+  Diagnostics diagnostics_;
+  Scene scene_;
+  uint32_t defaultMaterial_ = 0;
+  std::vector<std::string> materialNames_;  // of the file's materials, by index
+  std::map<uint32_t, PendingMesh> pending_;
+};
+
+// The texts of the file's material libraries, one after the other; a
+// missing one is a warning.
+std::string readMaterialLibraries(std::string_view obj, const fs::path& file,
+                                  std::vector<std::string>& warnings) {
+  std::string all;
+  for (const std::string& name : materialLibraries(obj)) {
+    const fs::path written = portablePath(name);
+    std::string text;
+    const std::string problem = readFileBytes(file.parent_path() / written, text);
+    if (!problem.empty()) {
+      warnings.push_back(file.string() + ": material library " + written.string() + ": " + problem +
+                         "; its materials are drawn in the default grey");
+      continue;
+    }
+    all += text;
+    all += '\n';
+  }
+  return all;
+}
+
+}  // namespace
+
+Scene parseObjPart(std::string_view obj, std::string_view mtl, const fs::path& file,
+                   const glm::mat4& placement) {
+  return withPrintableErrors([&] {
+    Scene scene = ObjImporter(file, placement).run(obj, mtl);
+    makePrintable(scene.warnings);
+    return scene;
+  });
+}
+
+Scene loadObjPart(const fs::path& file, const glm::mat4& placement) {
+  const std::string obj = readFileOrThrow(file);
+  std::vector<std::string> warnings;
+  const std::string mtl = readMaterialLibraries(obj, file, warnings);
+  Scene scene = parseObjPart(obj, mtl, file, placement);
+  makePrintable(warnings);
+  scene.warnings.insert(scene.warnings.begin(), warnings.begin(), warnings.end());
+  return scene;
+}
+
+Scene loadObjScene(const fs::path& file) {
+  Scene scene;
+  appendScenePart(scene, loadObjPart(file, glm::mat4(1.0f)));
+  scene.sourcePath = file;
+  scene.backgroundColor = glm::vec3(kModelBackgroundGrey);
+  ModelBounds bounds;
+  for (const TriangleMesh& mesh : scene.meshes) {
+    for (const glm::vec3& p : mesh.positions) bounds.grow(glm::dvec3(p));
+  }
+  scene.camera = framingCamera(bounds);
+  scene.pointLights.push_back(framingLight(scene.camera, bounds));
+  setConventions(scene, Conventions::Textbook, "an OBJ file");
+  return scene;
+}
+
+bool isObjFile(const fs::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".obj";
+}
+
+}  // namespace rt

@@ -1,0 +1,185 @@
+// The OBJ loader (formats/obj): geometry, indices, polygons and groups,
+// .mtl materials, OBJ models inside JSON scenes, a standalone OBJ framed
+// like a glTF file, and broken files as one-line errors.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <glm/geometric.hpp>
+#include <string>
+
+#include "formats/SceneFile.hpp"
+#include "formats/json/JsonSceneLoader.hpp"
+#include "formats/obj/ObjLoader.hpp"
+#include "support/TestSupport.hpp"
+#include "util/Error.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using rt::test::TempDir;
+
+const fs::path kCrate = fs::path(RT_SOURCE_SHADER_DIR) / ".." / "assets" / "models" / "crate.obj";
+
+rt::Scene parseObj(const std::string& obj, const std::string& mtl = "") {
+  return rt::parseObjPart(obj, mtl, "mem.obj", glm::mat4(1.0f));
+}
+
+std::string errorOf(const std::string& obj) {
+  try {
+    parseObj(obj);
+  } catch (const rt::Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+size_t triangleCount(const rt::Scene& scene) {
+  size_t count = 0;
+  for (const rt::TriangleMesh& mesh : scene.meshes) count += mesh.faces.size();
+  return count;
+}
+
+const rt::Material& materialOf(const rt::Scene& scene, const std::string& label) {
+  for (const rt::Shape& shape : scene.shapes) {
+    if (shape.label.find(label) != std::string::npos) return scene.materials.at(shape.material);
+  }
+  FAIL("no shape labelled " << label);
+  return scene.materials.front();
+}
+
+}  // namespace
+
+TEST_SUITE("obj loader") {
+  TEST_CASE("quads, a pentagon and negative indices become triangles, one mesh per material") {
+    const rt::Scene scene = rt::loadObjPart(kCrate, glm::mat4(1.0f));
+    CHECK(scene.warnings.empty());
+    // 5 body quads + the lid quad (negative indices) + the pentagon badge.
+    CHECK(triangleCount(scene) == 5 * 2 + 2 + 3);
+    REQUIRE(scene.shapes.size() == 3);  // wood, red, gold
+    for (const rt::TriangleMesh& mesh : scene.meshes) {
+      for (const glm::uvec3& face : mesh.faces) {
+        for (int c = 0; c < 3; ++c) CHECK(face[c] < mesh.positions.size());
+      }
+    }
+    // The lid (f -5 -1 -2 -6 after 8 vertices: vertices 4 8 7 3) lies at y = 0.5.
+    const rt::Shape& lid = scene.shapes[1];
+    const rt::TriangleMesh& lidMesh =
+        scene.meshes.at(std::get<rt::MeshInstance>(lid.geometry).mesh);
+    for (const glm::vec3& p : lidMesh.positions) CHECK(p.y == doctest::Approx(0.5f));
+    REQUIRE(lidMesh.normals.size() == lidMesh.positions.size());
+    CHECK(lidMesh.normals[0].y == doctest::Approx(1.0f));
+  }
+
+  TEST_CASE("MTL materials: Kd, Ks, Ns and map_Kd on the Blinn-Phong material") {
+    const rt::Scene scene = rt::loadObjPart(kCrate, glm::mat4(1.0f));
+    const rt::Material& red = materialOf(scene, "material 'red'");
+    CHECK(red.diffuseColor.x == doctest::Approx(0.8f));
+    CHECK(red.diffuseColor.y == doctest::Approx(0.1f));
+    CHECK(red.kd == doctest::Approx(1.0f));
+    CHECK(red.ks == doctest::Approx(1.0f));
+    CHECK(red.specularColor.x == doctest::Approx(0.5f));
+    CHECK(red.specularExponent == doctest::Approx(50.0f));
+    const rt::Material& wood = materialOf(scene, "material 'wood'");
+    REQUIRE(wood.diffuseTexture >= 0);
+    CHECK(wood.textureTintedByColor);
+    CHECK(scene.textures.at(size_t(wood.diffuseTexture)).image.width == 32);
+    CHECK(wood.ks == doctest::Approx(0.0f));
+  }
+
+  TEST_CASE("d, Tr and Ni: transparency and index of refraction") {
+    const std::string obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl glass\nf 1 2 3\n";
+    rt::Scene scene = parseObj(obj, "newmtl glass\nKd 1 1 1\nd 0.25\nNi 1.5\n");
+    CHECK(scene.materials.at(scene.shapes.at(0).material).transmission == doctest::Approx(0.75f));
+    CHECK(scene.materials.at(scene.shapes.at(0).material).ior == doctest::Approx(1.5f));
+    scene = parseObj(obj, "newmtl glass\nKd 1 1 1\nTr 0.5\n");
+    CHECK(scene.materials.at(scene.shapes.at(0).material).transmission == doctest::Approx(0.5f));
+  }
+
+  TEST_CASE("faces without a material, texture coordinates flipped to rows going down") {
+    const rt::Scene scene = parseObj(
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+        "f 1/1 2/2 3/3\n");
+    REQUIRE(scene.shapes.size() == 1);
+    const rt::Material& material = scene.materials.at(scene.shapes[0].material);
+    CHECK(material.diffuseColor == rt::Material{}.diffuseColor);
+    const rt::TriangleMesh& mesh = scene.meshes.at(0);
+    REQUIRE(mesh.uvs.size() == 3);
+    CHECK(mesh.uvs[0].y == doctest::Approx(1.0f));  // OBJ v = 0 is the image's bottom row
+    CHECK(mesh.normals.empty());                    // none in the file: flat shading
+  }
+
+  TEST_CASE("a missing material library or texture is a warning with a visible stand-in") {
+    TempDir dir;
+    dir.write("model.obj",
+              "mtllib gone.mtl\nmtllib here.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+              "usemtl painted\nf 1 2 3\n");
+    dir.write("here.mtl", "newmtl painted\nKd 1 1 1\nmap_Kd textures\\paint.png\n");
+    const rt::Scene scene = rt::loadObjPart(dir.path() / "model.obj", glm::mat4(1.0f));
+    REQUIRE(scene.warnings.size() == 2);
+    CAPTURE(scene.warnings[1]);
+    CHECK(scene.warnings[0].find("material library gone.mtl") != std::string::npos);
+    CHECK(scene.warnings[1].find("texture file not found: textures/paint.png") !=
+          std::string::npos);
+    const rt::Material& painted = scene.materials.at(scene.shapes.at(0).material);
+    REQUIRE(painted.diffuseTexture >= 0);
+    CHECK(scene.textures.at(size_t(painted.diffuseTexture)).source == "missing texture");
+  }
+
+  TEST_CASE("broken files are one-line errors naming the file") {
+    const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    CHECK(errorOf(triangle + "f 1 2 9\n") == "mem.obj: face 1: refers to vertex 9, the file has 3");
+    CHECK(errorOf(triangle + "vn 0 0 1\nf 1//1 2//4 3//1\n") ==
+          "mem.obj: face 1: refers to normal 4, the file has 1");
+    CHECK(errorOf(triangle + "f -4 1 2\n").find("mem.obj: ") == 0);
+    for (const std::string& bad : {std::string("f 1 2 3\n"), std::string("v 1e999 0 0\n")}) {
+      CAPTURE(bad);
+      const std::string error = errorOf(bad);
+      if (!error.empty()) {
+        CHECK(error.find('\n') == std::string::npos);
+        CHECK(error.find("mem.obj: ") == 0);
+      }
+    }
+    const rt::Scene empty = parseObj("# nothing\n");
+    CHECK(empty.shapes.empty());
+    CHECK(empty.warnings.at(0) == "mem.obj: no faces: nothing to draw");
+  }
+
+  TEST_CASE("an OBJ file on its own is framed like a glTF file") {
+    const rt::Scene scene = rt::loadSceneFile(kCrate);
+    CHECK(scene.conventions == rt::Conventions::Textbook);
+    CHECK(scene.pointLights.size() == 1);
+    CHECK(scene.camera.width == 800);
+    CHECK(scene.camera.height == 600);
+    // The camera looks at the crate's centre from above +z.
+    CHECK(glm::dot(glm::normalize(-scene.camera.position), scene.camera.forward) ==
+          doctest::Approx(1.0f).epsilon(0.01));
+    CHECK(scene.camera.position.z > 1.0f);
+  }
+
+  TEST_CASE("OBJ models in JSON scenes: type mesh, placement, and the JSON material wins") {
+    TempDir dir;
+    fs::copy_file(kCrate, dir.path() / "crate.obj");
+    fs::copy_file(kCrate.parent_path() / "crate.mtl", dir.path() / "crate.mtl");
+    fs::copy_file(kCrate.parent_path() / "crate.png", dir.path() / "crate.png");
+    const std::string camera =
+        R"("camera": {"type": "pinhole", "width": 64, "height": 48, "fov": 45,
+                      "position": [0, 0, 5], "lookat": [0, 0, -1], "up": [0, 1, 0]})";
+    const fs::path own = dir.write("own.json", "{" + camera + R"(, "scene": {"shapes": [
+        {"type": "mesh", "filename": "crate.obj", "center": [1, 2, 3], "scale": 2}]}})");
+    rt::Scene scene = rt::loadJsonScene(own);
+    CHECK(scene.warnings.empty());
+    REQUIRE(scene.shapes.size() == 3);
+    const auto& placed = std::get<rt::MeshInstance>(scene.shapes[0].geometry);
+    CHECK(placed.objectToWorld[3][1] == doctest::Approx(2.0f));
+    CHECK(placed.objectToWorld[0][0] == doctest::Approx(2.0f));
+    CHECK(scene.shapes[0].origin.find("scene.shapes[0]") == 0);
+
+    const fs::path painted = dir.write("painted.json", "{" + camera + R"(, "scene": {"shapes": [
+        {"type": "trimesh", "file": "crate.obj", "material": {"ks": 0.1, "kd": 0.9,
+         "specularexponent": 5, "diffusecolor": [0, 0, 1]}}]}})");
+    scene = rt::loadJsonScene(painted);
+    for (const rt::Shape& shape : scene.shapes) {
+      CHECK(scene.materials.at(shape.material).diffuseColor == glm::vec3(0, 0, 1));
+    }
+  }
+}

@@ -1,0 +1,229 @@
+// Students' other spellings of what the renderer knows (README "Student
+// scenes"), lenient loading (defaults taken and missing files, each with a
+// warning) and --strict, on small scenes written for each dialect.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "formats/SceneFile.hpp"
+#include "formats/json/JsonSceneLoader.hpp"
+#include "support/TestSupport.hpp"
+#include "util/Error.hpp"
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json baseScene() {
+  return Json::parse(R"({
+    "camera": {"type": "pinhole", "width": 32, "height": 24, "fov": 45,
+               "position": [0, 0, 0], "lookat": [0, 0, 1], "up": [0, 1, 0]},
+    "scene": {"lightsources": [{"type": "pointlight", "position": [0, 5, 0], "is": [1, 1, 1], "id": [1, 1, 1]}],
+              "shapes": [{"type": "sphere", "center": [0, 0, 3], "radius": 1,
+                          "material": {"ks": 0.1, "kd": 0.9, "specularexponent": 10,
+                                       "diffusecolor": [1, 0, 0]}}]}
+  })");
+}
+
+rt::Scene parse(const Json& document) { return rt::parseJsonScene(document.dump(), "mem.json"); }
+
+bool hasWarning(const rt::Scene& scene, const std::string& part) {
+  for (const std::string& warning : scene.warnings) {
+    if (warning.find(part) != std::string::npos) return true;
+  }
+  return false;
+}
+
+Json& shape0(Json& scene) { return scene["scene"]["shapes"][0]; }
+
+}  // namespace
+
+TEST_SUITE("student dialects") {
+  TEST_CASE("shape type spellings: PlanerQuad, rectangle, Traingle, mesh (any case)") {
+    const Json quadCorners = {{"point1", {-1, -1, 3}},
+                              {"point2", {1, -1, 3}},
+                              {"point3", {1, 1, 3}},
+                              {"point4", {-1, 1, 3}}};
+    for (const char* type : {"PlanerQuad", "planarquad", "rectangle", "Quad"}) {
+      CAPTURE(type);
+      Json scene = baseScene();
+      Json quad = quadCorners;
+      quad["type"] = type;
+      shape0(scene) = quad;
+      const rt::Scene loaded = parse(scene);
+      REQUIRE(loaded.shapes.size() == 1);
+      CHECK(std::holds_alternative<rt::Quad>(loaded.shapes[0].geometry));
+    }
+    Json scene = baseScene();
+    shape0(scene) = {
+        {"type", "Traingle"}, {"point1", {0, 0, 3}}, {"point2", {1, 0, 3}}, {"point3", {0, 1, 3}}};
+    CHECK(std::holds_alternative<rt::Triangle>(parse(scene).shapes.at(0).geometry));
+    shape0(scene) = {
+        {"type", "mesh"}, {"vertices", {{0, 0, 3}, {1, 0, 3}, {0, 1, 3}}}, {"faces", {{0, 1, 2}}}};
+    CHECK(std::holds_alternative<rt::MeshInstance>(parse(scene).shapes.at(0).geometry));
+  }
+
+  TEST_CASE("quad corners given row by row are read around the quad") {
+    Json scene = baseScene();
+    shape0(scene) = {{"type", "plane"},
+                     {"v0", {-1, -1, 3}},
+                     {"v1", {1, -1, 3}},
+                     {"v2", {-1, 1, 3}},
+                     {"v3", {1, 1, 3}}};
+    const rt::Scene loaded = parse(scene);
+    const auto& quad = std::get<rt::Quad>(loaded.shapes.at(0).geometry);
+    CHECK(quad.v2 == glm::vec3(1, 1, 3));
+    CHECK(quad.v3 == glm::vec3(-1, 1, 3));
+    CHECK(hasWarning(loaded, "quad corners given row by row"));
+  }
+
+  TEST_CASE("camera spellings: thin lens type names, snake_case keys, look_at target") {
+    for (const char* type : {"thin_lens", "aperture", "finite-aperture", "ThinLens"}) {
+      CAPTURE(type);
+      Json scene = baseScene();
+      scene["camera"]["type"] = type;
+      scene["camera"]["aperture_size"] = 0.2;
+      scene["camera"]["focus_distance"] = 3;
+      const rt::Scene loaded = parse(scene);
+      CHECK(loaded.camera.type == rt::CameraType::ThinLens);
+      CHECK(loaded.camera.apertureRadius == doctest::Approx(0.1f));
+      CHECK(loaded.camera.focusDistance == doctest::Approx(3.0f));
+    }
+    Json scene = baseScene();
+    scene["camera"]["type"] = "thinlens";
+    scene["camera"]["lens_radius"] = 0.05;
+    scene["camera"]["focalLength"] = 2;
+    rt::Scene loaded = parse(scene);
+    CHECK(loaded.camera.apertureRadius == doctest::Approx(0.05f));
+    CHECK(loaded.camera.focusDistance == doctest::Approx(2.0f));
+
+    scene = baseScene();
+    scene["camera"].erase("lookat");
+    scene["camera"].erase("up");
+    scene["camera"]["look_at"] = {0, 0, 5};
+    scene["camera"]["up_vector"] = {0, 1, 0};
+    loaded = parse(scene);
+    CHECK(loaded.camera.forward == glm::vec3(0, 0, 1));
+    CHECK(loaded.warnings.empty());
+  }
+
+  TEST_CASE("render modes, sample counts and nizqleo's path tracer keys") {
+    Json scene = baseScene();
+    scene["rendermode"] = "PathTrace";
+    CHECK(parse(scene).settings.mode == rt::RenderMode::PathTracer);
+    scene = baseScene();
+    scene["pixel_sample_num"] = 4;
+    scene["path_sample_num"] = 8;
+    scene["random"] = 1;
+    const rt::Scene loaded = parse(scene);
+    CHECK(loaded.settings.mode == rt::RenderMode::PathTracer);
+    CHECK(loaded.settings.samplesPerPixel == 32);
+    CHECK(loaded.settings.sampler == rt::SamplerKind::Random);
+    CHECK(hasWarning(loaded, "pixel_sample_num times path_sample_num"));
+  }
+
+  TEST_CASE("a glowing shape ('emittence') is an area light of that radiance") {
+    Json scene = baseScene();
+    scene["scene"]["lightsources"] = Json::array();
+    shape0(scene) = {{"type", "PlanerQuad"},
+                     {"point1", {0, 2, 0}},
+                     {"point2", {2, 2, 0}},
+                     {"point3", {2, 2, 1}},
+                     {"point4", {0, 2, 1}},
+                     {"emittence", {1, 0.5, 0}},
+                     {"material", baseScene()["scene"]["shapes"][0]["material"]}};
+    const rt::Scene loaded = parse(scene);
+    REQUIRE(loaded.areaLights.size() == 1);
+    CHECK(loaded.areaLights[0].shape == 0);
+    CHECK(loaded.areaLights[0].profile == rt::EmissionProfile::Lambertian);
+    // Radiance I / (2 A) for a Lambertian light: I = 2 A L with A = 2.
+    CHECK(loaded.areaLights[0].diffuseIntensity.x == doctest::Approx(4.0f));
+    CHECK(loaded.areaLights[0].diffuseIntensity.y == doctest::Approx(2.0f));
+  }
+
+  TEST_CASE("area lights by a corner and two edges, or by centre, normal and size") {
+    Json scene = baseScene();
+    scene["scene"]["lightsources"] = {{{"type", "arealight"},
+                                       {"p", {0, 4, 0}},
+                                       {"e0", {1, 0, 0}},
+                                       {"e1", {0, 0, 2}},
+                                       {"intensity", {1, 1, 1}}},
+                                      {{"type", "area"},
+                                       {"position", {0, 4, 0}},
+                                       {"normal", {0, -1, 0}},
+                                       {"w", 2},
+                                       {"h", 3},
+                                       {"intensity", 1}}};
+    const rt::Scene loaded = parse(scene);
+    REQUIRE(loaded.areaLights.size() == 2);
+    const auto& edges = std::get<rt::Quad>(loaded.shapes.at(loaded.areaLights[0].shape).geometry);
+    CHECK(edges.v2 == glm::vec3(1, 4, 2));
+    const auto& facing = std::get<rt::Quad>(loaded.shapes.at(loaded.areaLights[1].shape).geometry);
+    CHECK(glm::length(facing.v1 - facing.v0) * glm::length(facing.v3 - facing.v0) ==
+          doctest::Approx(6.0f));
+    CHECK(glm::dot(glm::cross(facing.v1 - facing.v0, facing.v3 - facing.v0), {0, 1, 0}) != 0.0f);
+    CHECK(facing.v0.y == doctest::Approx(4.0f));
+    CHECK(loaded.areaLights[1].diffuseIntensity == glm::vec3(1.0f));  // a scalar intensity
+  }
+
+  TEST_CASE("missing keys with an obvious default take it, with a warning") {
+    Json scene = baseScene();
+    shape0(scene)["material"] = {{"diffusecolor", {0, 1, 0}}};
+    scene["camera"].erase("type");
+    scene["camera"].erase("fov");
+    const rt::Scene loaded = parse(scene);
+    const rt::Material& m = loaded.materials.at(loaded.shapes.at(0).material);
+    CHECK(m.kd == doctest::Approx(0.8f));
+    CHECK(m.ks == doctest::Approx(0.2f));
+    CHECK(m.specularExponent == doctest::Approx(10.0f));
+    CHECK(loaded.camera.type == rt::CameraType::Pinhole);
+    CHECK(loaded.camera.fovYDegrees == doctest::Approx(45.0f));
+    CHECK(hasWarning(loaded, "scene.shapes[0].material.ks: missing; taken as 0.2"));
+    CHECK(hasWarning(loaded, "camera.type: missing; taken as \"pinhole\""));
+    CHECK(hasWarning(loaded, "camera.fov: missing; taken as 45 degrees"));
+  }
+
+  TEST_CASE("the same warning at several places is one line naming them") {
+    Json scene = baseScene();
+    Json plain = shape0(scene);
+    plain["material"].erase("ks");
+    scene["scene"]["shapes"] = {plain, plain, plain, plain, plain};
+    const rt::Scene loaded = parse(scene);
+    REQUIRE(loaded.warnings.size() == 1);
+    CHECK(loaded.warnings[0] ==
+          "mem.json: scene.shapes[0].material.ks, scene.shapes[1].material.ks, "
+          "scene.shapes[2].material.ks and 2 more: missing; taken as 0.2");
+  }
+
+  TEST_CASE("comments, which JSON lacks, are skipped with a warning") {
+    const rt::Scene loaded = rt::parseJsonScene(
+        "// a student's note\n" + baseScene().dump() + "\n/* the end */", "mem.json");
+    CHECK(loaded.shapes.size() == 1);
+    CHECK(hasWarning(loaded, "comments (// or /* */) are not JSON; skipped"));
+  }
+
+  TEST_CASE("--strict: the first warning is the error; true errors stay errors") {
+    rt::test::TempDir dir;
+    Json scene = baseScene();
+    shape0(scene)["material"]["texture"] = "C:/Users/someone/wood.ppm";
+    const auto file = dir.write("scene.json", scene.dump());
+    const rt::Scene lenient = rt::loadSceneFile(file);
+    CHECK(hasWarning(lenient, "texture file not found: C:/Users/someone/wood.ppm"));
+    try {
+      rt::loadSceneFile(file, {true});
+      FAIL("--strict must refuse a scene with warnings");
+    } catch (const rt::Error& error) {
+      const std::string message = error.what();
+      CHECK(message.find("texture file not found") != std::string::npos);
+      CHECK(message.find("(--strict: every warning is an error)") != std::string::npos);
+    }
+    scene = baseScene();
+    shape0(scene)["material"]["kd"] = "lots";
+    const auto wrongType = dir.write("wrong.json", scene.dump());
+    CHECK_THROWS_AS(rt::loadSceneFile(wrongType), rt::Error);
+    CHECK_NOTHROW(rt::loadSceneFile(dir.write("fine.json", baseScene().dump()), {true}));
+  }
+}
