@@ -226,4 +226,79 @@ TEST_SUITE("student dialects") {
     CHECK_THROWS_AS(rt::loadSceneFile(wrongType), rt::Error);
     CHECK_NOTHROW(rt::loadSceneFile(dir.write("fine.json", baseScene().dump()), {true}));
   }
+
+  TEST_CASE("more dialects: flat files, lights by position, inline surfaces, polygon lists") {
+    // Lights and shapes at the top level; lights without a type; colour x intensity.
+    Json flat = baseScene();
+    flat["lights"] = {{{"position", {0, 5, 0}}, {"intensity", 2}, {"color", {1, 0.5, 0}}}};
+    flat["objects"] = flat["scene"]["shapes"];
+    flat.erase("scene");
+    rt::Scene loaded = parse(flat);
+    CHECK(loaded.shapes.size() == 1);
+    REQUIRE(loaded.pointLights.size() == 1);
+    CHECK(loaded.pointLights[0].diffuseIntensity == glm::vec3(2, 1, 0));
+    CHECK(hasWarning(loaded, "no 'scene' object"));
+
+    Json scene = baseScene();
+    scene["scene"]["lightsources"] = {
+        {{"type", "arealight"}, {"position", {0, 4, 0}}, {"intensity", {1, 1, 1}}},
+        {{"type", "rectlight"},
+         {"position", {0, 4, 0}},
+         {"u_axis", {0.5, 0, 0}},
+         {"v_axis", {0, 0, 0.5}},
+         {"intensity", {1, 1, 1}},
+         {"num_samples", 8}},
+        {{"type", "arealight"},
+         {"intensity", {1, 1, 1}},
+         {"shape", {{"type", "sphere"}, {"center", {0, 4, 0}}, {"radius", 0.5}}}}};
+    loaded = parse(scene);
+    CHECK(loaded.pointLights.size() == 1);  // a position alone
+    REQUIRE(loaded.areaLights.size() == 2);
+    CHECK(loaded.areaLights[0].samples == 8);
+    const auto& quad = std::get<rt::Quad>(loaded.shapes.at(loaded.areaLights[0].shape).geometry);
+    CHECK(glm::length(quad.v1 - quad.v0) == doctest::Approx(1.0f));
+    CHECK(
+        std::holds_alternative<rt::Sphere>(loaded.shapes.at(loaded.areaLights[1].shape).geometry));
+
+    scene = baseScene();
+    scene["scene"]["shapes"] = {
+        {{"type", "triangleMesh"},
+         {"vertices", {{0, 0, 3}, {1, 0, 3}, {1, 1, 3}, {0, 1, 3}}},
+         {"faceindex", {4}},
+         {"vertexindex", {0, 1, 2, 3}}},
+        {{"type", "trimesh"},
+         {"vertex", 3},
+         {"v0", {0, 0, 3}},
+         {"v1", {1, 0, 3}},
+         {"v2", {0, 1, 3}},
+         {"face", 1},
+         {"f0", {0, 1, 2}}},
+        {{"type", "rectangle"}, {"corner1", {-1, 0, 1}}, {"corner2", {1, 0, 3}}},
+        {{"type", "rectangleXY"}, {"x0", 0}, {"x1", 2}, {"y0", 0}, {"y1", 1}, {"z", 4}}};
+    loaded = parse(scene);
+    REQUIRE(loaded.shapes.size() == 4);
+    CHECK(loaded.meshes.at(0).faces.size() == 2);  // a quad as two triangles
+    CHECK(loaded.meshes.at(1).faces.size() == 1);
+    const auto& rectangle = std::get<rt::Quad>(loaded.shapes[2].geometry);
+    CHECK(rectangle.v1 == glm::vec3(-1, 0, 3));
+    CHECK(rectangle.v2 == glm::vec3(1, 0, 3));
+    const auto& xy = std::get<rt::Quad>(loaded.shapes[3].geometry);
+    CHECK(xy.v2 == glm::vec3(2, 1, 4));
+  }
+
+  TEST_CASE("more dialects: lookat as a point, intensity on is/id, a checker texture object") {
+    Json scene = baseScene();
+    scene["camera"]["position"] = {0, 0, -3};
+    scene["camera"]["lookat"] = {0, 0, 0};
+    scene["scene"]["lightsources"][0]["intensity"] = 2;
+    shape0(scene)["material"]["texture"] = {
+        {"type", "checkerboard"}, {"color1", {1, 1, 1}}, {"color2", {0, 0, 0}}, {"scale", 4}};
+    const rt::Scene loaded = parse(scene);
+    CHECK(loaded.camera.forward == glm::vec3(0, 0, 1));
+    CHECK(hasWarning(loaded, "a zero view direction: read as the point looked at"));
+    CHECK(loaded.pointLights.at(0).diffuseIntensity == glm::vec3(2.0f));
+    const rt::Material& m = loaded.materials.at(0);
+    REQUIRE(m.diffuseTexture >= 0);
+    CHECK(loaded.textures.at(size_t(m.diffuseTexture)).image.width == 32);  // 4 squares of 8
+  }
 }

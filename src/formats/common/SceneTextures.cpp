@@ -1,6 +1,8 @@
 #include "formats/common/SceneTextures.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 
 namespace rt {
@@ -16,10 +18,10 @@ std::optional<int32_t> findTexture(const Scene& scene, const std::string& source
   return std::nullopt;
 }
 
-// 8 x 8 squares over a 64 x 64 image, alternating `even` and `odd` (sRGB).
-ImageRgba8 squares(std::array<uint8_t, 3> even, std::array<uint8_t, 3> odd) {
-  constexpr uint32_t kSide = 64;
+// `count` x `count` squares of 8 x 8 texels, alternating `even` and `odd` (sRGB).
+ImageRgba8 squares(std::array<uint8_t, 3> even, std::array<uint8_t, 3> odd, uint32_t count = 8) {
   constexpr uint32_t kSquare = 8;
+  const uint32_t kSide = kSquare * count;
   ImageRgba8 image;
   image.width = image.height = kSide;
   image.rgba.resize(size_t{kSide} * kSide * 4);
@@ -52,6 +54,22 @@ int32_t addTextureFile(Scene& scene, const std::filesystem::path& file) {
 
 int32_t addMissingTexture(Scene& scene) {
   return addGenerated(scene, kMissingTextureName, [] { return squares({255, 0, 255}, {0, 0, 0}); });
+}
+
+int32_t addCheckerTexture(Scene& scene, glm::vec3 even, glm::vec3 odd, uint32_t count) {
+  const auto srgb = [](glm::vec3 linear) {
+    std::array<uint8_t, 3> out{};
+    for (int i = 0; i < 3; ++i) {
+      const float c = std::clamp(linear[i], 0.0f, 1.0f);
+      const float encoded =
+          c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+      out[size_t(i)] = static_cast<uint8_t>(std::lround(encoded * 255.0f));
+    }
+    return out;
+  };
+  const std::string name = "checker " + std::to_string(count);
+  scene.textures.push_back({name, squares(srgb(even), srgb(odd), std::clamp(count, 1u, 64u))});
+  return static_cast<int32_t>(scene.textures.size() - 1);
 }
 
 int32_t addCheckerboard(Scene& scene) {

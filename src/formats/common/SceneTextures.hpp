@@ -22,4 +22,8 @@ int32_t addMissingTexture(Scene& scene);
 // TsFreddie's procedural "checkerboard": 8 x 8 light and dark grey squares.
 int32_t addCheckerboard(Scene& scene);
 
+// A checker of `squares` x `squares` squares over the unit square in two
+// linear colours (a procedural texture some students' files describe).
+int32_t addCheckerTexture(Scene& scene, glm::vec3 even, glm::vec3 odd, uint32_t squares);
+
 }  // namespace rt

@@ -294,6 +294,13 @@ glm::vec3 readForward(JsonObject& camera, glm::vec3 position) {
     target->fail(
         "conflicts with 'camera.lookat': lookat is a view direction, lookAt a target point");
   }
+  if (direction && direction->vec3() == glm::vec3(0.0f) && position != glm::vec3(0.0f)) {
+    // Some family-A students wrote `lookat` as the point looked at (the origin).
+    direction->warn("a zero view direction: read as the point looked at");
+    glm::vec3 offset = -position;
+    normalizeInPlace(offset);
+    return offset;
+  }
   if (direction) return unitVector(*direction);
   if (!target) return kDefaultForward;
   glm::vec3 offset = target->vec3() - position;
@@ -384,9 +391,10 @@ void applySeedReportLens(const LensKeys& keys, JsonObject& camera, Camera& out) 
         "missing: the lens-to-sensor distance 'd' needs the focal length 'f'");
   }
   if (!keys.sensorDistance) {
-    camera.diagnostics().fail(
-        camera.childPath("d"),
-        "missing: the focal length 'f' needs the lens-to-sensor distance 'd'");
+    camera.diagnostics().warn(camera.childPath("d"),
+                              "missing: the focal length 'f' needs the lens-to-sensor distance "
+                              "'d'; rendered as a pinhole");
+    return;
   }
   if (keys.focusDistance) {
     keys.focusDistance->fail("conflicts with 'f' and 'd', which already fix the focus distance");
@@ -408,9 +416,10 @@ void applyDirectLens(const LensKeys& keys, JsonObject& camera, Camera& out) {
   if (keys.focusDistance) {
     out.focusDistance = keys.focusDistance->positiveFloat();
   } else if (out.apertureRadius > 0.0f) {
-    camera.diagnostics().fail(camera.childPath("focusdistance"),
-                              "missing: a thin lens with an aperture needs a focus distance "
-                              "(focusdistance, focus_dist, focalDistance or focal_length)");
+    camera.diagnostics().warn(camera.childPath("focusdistance"),
+                              "missing: a thin lens needs a focus distance (focusdistance, "
+                              "focus_dist, focalDistance or focal_length); rendered as a pinhole");
+    out.apertureRadius = 0.0f;
   }
 }
 
@@ -488,13 +497,20 @@ Camera readCamera(JsonObject& camera) {
   return out;
 }
 
+// Shapes (defined below) that an area light may write inline as its surface.
+Sphere readSphere(JsonObject& shape);
+Quad readQuad(JsonObject& shape);
+Triangle readTriangle(JsonObject& shape);
+std::string shapeType(const JsonNode& typeNode);
+
 // ------------------------------------------------------------------ corners
 
 // Corner spellings: v0..v3 (official), point1..point4 (nizqleo), c1..c4.
-constexpr std::array<std::array<const char*, 4>, 3> kCornerKeys = {{
+constexpr std::array<std::array<const char*, 4>, 4> kCornerKeys = {{
     {"v0", "v1", "v2", "v3"},
     {"point1", "point2", "point3", "point4"},
     {"c1", "c2", "c3", "c4"},
+    {"v1", "v2", "v3", "v4"},  // numbered from 1 (sukriti27)
 }};
 
 // The corners of the first spelling whose first key is present: `lowest`
@@ -534,7 +550,7 @@ Quad cyclicQuad(const Quad& q, const JsonObject& shape) {
 bool isAreaLightType(std::string type) {
   std::transform(type.begin(), type.end(), type.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return type.find("area") != std::string::npos;
+  return type.find("area") != std::string::npos || type == "rectlight" || type == "quadlight";
 }
 
 struct LightIntensity {
@@ -556,10 +572,18 @@ LightIntensity readIntensity(JsonObject& light) {
   const std::optional<JsonNode> specular = light.optional("is");
   const std::optional<JsonNode> diffuse = light.optional("id");
   if (intensity) {
+    if (specular && diffuse && intensity->raw().is_number()) {  // Knhwong: a scale on is/id
+      intensity->warn("read as a factor on 'is' and 'id'");
+      const float scale = intensity->nonNegativeFloat();
+      return {scale * intensityOf(*diffuse), scale * intensityOf(*specular)};
+    }
     if (specular || diffuse) {
       (specular ? specular : diffuse)->fail("conflicts with 'intensity': give intensity or is/id");
     }
-    const glm::vec3 both = intensityOf(*intensity);
+    glm::vec3 both = intensityOf(*intensity);
+    if (const std::optional<JsonNode> colour = light.optionalOneOf({"color", "colour"})) {
+      both *= colour->nonNegativeVec3();  // a scalar intensity of a coloured light
+    }
     return {both, both};
   }
   if (!specular && !diffuse) {
@@ -585,7 +609,8 @@ PointLight readPointLight(JsonObject& light) {
 constexpr int64_t kMaxLightSamples = 4096;
 
 uint32_t readLightSamples(JsonObject& light) {
-  const std::optional<JsonNode> node = light.optionalOneOf({"samples", "nsamples"});
+  const std::optional<JsonNode> node =
+      light.optionalOneOf({"samples", "nsamples", "num_samples", "samplesize"});
   return node ? static_cast<uint32_t>(node->integer(1, kMaxLightSamples)) : 1u;
 }
 
@@ -640,6 +665,12 @@ Geometry readAreaLightGeometry(JsonObject& light) {
   if (const std::optional<JsonNode> normal = light.optional("normal")) {
     return facingRectangle(light, position, unitVector(*normal));
   }
+  if (light.has("u_axis")) {  // david14higgins: the half edges
+    const glm::vec3 u = 2.0f * light.required("u_axis").vec3();
+    const glm::vec3 v = 2.0f * light.required("v_axis").vec3();
+    const glm::vec3 corner = position - 0.5f * (u + v);
+    return Quad{corner, corner + u, corner + u + v, corner + v};
+  }
   if (light.has("u") || light.has("v")) {
     glm::vec3 u = light.required("u").vec3();
     glm::vec3 v = light.required("v").vec3();
@@ -650,7 +681,7 @@ Geometry readAreaLightGeometry(JsonObject& light) {
     const glm::vec3 corner = position - 0.5f * (u + v);
     return Quad{corner, corner + u, corner + u + v, corner + v};
   }
-  if (const std::optional<JsonNode> radius = light.optional("radius")) {
+  if (const std::optional<JsonNode> radius = light.optionalOneOf({"radius", "areaRadius"})) {
     return Sphere{position, radius->positiveFloat()};
   }
   if (const std::optional<JsonNode> size = light.optional("size")) {
@@ -706,6 +737,16 @@ struct LightList {
   std::optional<SamplerKind> sampler;  // asked for by the lights themselves
 };
 
+// An area light's surface written inline ("shape": {"type": "sphere", ...}).
+Geometry readLightSurface(JsonObject& surface) {
+  const JsonNode typeNode = surface.required("type");
+  const std::string type = shapeType(typeNode);
+  if (type == "sphere") return readSphere(surface);
+  if (type == "plane") return readQuad(surface);
+  if (type == "triangle") return readTriangle(surface);
+  typeNode.fail("an area light's surface must be a sphere, plane or triangle");
+}
+
 void readAreaLight(JsonObject& light, LightList& lights) {
   PendingAreaLight pending;
   const LightIntensity intensity = readIntensity(light);
@@ -724,20 +765,45 @@ void readAreaLight(JsonObject& light, LightList& lights) {
   }
   readLightSampler(light, lights.sampler);
   pending.shapeId = light.optionalOneOf({"shape", "shapeid", "shapeId", "shape_id"});
-  if (!pending.shapeId) {
+  if (pending.shapeId && pending.shapeId->raw().is_object()) {  // the surface written inline
+    JsonObject surface = pending.shapeId->object();
+    pending.geometry = readLightSurface(surface);
+    surface.reportUnknownKeys();
+    pending.shapeId.reset();
+  } else if (!pending.shapeId) {
     pending.geometry = readAreaLightGeometry(light);
     if (!(surfaceArea(*pending.geometry, {}) > 0.0f)) light.fail("area light has no area");
   }
   lights.areaLights.push_back(std::move(pending));
 }
 
+// Whether an area light names its surface in any of the ways readAreaLight
+// knows; students also wrote area lights as a position alone.
+bool hasAreaLightSurface(const JsonObject& light) {
+  for (const char* key : {"v0", "point1", "c1", "e0", "u", "u_axis", "normal", "radius",
+                          "areaRadius", "size", "shape", "shapeid", "shapeId", "shape_id"}) {
+    if (light.has(key)) return true;
+  }
+  return false;
+}
+
 void readLight(const JsonNode& node, Scene& scene, LightList& lights) {
   JsonObject light = node.object();
+  if (!light.has("type")) {
+    light.diagnostics().warn(light.childPath("type"), "missing; taken as \"pointlight\"");
+    scene.pointLights.push_back(readPointLight(light));
+    light.reportUnknownKeys();
+    return;
+  }
   const JsonNode typeNode = light.required("type");
   const std::string type = typeNode.string();
-  if (isAreaLightType(type)) {
+  if (isAreaLightType(type) && !hasAreaLightSurface(light)) {
+    typeNode.warn("an area light without a surface (position only): read as a point light");
+    scene.pointLights.push_back(readPointLight(light));
+  } else if (isAreaLightType(type)) {
     readAreaLight(light, lights);
-  } else if (type == "pointlight") {
+  } else if (lowercase(type) == "pointlight" || lowercase(type) == "point" ||
+             lowercase(type) == "point_light") {
     scene.pointLights.push_back(readPointLight(light));
   } else {
     typeNode.fail("unknown light type '" + type + "' (expected \"pointlight\" or \"arealight\")");
@@ -842,6 +908,29 @@ int32_t addTexture(const JsonNode& node, const fs::path& file, Scene& scene) {
   }
 }
 
+// A texture described rather than named by file (jayp97: {"type":
+// "checkerboard", "color1", "color2", "scale"}); other kinds are drawn with
+// the missing-texture squares.
+void readProceduralTexture(JsonObject texture, Material& out, Scene& scene) {
+  const std::optional<JsonNode> type = texture.optional("type");
+  if (type && lowercase(type->string()) == "checkerboard") {
+    const glm::vec3 even = texture.required("color1").nonNegativeVec3();
+    const glm::vec3 odd = texture.required("color2").nonNegativeVec3();
+    const std::optional<JsonNode> scale = texture.optional("scale");
+    const auto squares = static_cast<uint32_t>(scale ? scale->floatInRange(1.0f, 64.0f) : 8.0f);
+    out.texture = "checkerboard";
+    out.diffuseTexture = addCheckerTexture(scene, even, odd, squares);
+    texture.reportUnknownKeys();
+    return;
+  }
+  texture.diagnostics().warn(texture.path(),
+                             "a procedural texture this renderer does not know; drawn with the "
+                             "missing-texture squares");
+  texture.ignore({"type"});
+  out.texture = "missing texture";
+  out.diffuseTexture = addMissingTexture(scene);
+}
+
 // Material keys students leave out: the usual textbook values, with a warning.
 constexpr float kDefaultKs = 0.2f;
 constexpr float kDefaultKd = 0.8f;
@@ -864,9 +953,14 @@ Material readMaterial(JsonObject& material, const fs::path& sceneDir, Scene& sce
   }
   out.reflectivity = readReflectivity(material);
   readRefraction(material, out);
-  if (const std::optional<JsonNode> texture =
-          material.optionalOneOf({"tPath", "texture", "texture_file", "texturepath", "diffuse"})) {
-    if (texture->raw() == "checkerboard") {
+  if (const std::optional<JsonNode> empty = material.optional("texture");
+      empty && empty->raw() == "") {
+    empty->warn("empty: no texture");
+  } else if (const std::optional<JsonNode> texture = material.optionalOneOf(
+                 {"tPath", "texture", "texture_file", "texturepath", "diffuse"})) {
+    if (texture->raw().is_object()) {
+      readProceduralTexture(texture->object(), out, scene);
+    } else if (texture->raw() == "checkerboard") {
       out.texture = "checkerboard";
       out.diffuseTexture = addCheckerboard(scene);
     } else if (const std::optional<fs::path> file = findRelative(*texture, sceneDir)) {
@@ -909,7 +1003,7 @@ Sphere readSphere(JsonObject& shape) {
 // Corners as a `vertices` array (TsFreddie's files) instead of v0, v1, ...
 std::optional<std::vector<glm::vec3>> readCornerArray(JsonObject& shape, size_t lowest,
                                                       size_t highest) {
-  const std::optional<JsonNode> node = shape.optional("vertices");
+  const std::optional<JsonNode> node = shape.optionalOneOf({"vertices", "points"});
   if (!node) return std::nullopt;
   std::vector<glm::vec3> corners;
   for (const JsonNode& corner : node->array()) corners.push_back(corner.vec3());
@@ -921,9 +1015,29 @@ std::optional<std::vector<glm::vec3>> readCornerArray(JsonObject& shape, size_t 
   return corners;
 }
 
+// An axis-aligned rectangle by two opposite corners (Kierandon's
+// "rectangle": corner1, corner2, equal in one coordinate).
+Quad readCornerRectangle(JsonObject& shape) {
+  const JsonNode second = shape.required("corner2");
+  const glm::vec3 a = shape.required("corner1").vec3();
+  const glm::vec3 b = second.vec3();
+  int flat = -1;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (a[axis] == b[axis]) flat = axis;
+  }
+  if (flat < 0) second.fail("must equal corner1 in one coordinate (an axis-aligned rectangle)");
+  const int u = (flat + 1) % 3;
+  glm::vec3 c1 = a;
+  c1[u] = b[u];
+  glm::vec3 c3 = b;
+  c3[u] = a[u];
+  return {a, c1, b, c3};
+}
+
 // Four corners in cyclic order; three (v0 and its two neighbours, as
 // TsFreddie writes planes) span a parallelogram.
 Quad readQuad(JsonObject& shape) {
+  if (shape.has("corner1")) return readCornerRectangle(shape);
   std::optional<std::vector<glm::vec3>> corners = readCornerArray(shape, 3, 4);
   if (!corners) corners = readNamedCorners(shape, 4, 4);
   if (!corners) shape.diagnostics().fail(shape.childPath("v0"), "missing required key");
@@ -970,6 +1084,50 @@ void appendFace(const JsonNode& face, TriangleMesh& mesh) {
   }
 }
 
+// Faces as lists of corners ("faces"/"tris"), or as a flat index list with
+// a corner count per face (sukriti27: faceindex + vertexindex; Zspirates96:
+// numVerticesOnEachFace + verticesOnEachFace, with "faces" their number).
+void readFaces(JsonObject& shape, TriangleMesh& mesh) {
+  const std::optional<JsonNode> counts =
+      shape.optionalOneOf({"faceindex", "numVerticesOnEachFace"});
+  if (counts) {
+    const std::optional<JsonNode> flat = shape.optionalOneOf({"vertexindex", "verticesOnEachFace"});
+    if (!flat) shape.diagnostics().fail(shape.childPath("vertexindex"), "missing required key");
+    shape.ignore({"faces"});
+    const std::vector<JsonNode> indices = flat->array();
+    size_t next = 0;
+    for (const JsonNode& count : counts->array()) {
+      const auto corners = static_cast<size_t>(count.integer(3, 1 << 20));
+      if (next + corners > indices.size())
+        flat->fail("has fewer indices than the face counts need");
+      std::vector<uint32_t> face;
+      for (size_t c = 0; c < corners; ++c) {
+        face.push_back(readVertexIndex(indices[next + c], mesh.positions.size()));
+      }
+      for (size_t c = 1; c + 1 < face.size(); ++c)
+        mesh.faces.emplace_back(face[0], face[c], face[c + 1]);
+      next += corners;
+    }
+    if (mesh.faces.empty()) counts->fail("must list at least one face");
+    return;
+  }
+  const std::optional<JsonNode> faces = shape.optionalOneOf({"faces", "tris"});
+  if (!faces) shape.diagnostics().fail(shape.childPath("faces"), "missing required key");
+  for (const JsonNode& face : faces->array()) appendFace(face, mesh);
+  if (mesh.faces.empty()) faces->fail("must list at least one face");
+}
+
+// Vergilc's numbered keys: "vertex": N with v0..v(N-1), "face": M with f0..f(M-1).
+void readNumberedMesh(JsonObject& shape, TriangleMesh& mesh) {
+  constexpr int64_t kMostNumbered = 1 << 16;
+  const int64_t vertices = shape.required("vertex").integer(1, kMostNumbered);
+  for (int64_t i = 0; i < vertices; ++i) {
+    mesh.positions.push_back(shape.required("v" + std::to_string(i)).vec3());
+  }
+  const int64_t faces = shape.required("face").integer(1, kMostNumbered);
+  for (int64_t i = 0; i < faces; ++i) appendFace(shape.required("f" + std::to_string(i)), mesh);
+}
+
 TriangleMesh readInlineMesh(JsonObject& shape) {
   for (const char* key : {"center", "pos", "scale", "sizeScale"}) {
     shape.ignoreWithWarning(key,
@@ -977,13 +1135,15 @@ TriangleMesh readInlineMesh(JsonObject& shape) {
                                 "' is only applied to PLY meshes; ignored for inline vertices");
   }
   TriangleMesh mesh;
-  const JsonNode vertices = shape.required("vertices");
-  for (const JsonNode& vertex : vertices.array()) mesh.positions.push_back(vertex.vec3());
-  if (mesh.positions.empty()) vertices.fail("must list at least one vertex");
-  const std::optional<JsonNode> faces = shape.optionalOneOf({"faces", "tris"});
-  if (!faces) shape.diagnostics().fail(shape.childPath("faces"), "missing required key");
-  for (const JsonNode& face : faces->array()) appendFace(face, mesh);
-  if (mesh.faces.empty()) faces->fail("must list at least one face");
+  if (shape.has("vertex") && shape.has("v0")) {  // Vergilc: vertex N, v0..; face M, f0..
+    readNumberedMesh(shape, mesh);
+  } else {
+    const std::optional<JsonNode> vertices = shape.optionalOneOf({"vertices", "points"});
+    if (!vertices) shape.diagnostics().fail(shape.childPath("vertices"), "missing required key");
+    for (const JsonNode& vertex : vertices->array()) mesh.positions.push_back(vertex.vec3());
+    if (mesh.positions.empty()) vertices->fail("must list at least one vertex");
+    readFaces(shape, mesh);
+  }
   if (const std::optional<JsonNode> uvs = shape.optionalOneOf({"uv", "uvs"})) {
     for (const JsonNode& uv : uvs->array()) {
       const std::vector<JsonNode> pair = uv.array();
@@ -1058,7 +1218,8 @@ void addModelShapes(const JsonNode& fileNode, const fs::path& file, JsonObject& 
 
 // Mesh file keys as the students spelled them.
 std::optional<JsonNode> meshFileKey(JsonObject& shape) {
-  return shape.optionalOneOf({"mPath", "plyPath", "file", "path", "filename", "objPath", "model"});
+  return shape.optionalOneOf(
+      {"mPath", "plyPath", "file", "path", "filename", "objPath", "model", "modelpath"});
 }
 
 // A mesh shape that names a file: a PLY mesh as one shape, an OBJ or glTF
@@ -1091,6 +1252,28 @@ bool readMeshFileShape(const JsonNode& fileNode, JsonObject& shape, ShapeContext
   return true;
 }
 
+// An axis-aligned rectangle (sukriti27's "rectangleXY": x0 x1 y0 y1 and the
+// constant z; likewise XZ and YZ).
+Quad readAxisRectangle(const std::string& axes, JsonObject& shape) {
+  const int a = axes[0] - 'x';
+  const int b = axes[1] - 'x';
+  const int c = 3 - a - b;
+  const std::string na(1, axes[0]), nb(1, axes[1]), nc(1, char('x' + c));
+  const float a0 = shape.required(na + "0").floatValue(),
+              a1 = shape.required(na + "1").floatValue();
+  const float b0 = shape.required(nb + "0").floatValue(),
+              b1 = shape.required(nb + "1").floatValue();
+  const float k = shape.required(nc).floatValue();
+  const auto corner = [&](float u, float v) {
+    glm::vec3 p(0.0f);
+    p[a] = u;
+    p[b] = v;
+    p[c] = k;
+    return p;
+  };
+  return {corner(a0, b0), corner(a1, b0), corner(a1, b1), corner(a0, b1)};
+}
+
 // Shape type spellings, matched without regard to case: the canonical name
 // first. "ply" and "obj" shapes always name a file.
 const std::vector<std::vector<std::string_view>> kShapeTypes = {
@@ -1098,7 +1281,10 @@ const std::vector<std::vector<std::string_view>> kShapeTypes = {
     {"plane", "planarquad", "planerquad", "planar_quad", "quad", "rectangle", "rect"},
     {"triangle", "traingle", "tri"},
     {"cylinder"},
-    {"trimesh", "mesh", "ply", "obj", "model"},
+    {"trimesh", "mesh", "ply", "obj", "model", "trianglemesh"},
+    {"rectanglexy"},
+    {"rectanglexz"},
+    {"rectangleyz"},
 };
 
 // The canonical shape type of `typeNode`, e.g. "plane" for "PlanerQuad".
@@ -1120,6 +1306,9 @@ Geometry readGeometry(const JsonNode& typeNode, const std::string& type, JsonObj
   if (type == "plane") return readQuad(shape);
   if (type == "triangle") return readTriangle(shape);
   if (type == "cylinder") return readCylinder(shape);
+  if (type == "rectanglexy" || type == "rectanglexz" || type == "rectangleyz") {
+    return readAxisRectangle(type.substr(9), shape);
+  }
   const std::string written = lowercase(typeNode.string());
   if (written == "ply" || written == "obj") {
     shape.diagnostics().fail(shape.childPath("file"), "missing: a " + written +
@@ -1219,17 +1408,19 @@ void addAreaLights(const LightList& lights, RenderMode mode, Scene& scene) {
   }
 }
 
-LightList readSceneObject(JsonObject& object, ShapeContext& context, Scene& scene) {
+// `object` is the file's `scene`, or the top level itself for files that
+// put lights and shapes there (`flat`: its unknown keys are reported later).
+LightList readSceneObject(JsonObject& object, ShapeContext& context, Scene& scene, bool flat) {
   if (const std::optional<JsonNode> background = object.optional("backgroundcolor")) {
     scene.backgroundColor = background->nonNegativeVec3();
   }
   LightList lights;
-  if (const std::optional<JsonNode> list = object.optional("lightsources")) {
+  if (const std::optional<JsonNode> list = object.optionalOneOf({"lightsources", "lights"})) {
     for (const JsonNode& light : list->array()) readLight(light, scene, lights);
   }
-  for (const JsonNode& shape : object.required("shapes").array()) {
-    readShape(shape, context, scene);
-  }
+  const std::optional<JsonNode> shapes = object.optionalOneOf({"shapes", "objects"});
+  if (!shapes) object.diagnostics().fail(object.childPath("shapes"), "missing required key");
+  for (const JsonNode& shape : shapes->array()) readShape(shape, context, scene);
   addAreaLights(lights, context.mode, scene);
   ignoreRendererKeys(object);
   for (const char* key : {"sampler", "method", "nsamples", "samples", "spp"}) {
@@ -1237,7 +1428,7 @@ LightList readSceneObject(JsonObject& object, ShapeContext& context, Scene& scen
                                       "' inside scene is ignored: sampling settings are read at "
                                       "the top level or in camera");
   }
-  object.reportUnknownKeys();
+  if (!flat) object.reportUnknownKeys();
   return lights;
 }
 
@@ -1297,9 +1488,13 @@ Scene readScene(std::string_view jsonText, const fs::path& file) {
   scene.camera = readCamera(camera);
   const bool samplerGiven = readSampling(top, camera, scene.settings);
   camera.reportUnknownKeys();
-  JsonObject sceneObject = top.required("scene").object();
   ShapeContext context{absoluteFolderOf(file), scene.settings.mode, {}};
-  const LightList lights = readSceneObject(sceneObject, context, scene);
+  // Some students put lights and shapes at the top level, beside the camera.
+  const bool flat = !top.has("scene") && (top.has("shapes") || top.has("objects"));
+  if (flat) diagnostics.warn("", "no 'scene' object: lights and shapes read from the top level");
+  std::optional<JsonObject> nested;
+  if (!flat) nested = top.required("scene").object();
+  const LightList lights = readSceneObject(flat ? top : *nested, context, scene, flat);
   if (lights.sampler && !samplerGiven) scene.settings.sampler = *lights.sampler;
   if (defaultView) chooseDefaultView(scene);
   setConventions(scene, chosen.conventions, std::move(chosen.reason));
