@@ -1,7 +1,7 @@
 #version 460
 // Viewer display pass: turns the renderer's float32 accumulation buffer into
 // the 8-bit pixels shown in the window, with the same tone mapping as the PNG
-// writer (exposure, clamp to [0, 1], no gamma, rounded or truncated to 1/255),
+// writer (exposure, clamp to [0, 1], sRGB encoding when asked, rounded or truncated to 1/255),
 // so a screenshot of the window equals the offline render.
 // The pixels go to a buffer in RGBA8 memory order, which the host copies into
 // an RGBA8 image: on lavapipe, imageStore to an rgba8 image costs about three
@@ -25,6 +25,9 @@ layout(std430, set = 0, binding = RT_DISPLAY_BINDING_PIXELS) writeonly buffer Pi
 uint toneMapChannel(float value) {
   float exposed = value * params.exposure;
   float unit = exposed > 0.0 ? min(exposed, 1.0) : 0.0;
+  if (params.srgbEncode != 0u) {
+    unit = unit <= 0.0031308 ? 12.92 * unit : 1.055 * pow(unit, 1.0 / 2.4) - 0.055;
+  }
   return uint(floor(unit * 255.0 + (params.truncate != 0u ? 0.0 : 0.5)));
 }
 

@@ -21,7 +21,7 @@ struct GpuDisplayParams {
   float exposure;  // linear scale before the clamp, as rt::toneMappingFor
   uint firstRow;   // the dispatch covers rows firstRow.. (those that got samples)
   uint truncate;   // 1: bytes are floor(255 v) (rt::Quantization::Truncate); 0: rounded
-  uint pad0;
+  uint srgbEncode;  // 1: the sRGB transfer function after the clamp (rt::ToneMapping)
   uint pad1;
   uint pad2;
 };

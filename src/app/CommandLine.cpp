@@ -113,11 +113,12 @@ AccelKind accelNamed(const std::string& name) {
 }
 
 void addConventionsOption(CLI::App& app, std::string& name) {
-  app.add_option("--conventions", name,
-                 "Conventions (light falloff, shading, ambient, mirrors, image orientation): "
-                 "coursework-a, coursework-b or textbook; default: what the scene's keys say "
-                 "(README 'Conventions')")
-      ->check(CLI::IsMember({"coursework-a", "coursework-b", "textbook"}));
+  app.add_option(
+         "--conventions", name,
+         "Conventions (light falloff, shading, ambient, mirrors, image orientation): "
+         "coursework-a, coursework-b, textbook or physical; default: what the scene's keys say "
+         "(README 'Conventions')")
+      ->check(CLI::IsMember({"coursework-a", "coursework-b", "textbook", "physical"}));
 }
 
 void addStrictOption(CLI::App& app, bool& strict) {

@@ -30,6 +30,14 @@ LightingConventions lightingConventionsFor(Conventions conventions,
     case Conventions::Textbook:
       // Intensities below 1 and lights about a unit away: no falloff.
       break;
+    case Conventions::Physical:
+      // A light's intensity is 4 pi times its radiant intensity over pi: the
+      // diffuse radiance kd Cd I cos / (4 pi d^2) is that of a Lambertian
+      // surface of albedo kd Cd (its 1/pi) under a point light of I / 4 W/sr,
+      // which is how the common scene writes the peers' 15 W/sr light (60).
+      lighting.falloff = RT_FALLOFF_INVERSE_SQUARE;
+      lighting.lightScale = 1.0f / (4.0f * glm::pi<float>());
+      break;
   }
   if (shading) lighting.shading = *shading;
   return lighting;
@@ -61,6 +69,8 @@ ToneMapping toneMappingFor(const Scene& scene) {
   } else {
     mapping.exposure = scene.camera.exposure;
   }
+  // Physical images are written as the peers write theirs: sRGB-encoded.
+  mapping.srgbEncode = scene.conventions == Conventions::Physical;
   return mapping;
 }
 

@@ -24,6 +24,7 @@ std::optional<Conventions> conventionsNamed(const std::string& name) {
   if (name == "coursework-a") return Conventions::CourseworkA;
   if (name == "coursework-b") return Conventions::CourseworkB;
   if (name == "textbook") return Conventions::Textbook;
+  if (name == "physical") return Conventions::Physical;
   return std::nullopt;
 }
 
@@ -32,6 +33,7 @@ const char* conventionsName(Conventions conventions) {
     case Conventions::CourseworkA: return "coursework-a";
     case Conventions::CourseworkB: return "coursework-b";
     case Conventions::Textbook: return "textbook";
+    case Conventions::Physical: return "physical";
   }
   return "unknown";
 }

@@ -157,9 +157,12 @@ enum class Conventions {
   CourseworkA,  // "Path of Light": fitted to the official renders
   CourseworkB,  // "Rendering" 2023-24: fitted to a student's renders of the official files
   Textbook,     // Whitted with unit lights: no falloff, per-channel Blinn-Phong, no ambient
+  // Physical units as the peers (Mitsuba, POV-Ray) read the common scene:
+  // falloff I / (4 pi d^2), per-channel Blinn-Phong, sRGB-encoded output.
+  Physical,
 };
 
-// The canonical names ("coursework-a", "coursework-b", "textbook") of the
+// The canonical names ("coursework-a", "coursework-b", "textbook", "physical") of the
 // `conventions` scene key and --conventions; nullopt for anything else.
 std::optional<Conventions> conventionsNamed(const std::string& name);
 const char* conventionsName(Conventions conventions);

@@ -232,6 +232,7 @@ void DisplayPass::recordToneMap(VkCommandBuffer commands, const ToneMapping& map
   params.exposure = mapping.exposure;
   params.firstRow = firstRow;
   params.truncate = mapping.quantization == Quantization::Truncate ? 1u : 0u;
+  params.srgbEncode = mapping.srgbEncode ? 1u : 0u;
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0,
                           nullptr);

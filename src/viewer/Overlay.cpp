@@ -138,6 +138,24 @@ bool Overlay::wantsMouse() const { return visible_ && ImGui::GetIO().WantCapture
 
 bool Overlay::wantsKeyboard() const { return visible_ && ImGui::GetIO().WantCaptureKeyboard; }
 
+// In a small window the panel would hide the image: it collapses to its
+// title bar whenever the window becomes small (a click opens it), and open
+// it never takes more than part of the window (the rest scrolls).
+void Overlay::fitToDisplay() {
+  constexpr float kCompactWidth = 640.0f;
+  constexpr float kCompactHeight = 480.0f;
+  constexpr float kLargestWidthShare = 0.6f;
+  constexpr float kLargestHeightShare = 0.8f;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const bool compact = display.x < kCompactWidth || display.y < kCompactHeight;
+  if (compact != compact_) {
+    ImGui::SetNextWindowCollapsed(compact, ImGuiCond_Always);
+    compact_ = compact;
+  }
+  ImGui::SetNextWindowSizeConstraints(
+      ImVec2(0.0f, 0.0f), ImVec2(display.x * kLargestWidthShare, display.y * kLargestHeightShare));
+}
+
 OverlayActions Overlay::build(const OverlayStats& stats, OverlaySettings& settings,
                               const OverlayMessages& messages) {
   ImGui_ImplVulkan_NewFrame();
@@ -147,6 +165,7 @@ OverlayActions Overlay::build(const OverlayStats& stats, OverlaySettings& settin
   if (visible_) {
     ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.8f);
+    fitToDisplay();
     ImGui::Begin("raytracer", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
     ImGui::PushItemWidth(ImGui::GetFontSize() * 10.0f);
     showStatistics(stats);

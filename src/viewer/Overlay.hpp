@@ -83,10 +83,12 @@ class Overlay {
  private:
   void createDescriptorPool();
   void uploadFonts();
+  void fitToDisplay();
 
   VulkanContext& context_;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   bool visible_ = true;
+  bool compact_ = false;  // the window was small at the last frame: the panel collapsed
 };
 
 }  // namespace rt::viewer

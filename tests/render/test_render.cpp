@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "encode/Conventions.hpp"
 #include "formats/json/JsonSceneLoader.hpp"
 #include "imaging/Merge.hpp"
 #include "render/Renderer.hpp"
@@ -78,6 +79,25 @@ TEST_SUITE("render") {
     // within about 1 degree of the axis, which bounds the error below 1e-3.
     CHECK(glm::all(glm::lessThan(glm::abs(centre - expected), glm::vec3(2e-3f))));
     CHECK(pixel(image, 0, 0) == scene.backgroundColor);
+  }
+
+  TEST_CASE("physical conventions: light falls off as I / (4 pi d^2), images are sRGB") {
+    // Light and eye on the axis, the light 4 units in front of the sphere:
+    // the centre's radiance is (kd Cd + ks Cs) I / (4 pi 4^2).
+    Scene scene = test::frontStage(101, 101, {0, 0, 5}, 50.0f);
+    addSphere(scene, diffuse({0.5f, 0.25f, 1.0f}, 0.6f, 0.3f));
+    setConventions(scene, Conventions::Physical, "test");
+    RenderOptions options;
+    options.samplesPerPixel = 1;
+    const ImageF image = renderScene(scene, options);
+    const float falloff = 50.0f / (4.0f * 3.14159265f * 16.0f);
+    const glm::vec3 expected =
+        falloff * (0.6f * glm::vec3(0.5f, 0.25f, 1.0f) + 0.3f * glm::vec3(1.0f));
+    CHECK(glm::all(glm::lessThan(glm::abs(pixel(image, 50, 50) - expected), glm::vec3(2e-3f))));
+    CHECK(scene.camera.imageRight == ImageRight::ForwardCrossUp);
+    CHECK(toneMappingFor(scene).srgbEncode);
+    setConventions(scene, Conventions::CourseworkA, "test");
+    CHECK_FALSE(toneMappingFor(scene).srgbEncode);
   }
 
   TEST_CASE("a perfect mirror sphere shows the background it reflects") {

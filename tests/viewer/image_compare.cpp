@@ -2,6 +2,7 @@
 // "psnr=<dB> maxdiff=<0..255> differing=<pixels>". Exit status: 0 when the
 // bounds given hold, 1 when not, 2 on bad arguments or unreadable files.
 //   rt_image_compare A.png B.png [--min-psnr DB] [--max-psnr DB] [--max-diff N]
+//                    [--max-differing F]   (F: the largest fraction of pixels that differ)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -47,6 +48,7 @@ int main(int argc, char** argv) {
   std::optional<double> minPsnr;
   std::optional<double> maxPsnr;
   std::optional<int> maxDiff;
+  std::optional<double> maxDiffering;
   for (int i = 3; i + 1 < argc; i += 2) {
     std::string name = argv[i];
     if (name == "--min-psnr")
@@ -55,6 +57,8 @@ int main(int argc, char** argv) {
       maxPsnr = std::atof(argv[i + 1]);
     else if (name == "--max-diff")
       maxDiff = std::atoi(argv[i + 1]);
+    else if (name == "--max-differing")
+      maxDiffering = std::atof(argv[i + 1]);
     else {
       std::fprintf(stderr, "unknown option %s\n", argv[i]);
       return 2;
@@ -68,9 +72,11 @@ int main(int argc, char** argv) {
       return 1;
     }
     Difference d = compare(a, b);
-    std::printf("psnr=%.2f maxdiff=%d differing=%zu\n", d.psnr, d.maxDiff, d.differingPixels);
+    const double fraction = double(d.differingPixels) / double(size_t(a.width) * a.height);
+    std::printf("psnr=%.2f maxdiff=%d differing=%zu (%.3f of the pixels)\n", d.psnr, d.maxDiff,
+                d.differingPixels, fraction);
     bool ok = (!minPsnr || d.psnr >= *minPsnr) && (!maxPsnr || d.psnr <= *maxPsnr) &&
-              (!maxDiff || d.maxDiff <= *maxDiff);
+              (!maxDiff || d.maxDiff <= *maxDiff) && (!maxDiffering || fraction <= *maxDiffering);
     return ok ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

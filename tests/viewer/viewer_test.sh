@@ -109,6 +109,13 @@ case_offscreen_match() {
     >"$SCRATCH/log-overlay" 2>"$SCRATCH/err-overlay" || fail "viewer with overlay failed"
   "$RAYTRACER" "$SCENE_SOURCE" "$SCRATCH/offline-640.png" --size 640x480 --spp 1 -q
   compare "overlay vs offline" "$SCRATCH/overlay.png" "$SCRATCH/offline-640.png" --max-psnr 35
+  # In a small window the panel collapses to its title bar: the image stays visible.
+  xvfb_run "$RAYTRACER" view "$SCENE_SOURCE" --size 320x240 --max-spp 1 --spp-per-frame 1 \
+    --frames 3 --no-watch --validation --screenshot "$SCRATCH/overlay-small.png" \
+    >"$SCRATCH/log-overlay" 2>"$SCRATCH/err-overlay" || fail "viewer with overlay (small) failed"
+  "$RAYTRACER" "$SCENE_SOURCE" "$SCRATCH/offline-320.png" --size 320x240 --spp 1 -q
+  compare "small window: overlay covers" "$SCRATCH/overlay-small.png" "$SCRATCH/offline-320.png" \
+    --max-differing 0.1
 
   # A second scene with textures and thin features, when the shared data is there.
   local example="$SOURCE/../shared/scene-format/official/cg-path-of-light-2021-2023/examples/example.json"

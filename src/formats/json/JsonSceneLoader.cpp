@@ -132,7 +132,7 @@ ChosenConventions chooseConventions(JsonObject& top, const Json& root) {
     const std::optional<Conventions> conventions = conventionsNamed(name);
     if (!conventions) {
       named->fail("unknown conventions '" + name +
-                  "' (expected \"coursework-a\", \"coursework-b\" or \"textbook\")");
+                  "' (expected \"coursework-a\", \"coursework-b\", \"textbook\" or \"physical\")");
     }
     return {*conventions, "the scene's 'conventions' key"};
   }
