@@ -912,7 +912,7 @@ TEST_SUITE("scene loader: in-memory scenes") {
     scene["conventions"] = "coursework-c";
     CHECK(errorOf(scene) ==
           "mem.json: conventions: unknown conventions 'coursework-c' (expected "
-          "\"coursework-a\", \"coursework-b\" or \"textbook\")");
+          "\"coursework-a\", \"coursework-b\", \"textbook\" or \"physical\")");
     scene["conventions"] = 2;
     CHECK(errorOf(scene) == "mem.json: conventions: expected a string, got number");
   }
