@@ -66,6 +66,27 @@ std::vector<std::string> materialLibraries(std::string_view obj) {
   return names;
 }
 
+// tinyobjloader turns a `vw` (skin weight) line's joint id into an int
+// without a range check, undefined for huge values (found by fuzz_obj). The
+// renderer has no use for skin weights: those lines are blanked out before
+// parsing (same length, so line numbers in messages stay right).
+std::string withoutSkinWeights(std::string_view obj) {
+  std::string text(obj);
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find_first_of("\r\n", start);  // tinyobjloader ends lines at either
+    if (end == std::string::npos) end = text.size();
+    const size_t first = text.find_first_not_of(" \t", start);  // its lines may start with blanks
+    if (first < end && text.compare(first, 2, "vw") == 0 &&
+        (first + 2 == end || text[first + 2] == ' ' || text[first + 2] == '\t')) {
+      std::fill(text.begin() + static_cast<std::ptrdiff_t>(first),
+                text.begin() + static_cast<std::ptrdiff_t>(end), ' ');
+    }
+    start = end + 1;
+  }
+  return text;
+}
+
 // OBJ files written on Windows give texture paths with backslashes.
 fs::path portablePath(std::string written) {
   std::replace(written.begin(), written.end(), '\\', '/');
@@ -93,7 +114,7 @@ class ObjImporter {
     config.triangulate = true;
     config.vertex_color = false;
     tinyobj::ObjReader reader;
-    if (!reader.ParseFromString(std::string(obj), std::string(mtl), config)) {
+    if (!reader.ParseFromString(withoutSkinWeights(obj), std::string(mtl), config)) {
       const std::string error = firstLine(reader.Error());
       diagnostics_.fail("", error.empty() ? "not a readable OBJ file" : error);
     }
