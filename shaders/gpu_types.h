@@ -53,10 +53,15 @@ using uint = uint32_t;
 #define RT_BINDING_EMITTERS 15
 // The top-level acceleration structure (--accel hardware only).
 #define RT_BINDING_TLAS 16
+// Adaptive sampling's per-tile sample ranges (RT_ADAPTIVE_SAMPLING only).
+#define RT_BINDING_SAMPLE_PLAN 17
 
 #define RT_WORKGROUP_SIZE_X 8
 #define RT_WORKGROUP_SIZE_Y 8
 #define RT_BATCH_WORKGROUP_SIZE 64
+// Adaptive sampling decides per square tile of this many pixels a side
+// (one workgroup, so that a workgroup's lanes run the same sample count).
+#define RT_ADAPTIVE_TILE_SIZE 8
 
 // The BVH builder never exceeds this depth, so traversal needs no more stack.
 #define RT_BVH_MAX_DEPTH 48

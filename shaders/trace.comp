@@ -15,6 +15,14 @@ layout(rgba32f, set = 0, binding = RT_BINDING_ACCUMULATION) uniform restrict ima
 layout(rgba32f, set = 0, binding = RT_BINDING_ACCUMULATION_ODD) uniform restrict imageBuffer
     oddAccumulation;  // the same over odd sample indices only
 
+#ifdef RT_ADAPTIVE_SAMPLING
+// Per tile of RT_ADAPTIVE_TILE_SIZE^2 pixels, row-major over the whole
+// image: (first sample index, sample count) of this dispatch.
+layout(std430, set = 0, binding = RT_BINDING_SAMPLE_PLAN) restrict readonly buffer SamplePlanBuffer {
+  uvec2 samplePlan[];
+};
+#endif
+
 #ifdef RT_COUNT_RAYS
 layout(std430, set = 0, binding = RT_BINDING_RAY_COUNTER) buffer RayCounterBuffer {
   uint rayCounter[];
@@ -37,11 +45,19 @@ void main() {
   if (any(greaterThanEqual(local, frame.tileSize))) return;
   uvec2 pixel = frame.tileOrigin + local;
   uint pixelIndex = pixel.y * sceneInfo.width + pixel.x;
+#ifdef RT_ADAPTIVE_SAMPLING
+  uint tilesPerRow = (sceneInfo.width + RT_ADAPTIVE_TILE_SIZE - 1u) / RT_ADAPTIVE_TILE_SIZE;
+  uvec2 range = samplePlan[(pixel.y / RT_ADAPTIVE_TILE_SIZE) * tilesPerRow +
+                           pixel.x / RT_ADAPTIVE_TILE_SIZE];
+  if (range.y == 0u) return;
+#else
+  uvec2 range = uvec2(frame.sampleBegin, frame.sampleCount);
+#endif
   // Samples are added one by one in index order, so the sum is the same
   // however the sample range is split over dispatches.
   vec4 sum = imageLoad(accumulation, int(pixelIndex));
   vec4 oddSum = imageLoad(oddAccumulation, int(pixelIndex));
-  for (uint s = frame.sampleBegin; s < frame.sampleBegin + frame.sampleCount; ++s) {
+  for (uint s = range.x; s < range.x + range.y; ++s) {
     vec2 jitter = samplePair(frame.samplerKind, pixelIndex, s, frame.samplesTotal, RT_DIM_PIXEL,
                              frame.seed);
 #ifdef RT_FEATURE_THIN_LENS

@@ -109,20 +109,20 @@ rt::ImageF loadReference(const CommandLine& cli, const rt::ConvergenceSetup& set
 }
 
 void printSummaryTable(const std::vector<rt::ConvergencePoint>& points,
-                       const std::vector<rt::SamplerKind>& samplers, double target,
+                       const std::vector<rt::SeriesKind>& samplers, double target,
                        rt::ConvergenceClock clock) {
   std::printf(
       "%-9s %8s %14s %14s\n", "sampler", "slope", fmt::format("spp@{:g}", target).c_str(),
       fmt::format("{}@{:g}", clock == rt::ConvergenceClock::Cpu ? "cpu_s" : "seconds", target)
           .c_str());
-  for (rt::SamplerKind kind : samplers) {
+  for (const rt::SeriesKind& kind : samplers) {
     std::vector<rt::ConvergencePoint> own;
     for (const auto& p : points) {
-      if (p.sampler == kind) own.push_back(p);
+      if (p.series() == kind) own.push_back(p);
     }
     rt::ConvergenceSummary s = rt::summarizeConvergence(own, target, clock);
     const char* mark = s.extrapolated ? "~" : "";
-    std::printf("%-9s %8.3f %13s%s %13s%s\n", rt::samplerKindName(kind), s.slope,
+    std::printf("%-9s %8.3f %13s%s %13s%s\n", rt::seriesName(kind), s.slope,
                 fmt::format("{:.0f}", s.samplesToTarget).c_str(), mark,
                 fmt::format("{:.3f}", s.secondsToTarget).c_str(), mark);
   }
@@ -134,8 +134,12 @@ int run(const CommandLine& cli) {
   rt::cli::applyConventionsOption(cli.conventions, scene);
   rt::ConvergenceSetup setup = convergenceSetup(cli, scene);
   std::vector<uint32_t> counts = sampleCounts(cli);
-  std::vector<rt::SamplerKind> samplers;
-  for (const std::string& name : cli.samplers) samplers.push_back(rt::cli::samplerNamed(name, {}));
+  std::vector<rt::SeriesKind> samplers;
+  for (const std::string& name : cli.samplers) {
+    std::optional<rt::SeriesKind> kind = rt::seriesNamed(name);
+    if (!kind) throw rt::Error(fmt::format("--samplers: unknown sampler '{}'", name));
+    samplers.push_back(*kind);
+  }
   std::string prefix = cli.outPrefix.empty()
                            ? std::filesystem::path(cli.scenePath).stem().string() + "-converge"
                            : cli.outPrefix;
@@ -163,11 +167,11 @@ int run(const CommandLine& cli) {
   const rt::ConvergenceClock clock =
       cli.clock == "cpu" ? rt::ConvergenceClock::Cpu : rt::ConvergenceClock::Wall;
   std::vector<rt::ConvergencePoint> points;
-  for (rt::SamplerKind kind : samplers) {
+  for (const rt::SeriesKind& kind : samplers) {
     auto onPoint = [&](const rt::ConvergencePoint& p) {
       if (cli.quiet) return;
       std::fprintf(stderr, "%-8s %6u spp  RMSE %.5f (estimated %s)  %.3f s (CPU %.3f s)\n",
-                   rt::samplerKindName(kind), p.samples, p.rmse,
+                   rt::seriesName(kind), p.samples, p.rmse,
                    p.estimatedRmse ? fmt::format("{:.5f}", *p.estimatedRmse).c_str() : "-",
                    p.seconds, p.cpuSeconds);
     };
@@ -201,9 +205,15 @@ void addOptions(CLI::App& app, CommandLine& cli) {
       ->check(CLI::Range(1u, rt::cli::kMaxSamples))
       ->excludes(reference);
   app.add_option("--region", cli.region, "Render and measure only X,Y,WIDTH,HEIGHT");
-  app.add_option("--samplers", cli.samplers, "Samplers to compare (default random,jittered,sobol)")
+  app.add_option("--samplers", cli.samplers,
+                 "Samplers to compare: random, jittered, sobol and adaptive (adaptive sampling "
+                 "on sobol, --spp as the mean count; default random,jittered,sobol)")
       ->delimiter(',')
-      ->check(rt::cli::samplerValidator());
+      ->check(CLI::Validator(
+          [](std::string& name) -> std::string {
+            return rt::seriesNamed(name) ? "" : "expected random, jittered, sobol or adaptive";
+          },
+          "SAMPLER"));
   auto* list = app.add_option("--spp-list", cli.sampleList, "Sample counts, e.g. 9,16,64,256")
                    ->delimiter(',')
                    ->check(CLI::Range(1u, rt::cli::kMaxSamples));

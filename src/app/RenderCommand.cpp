@@ -20,6 +20,7 @@
 #include "formats/SceneFile.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
+#include "imaging/SampleMaps.hpp"
 #include "io/Image.hpp"
 #include "render/Renderer.hpp"
 #include "util/Error.hpp"
@@ -53,6 +54,9 @@ struct CommandLine {
   std::optional<double> timeBudget;
   std::optional<double> targetRmse;
   bool estimateRmse = false;
+  bool adaptive = false;
+  std::string sampleMapPath;
+  std::string errorMapPath;
   bool offscreen = true;
   bool validation = false;
   bool quiet = false;
@@ -108,6 +112,34 @@ rt::ContextOptions contextOptions(const CommandLine& cli) {
   return options;
 }
 
+// Adaptive decisions depend on every pixel's samples so far, so pieces of an
+// adaptive render would each decide differently and not merge into it.
+void refuseSplitAdaptive(const CommandLine& cli, const rt::RenderOptions& options) {
+  if (!options.adaptive) return;
+  const char* why =
+      " cannot be combined with adaptive sampling (--adaptive or the scene's "
+      "\"adaptive\"): its decisions depend on the whole render's samples, so the "
+      "pieces would not merge into one render";
+  if (!cli.sampleRange.empty())
+    throw rt::Error(fmt::format("--samples {}{}", cli.sampleRange, why));
+  if (!cli.region.empty()) throw rt::Error(fmt::format("--region {}{}", cli.region, why));
+}
+
+// Checked before rendering, so that a bad option leaves no output file.
+void checkMapOptions(const CommandLine& cli, const rt::RenderOptions& options) {
+  for (const std::string& path : {cli.sampleMapPath, cli.errorMapPath}) {
+    if (!path.empty() && !rt::is8BitImagePath(path)) {
+      throw rt::Error(fmt::format("{}: a sample or error map is written as .png or .ppm", path));
+    }
+  }
+  if (!cli.errorMapPath.empty() && !options.estimateError && !options.adaptive) {
+    throw rt::Error(
+        fmt::format("--error-map {}: no error estimate to draw (add --adaptive, "
+                    "--estimate-rmse or --target-rmse)",
+                    cli.errorMapPath));
+  }
+}
+
 rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) {
   rt::RenderOptions options;
   if (!cli.size.empty()) {
@@ -123,11 +155,19 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
     options.targetRmse = *cli.targetRmse;
   }
   options.estimateError = cli.estimateRmse || cli.targetRmse;
+  options.adaptive = cli.adaptive || scene.settings.adaptive;
+  options.keepErrorImage = !cli.errorMapPath.empty() || rt::isExrPath(cli.outputPath);
   options.seed = cli.seed;
-  options.sampler = rt::cli::samplerNamed(cli.sampler, scene.settings.sampler);
+  // Adaptive rounds add samples past any fixed count: Sobol, unless asked.
+  const rt::SamplerKind fallback = options.adaptive && !scene.settings.samplerGiven
+                                       ? rt::SamplerKind::Sobol
+                                       : scene.settings.sampler;
+  options.sampler = rt::cli::samplerNamed(cli.sampler, fallback);
   options.shading = rt::cli::shadingNamed(cli.shading);
   options.accel = rt::cli::accelNamed(cli.accel);
   if (!cli.sampleRange.empty()) parseSampleRange(cli.sampleRange, options);
+  refuseSplitAdaptive(cli, options);
+  checkMapOptions(cli, options);
   return options;
 }
 
@@ -163,6 +203,12 @@ void printFrameCount(const CommandLine& cli) {
   std::printf("%u\n", rt::cli::pathFrameCount(rt::viewer::loadCameraPath(cli.cameraPath)));
 }
 
+std::string samplesText(const rt::RenderStats& stats) {
+  if (stats.maxSamples == stats.samplesDone) return fmt::format("{} spp", stats.samplesDone);
+  return fmt::format("{:.1f} spp on average ({}..{})", stats.meanSamples, stats.samplesDone,
+                     stats.maxSamples);
+}
+
 std::string rmseText(const rt::RenderStats& stats) {
   if (!stats.rmseEstimate) return "";
   return fmt::format("; estimated RMSE {:.5f}{}", *stats.rmseEstimate,
@@ -176,17 +222,31 @@ uint64_t renderedPixels(const rt::RenderOptions& options, uint32_t width, uint32
 
 void printSummary(const rt::ImageF& image, uint64_t pixels, const rt::Scene& scene,
                   const rt::RenderStats& stats, const rt::VulkanContext& context) {
-  double samples = double(pixels) * stats.samplesDone;
+  double samples = double(pixels) * stats.meanSamples;
   std::fprintf(stderr,
-               "rendered %ux%u at %u spp in %.3f s (%.2f Msamples/s) on %s; "
+               "rendered %ux%u at %s in %.3f s (%.2f Msamples/s) on %s; "
                "%u primitives, features: %s; conventions: %s (%s); setup %.3f s, "
                "%u dispatches%s\n",
-               image.width, image.height, stats.samplesDone, stats.renderSeconds,
+               image.width, image.height, samplesText(stats).c_str(), stats.renderSeconds,
                samples / std::max(stats.renderSeconds, 1e-9) * 1e-6,
                context.description().summary().c_str(), stats.primitives,
                stats.features.summary().c_str(), rt::conventionsName(scene.conventions),
                scene.conventionsReason.c_str(), stats.setupSeconds, stats.dispatches,
                rmseText(stats).c_str());
+}
+
+// The image (an EXR also gets the per-pixel sample count and, when
+// estimated, error as layers), then the maps asked for.
+void writeOutputs(const CommandLine& cli, const rt::ImageF& image, const rt::RenderStats& stats,
+                  const rt::ToneMapping& mapping) {
+  std::vector<rt::ExrLayer> layers{{"samples.Y", rt::sampleCountChannel(image)}};
+  if (!stats.estimatedError.empty()) layers.push_back({"error.Y", stats.estimatedError});
+  rt::writeImage(cli.outputPath, image, mapping, layers);
+  if (!cli.sampleMapPath.empty()) rt::writeImage8(cli.sampleMapPath, rt::sampleCountMap(image));
+  if (!cli.errorMapPath.empty()) {
+    rt::writeImage8(cli.errorMapPath,
+                    rt::errorMap(image.width, image.height, stats.estimatedError));
+  }
 }
 
 int run(const CommandLine& cli) {
@@ -227,7 +287,7 @@ int run(const CommandLine& cli) {
   for (const std::string& warning : stats.warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
 
-  rt::writeImage(cli.outputPath, image, *options.displayMapping);
+  writeOutputs(cli, image, stats, *options.displayMapping);
   if (stats.stoppedEarly) {
     std::fprintf(stderr, "%s after %u full sample(s) per pixel; wrote %s\n",
                  interrupted.load() ? "interrupted" : "time budget reached", stats.samplesDone,
@@ -303,6 +363,16 @@ int runRenderCommand(int argc, char** argv) {
   app.add_flag("--estimate-rmse", cli.estimateRmse,
                "Estimate the displayed image's RMSE while rendering (even and odd samples become "
                "independent halves, which costs jittered and sobol some accuracy)");
+  app.add_flag("--adaptive", cli.adaptive,
+               "Adaptive sampling: after 8 samples per pixel, rounds give more samples to the "
+               "noisiest 8x8 tiles; --spp is then the budget of the mean count per pixel, "
+               "--target-rmse the goal (default sampler: sobol; cannot be split with --samples "
+               "or --region)");
+  app.add_option("--sample-map", cli.sampleMapPath,
+                 "Also write a .png of the samples each pixel got (false colour, log scale)");
+  app.add_option("--error-map", cli.errorMapPath,
+                 "Also write a .png of each pixel's estimated error (needs --adaptive, "
+                 "--estimate-rmse or --target-rmse)");
   app.add_flag("-q,--quiet", cli.quiet, "No progress bar or summary");
   if (std::optional<int> status = rt::cli::parse(app, argc, argv)) return *status;
   try {

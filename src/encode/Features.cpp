@@ -99,6 +99,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(diffuseBounces, "RT_FEATURE_DIFFUSE_BOUNCES");
   flag(pathTracer, "RT_FEATURE_PATH_TRACER");
   flag(countRays, "RT_COUNT_RAYS");
+  flag(adaptiveSampling, "RT_ADAPTIVE_SAMPLING");
   flag(hardwareAccel, "RT_ACCEL_HARDWARE");
   flag(binaryOnly, "RT_BINARY_ONLY");
   if (samplerKind >= 0) result.emplace_back("RT_SAMPLER_KIND", std::to_string(samplerKind) + "u");

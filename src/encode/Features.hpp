@@ -27,10 +27,11 @@ struct ShaderFeatures {
   bool vertices = false;  // per-vertex normals / UVs on triangles
   bool textures = false;
   bool areaLights = false;
-  bool diffuseBounces = false;  // sampled diffuse bounces (distributed bounces, path tracer)
-  bool pathTracer = false;      // one continuation per hit
-  bool countRays = false;       // benchmark instrumentation
-  bool hardwareAccel = false;   // ray queries instead of the BVH walk (--accel hardware)
+  bool diffuseBounces = false;    // sampled diffuse bounces (distributed bounces, path tracer)
+  bool pathTracer = false;        // one continuation per hit
+  bool countRays = false;         // benchmark instrumentation
+  bool adaptiveSampling = false;  // per-tile sample ranges (render/AdaptiveSampling.hpp)
+  bool hardwareAccel = false;     // ray queries instead of the BVH walk (--accel hardware)
   // Binary mode: a sample is one closest-hit query; no shading code is built.
   bool binaryOnly = false;
   // The pixel sampler (RT_SAMPLER_*) when one is fixed for the kernel's life,

@@ -50,8 +50,9 @@ std::pair<double, double> fitPowerLaw(const std::vector<LogPoint>& logs) {
   return {slope, (sy - slope * sx) / n};
 }
 
-Rgb8 samplerColor(SamplerKind kind) {
-  switch (kind) {
+Rgb8 seriesColor(const SeriesKind& series) {
+  if (series.adaptive) return {148, 103, 189};
+  switch (series.sampler) {
     case SamplerKind::Random: return {214, 39, 40};
     case SamplerKind::Jittered: return {31, 119, 180};
     case SamplerKind::Sobol: return {44, 160, 44};
@@ -60,6 +61,16 @@ Rgb8 samplerColor(SamplerKind kind) {
 }
 
 }  // namespace
+
+const char* seriesName(const SeriesKind& kind) {
+  return kind.adaptive ? "adaptive" : samplerKindName(kind.sampler);
+}
+
+std::optional<SeriesKind> seriesNamed(const std::string& name) {
+  if (name == "adaptive") return SeriesKind{SamplerKind::Sobol, true};
+  if (std::optional<SamplerKind> sampler = samplerKindNamed(name)) return SeriesKind{*sampler};
+  return std::nullopt;
+}
 
 ConvergenceStudy::ConvergenceStudy(Renderer& renderer, const Scene& scene,
                                    const ConvergenceSetup& setup)
@@ -86,21 +97,23 @@ ImageF ConvergenceStudy::renderReference(uint32_t samples, const ProgressCallbac
 }
 
 std::vector<ConvergencePoint> ConvergenceStudy::measure(const ImageF& reference,
-                                                        SamplerKind sampler,
+                                                        const SeriesKind& series,
                                                         const std::vector<uint32_t>& counts,
                                                         const PointCallback& onPoint) {
   std::vector<ConvergencePoint> points;
   for (uint32_t samples : counts) {
-    RenderOptions options = optionsFor(sampler, samples, setup_.seed);
+    RenderOptions options = optionsFor(series.sampler, samples, setup_.seed);
     options.estimateError = setup_.estimateError;
+    options.adaptive = series.adaptive;
     RenderStats stats;
     ImageF image = renderer_.render(scene_, options, {}, &stats);
-    ConvergencePoint point{sampler,
+    ConvergencePoint point{series.sampler,
                            samples,
                            stats.renderSeconds,
                            stats.renderCpuSeconds,
                            displayRmse(image, reference, setup_.mapping, setup_.region),
-                           stats.rmseEstimate};
+                           stats.rmseEstimate,
+                           series.adaptive};
     if (onPoint) onPoint(point);
     points.push_back(point);
   }
@@ -125,7 +138,7 @@ ConvergenceSummary summarizeConvergence(const std::vector<ConvergencePoint>& poi
   std::vector<LogPoint> logs = logPoints(points, clock);
   if (logs.size() < 2) throw Error("convergence summary needs at least two measured points");
   ConvergenceSummary summary;
-  summary.sampler = points.front().sampler;
+  summary.series = points.front().series();
   auto [slope, intercept] = fitPowerLaw(logs);
   summary.slope = slope;
   const double target = std::log(targetRmse);
@@ -152,7 +165,7 @@ ConvergenceSummary summarizeConvergence(const std::vector<ConvergencePoint>& poi
 std::string convergenceCsv(const std::vector<ConvergencePoint>& points) {
   std::string csv = "sampler,samples,seconds,cpu_seconds,rmse,estimated_rmse\n";
   for (const ConvergencePoint& p : points) {
-    csv += fmt::format("{},{},{:.6f},{:.6f},{:.8f},{}\n", samplerKindName(p.sampler), p.samples,
+    csv += fmt::format("{},{},{:.6f},{:.6f},{:.8f},{}\n", seriesName(p.series()), p.samples,
                        p.seconds, p.cpuSeconds, p.rmse,
                        p.estimatedRmse ? fmt::format("{:.8f}", *p.estimatedRmse) : "");
   }
@@ -169,11 +182,12 @@ std::vector<PlotPanel> convergencePlotPanels(const std::vector<ConvergencePoint>
                       "RMSE",
                       {},
                       targetRmse};
-  for (SamplerKind kind : {SamplerKind::Random, SamplerKind::Jittered, SamplerKind::Sobol}) {
-    PlotSeries samples{samplerKindName(kind), samplerColor(kind), {}};
+  for (SeriesKind kind : {SeriesKind{SamplerKind::Random}, SeriesKind{SamplerKind::Jittered},
+                          SeriesKind{SamplerKind::Sobol}, SeriesKind{SamplerKind::Sobol, true}}) {
+    PlotSeries samples{seriesName(kind), seriesColor(kind), {}};
     PlotSeries seconds = samples;
     for (const ConvergencePoint& p : points) {
-      if (p.sampler != kind) continue;
+      if (!(p.series() == kind)) continue;
       samples.points.push_back({double(p.samples), p.rmse});
       seconds.points.push_back({secondsOf(p, clock), p.rmse});
     }

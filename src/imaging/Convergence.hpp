@@ -29,13 +29,26 @@ struct ConvergenceSetup {
   bool estimateError = false;
 };
 
+// What one series of a study measures: a sampler with uniform sampling, or
+// adaptive sampling (RenderOptions::adaptive) on Sobol samples.
+struct SeriesKind {
+  SamplerKind sampler = SamplerKind::Random;
+  bool adaptive = false;
+  bool operator==(const SeriesKind&) const = default;
+};
+// "random", "jittered", "sobol" or "adaptive".
+const char* seriesName(const SeriesKind& kind);
+std::optional<SeriesKind> seriesNamed(const std::string& name);
+
 struct ConvergencePoint {
   SamplerKind sampler = SamplerKind::Random;
-  uint32_t samples = 0;
+  uint32_t samples = 0;                 // per pixel; adaptive: the mean
   double seconds = 0;                   // render wall time (dispatches), without setup
   double cpuSeconds = 0;                // process CPU time over the same span (lavapipe's work)
   double rmse = 0;                      // against the reference
   std::optional<double> estimatedRmse;  // the renderer's own (ConvergenceSetup::estimateError)
+  bool adaptive = false;
+  SeriesKind series() const { return {sampler, adaptive}; }
 };
 
 // One sampler's points reduced to numbers: the least-squares slope of
@@ -44,7 +57,7 @@ struct ConvergencePoint {
 // around the crossing, or the fitted power law when no pair of points
 // brackets it: `extrapolated`).
 struct ConvergenceSummary {
-  SamplerKind sampler = SamplerKind::Random;
+  SeriesKind series;
   double slope = 0;
   double samplesToTarget = 0;
   double secondsToTarget = 0;
@@ -59,9 +72,10 @@ class ConvergenceStudy {
   // sample points would hide their error).
   ImageF renderReference(uint32_t samples, const ProgressCallback& onProgress = {});
 
-  // Renders `counts` samples per pixel with `sampler`, one render per count.
+  // Renders `counts` samples per pixel (adaptive: on average) of one
+  // series, one render per count.
   using PointCallback = std::function<void(const ConvergencePoint&)>;
-  std::vector<ConvergencePoint> measure(const ImageF& reference, SamplerKind sampler,
+  std::vector<ConvergencePoint> measure(const ImageF& reference, const SeriesKind& series,
                                         const std::vector<uint32_t>& counts,
                                         const PointCallback& onPoint = {});
 
@@ -79,13 +93,13 @@ std::vector<uint32_t> geometricSampleCounts(uint32_t first, uint32_t last, doubl
 // Which time the summary and the plot use.
 enum class ConvergenceClock { Wall, Cpu };
 
-// Points of one sampler, by increasing sample count (at least two).
+// Points of one series, by increasing sample count (at least two).
 ConvergenceSummary summarizeConvergence(const std::vector<ConvergencePoint>& points,
                                         double targetRmse,
                                         ConvergenceClock clock = ConvergenceClock::Wall);
 
 // "sampler,samples,seconds,cpu_seconds,rmse,estimated_rmse" and one row per
-// point.
+// point (the sampler column holds the series name).
 std::string convergenceCsv(const std::vector<ConvergencePoint>& points);
 
 // Two panels: RMSE against samples and against seconds, a line per sampler,

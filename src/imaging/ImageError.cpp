@@ -29,26 +29,45 @@ double displayRmse(const ImageF& image, const ImageF& reference, const ToneMappi
   return std::sqrt(sum / (3.0 * r.width * r.height));
 }
 
+std::optional<double> estimatePixelSquaredError(const SampleSums& sums, size_t pixel,
+                                                const ToneMapping& mapping) {
+  const glm::vec4 odd = sums.odd[pixel];
+  const glm::vec4 even = sums.all[pixel] - odd;
+  if (!(odd.w > 0.0f && even.w > 0.0f)) return std::nullopt;
+  const double n = double(even.w) + odd.w;
+  const double weight = double(even.w) * odd.w / (n * n);
+  double sum = 0;
+  for (int c = 0; c < 3; ++c) {
+    double d =
+        double(displayValue(even[c] / even.w, mapping)) - displayValue(odd[c] / odd.w, mapping);
+    sum += d * d * weight;
+  }
+  return sum / 3.0;
+}
+
 std::optional<double> estimateDisplayRmse(const SampleSums& sums, const ToneMapping& mapping,
                                           const PixelRegion& region) {
   const PixelRegion r = resolveRegion(region, sums.width, sums.height);
   double sum = 0;
   for (uint32_t y = r.y; y < r.y + r.height; ++y) {
     for (uint32_t x = r.x; x < r.x + r.width; ++x) {
-      const size_t i = size_t(y) * sums.width + x;
-      const glm::vec4 odd = sums.odd[i];
-      const glm::vec4 even = sums.all[i] - odd;
-      if (!(odd.w > 0.0f && even.w > 0.0f)) return std::nullopt;
-      const double n = double(even.w) + odd.w;
-      const double weight = double(even.w) * odd.w / (n * n);
-      for (int c = 0; c < 3; ++c) {
-        double d =
-            double(displayValue(even[c] / even.w, mapping)) - displayValue(odd[c] / odd.w, mapping);
-        sum += d * d * weight;
-      }
+      std::optional<double> pixel =
+          estimatePixelSquaredError(sums, size_t(y) * sums.width + x, mapping);
+      if (!pixel) return std::nullopt;
+      sum += *pixel;
     }
   }
-  return std::sqrt(sum / (3.0 * r.width * r.height));
+  return std::sqrt(sum / (double(r.width) * r.height));
+}
+
+std::vector<float> estimatedErrorImage(const SampleSums& sums, const ToneMapping& mapping) {
+  std::vector<float> errors(sums.all.size(), -1.0f);
+  for (size_t i = 0; i < errors.size(); ++i) {
+    if (std::optional<double> squared = estimatePixelSquaredError(sums, i, mapping)) {
+      errors[i] = static_cast<float>(std::sqrt(*squared));
+    }
+  }
+  return errors;
 }
 
 }  // namespace rt

@@ -41,4 +41,15 @@ struct SampleSums {
 std::optional<double> estimateDisplayRmse(const SampleSums& sums, const ToneMapping& mapping,
                                           const PixelRegion& region = {});
 
+// The same estimate for one pixel (index y * width + x): its expected
+// squared display error, averaged over the colour channels; nullopt while
+// one half has no sample. One pixel's estimate is noisy (few degrees of
+// freedom); averages over many pixels are not.
+std::optional<double> estimatePixelSquaredError(const SampleSums& sums, size_t pixel,
+                                                const ToneMapping& mapping);
+
+// sqrt(estimatePixelSquaredError) for every pixel, row-major; -1 where a
+// pixel has no estimate (outside the rendered region, or too few samples).
+std::vector<float> estimatedErrorImage(const SampleSums& sums, const ToneMapping& mapping);
+
 }  // namespace rt

@@ -82,13 +82,53 @@ void writeHdr(const std::filesystem::path& path, const ImageF& image, float expo
   writeFileAtomically(path, bytes.data(), bytes.size());
 }
 
-void writeExr(const std::filesystem::path& path, const ImageF& image, float exposure) {
-  std::vector<float> rgba = exposed(image, exposure, 4);
+// RGBA and the extra layers as float32 channels, sorted by name as EXR
+// readers expect.
+void writeExr(const std::filesystem::path& path, const ImageF& image, float exposure,
+              const std::vector<ExrLayer>& layers) {
+  const size_t pixels = size_t(image.width) * image.height;
+  std::vector<ExrLayer> channels(4);
+  const char* names[4] = {"R", "G", "B", "A"};
+  for (int c = 0; c < 4; ++c) {
+    channels[c].name = names[c];
+    channels[c].values.resize(pixels);
+    for (size_t i = 0; i < pixels; ++i) {
+      float v = image.rgba[i * 4 + c];
+      channels[c].values[i] = c == 3 ? v : v * exposure;
+    }
+  }
+  for (const ExrLayer& layer : layers) {
+    if (layer.values.size() != pixels || layer.name.empty() || layer.name.size() > 255) {
+      throw Error(
+          fmt::format("{}: EXR layer '{}' does not fit the image", path.string(), layer.name));
+    }
+    channels.push_back(layer);
+  }
+  std::sort(channels.begin(), channels.end(),
+            [](const ExrLayer& a, const ExrLayer& b) { return a.name < b.name; });
+  std::vector<EXRChannelInfo> infos(channels.size());
+  std::vector<int> types(channels.size(), TINYEXR_PIXELTYPE_FLOAT);
+  std::vector<unsigned char*> planes(channels.size());
+  for (size_t c = 0; c < channels.size(); ++c) {
+    std::snprintf(infos[c].name, sizeof(infos[c].name), "%s", channels[c].name.c_str());
+    planes[c] = reinterpret_cast<unsigned char*>(channels[c].values.data());
+  }
+  EXRHeader header;
+  InitEXRHeader(&header);
+  header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+  header.num_channels = static_cast<int>(channels.size());
+  header.channels = infos.data();
+  header.pixel_types = types.data();
+  header.requested_pixel_types = types.data();
+  EXRImage exr;
+  InitEXRImage(&exr);
+  exr.num_channels = header.num_channels;
+  exr.images = planes.data();
+  exr.width = static_cast<int>(image.width);
+  exr.height = static_cast<int>(image.height);
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
     const char* error = nullptr;
-    int status = SaveEXR(rgba.data(), static_cast<int>(image.width), static_cast<int>(image.height),
-                         4, 0, tmp.c_str(), &error);
-    if (status != TINYEXR_SUCCESS) {
+    if (SaveEXRImageToFile(&exr, &header, tmp.c_str(), &error) != TINYEXR_SUCCESS) {
       std::string message = error ? error : "unknown error";
       if (error) FreeEXRErrorMessage(error);
       throw Error(fmt::format("{}: EXR encoding failed: {}", path.string(), message));
@@ -115,17 +155,24 @@ Image8 toneMap(const ImageF& image, const ToneMapping& mapping) {
   return out;
 }
 
+bool isExrPath(const std::filesystem::path& path) { return lowerExtension(path) == ".exr"; }
+
+bool is8BitImagePath(const std::filesystem::path& path) {
+  std::string ext = lowerExtension(path);
+  return ext == ".png" || ext == ".ppm";
+}
+
 bool isSupportedImageExtension(const std::filesystem::path& path) {
   std::string ext = lowerExtension(path);
   return ext == ".ppm" || ext == ".png" || ext == ".exr" || ext == ".hdr";
 }
 
-void writeImage(const std::filesystem::path& path, const ImageF& image,
-                const ToneMapping& mapping) {
+void writeImage(const std::filesystem::path& path, const ImageF& image, const ToneMapping& mapping,
+                const std::vector<ExrLayer>& layers) {
   std::string ext = lowerExtension(path);
   if (ext == ".ppm") return writePpm(path, toneMap(image, mapping));
   if (ext == ".png") return writePng(path, toneMap(image, mapping));
-  if (ext == ".exr") return writeExr(path, image, mapping.exposure);
+  if (ext == ".exr") return writeExr(path, image, mapping.exposure, layers);
   if (ext == ".hdr") return writeHdr(path, image, mapping.exposure);
   throw Error(fmt::format("{}: unsupported output format '{}' (use .png, .ppm, .exr or .hdr)",
                           path.string(), ext));
@@ -212,6 +259,42 @@ ImageF readExr(const std::filesystem::path& path) {
   image.rgba.assign(rgba, rgba + size_t(width) * height * 4);
   std::free(rgba);
   return image;
+}
+
+}  // namespace rt
+
+namespace rt {
+
+std::vector<float> readExrChannel(const std::filesystem::path& path, const std::string& name) {
+  EXRVersion version;
+  EXRHeader header;
+  EXRImage image;
+  InitEXRHeader(&header);
+  InitEXRImage(&image);
+  const char* error = nullptr;
+  auto fail = [&](const std::string& why) {
+    std::string message = error ? error : why;
+    if (error) FreeEXRErrorMessage(error);
+    FreeEXRImage(&image);
+    FreeEXRHeader(&header);
+    throw Error(fmt::format("{}: cannot read EXR channel '{}': {}", path.string(), name, message));
+  };
+  if (ParseEXRVersionFromFile(&version, path.c_str()) != TINYEXR_SUCCESS) fail("not an EXR file");
+  if (ParseEXRHeaderFromFile(&header, &version, path.c_str(), &error) != TINYEXR_SUCCESS ||
+      LoadEXRImageFromFile(&image, &header, path.c_str(), &error) != TINYEXR_SUCCESS) {
+    fail("unreadable");
+  }
+  for (int c = 0; c < header.num_channels; ++c) {
+    if (name != header.channels[c].name) continue;
+    if (header.pixel_types[c] != TINYEXR_PIXELTYPE_FLOAT || image.tiles) fail("not a float plane");
+    const float* plane = reinterpret_cast<const float*>(image.images[c]);
+    std::vector<float> values(plane, plane + size_t(image.width) * image.height);
+    FreeEXRImage(&image);
+    FreeEXRHeader(&header);
+    return values;
+  }
+  fail("no such channel");
+  return {};
 }
 
 }  // namespace rt

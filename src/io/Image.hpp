@@ -49,16 +49,27 @@ float displayValue(float linear, const ToneMapping& mapping);
 
 Image8 toneMap(const ImageF& image, const ToneMapping& mapping);
 
+// One more float32 channel of an EXR file, e.g. "error.Y"; one value per
+// pixel, row-major.
+struct ExrLayer {
+  std::string name;
+  std::vector<float> values;
+};
+
 // Writes by extension: .ppm (binary P6) and .png are tone mapped to 8 bits;
-// .exr (float32 RGBA) and .hdr (RGBE) keep linear radiance, exposure applied.
-// The file appears atomically. Throws rt::Error naming the file.
-void writeImage(const std::filesystem::path& path, const ImageF& image, const ToneMapping& mapping);
+// .exr (float32 RGBA, then `layers`) and .hdr (RGBE) keep linear radiance,
+// exposure applied. The file appears atomically. Throws rt::Error naming
+// the file.
+void writeImage(const std::filesystem::path& path, const ImageF& image, const ToneMapping& mapping,
+                const std::vector<ExrLayer>& layers = {});
 
 // Writes an 8-bit image as .png or .ppm (by extension), atomically.
 void writeImage8(const std::filesystem::path& path, const Image8& image);
 
 // True for the extensions writeImage understands.
 bool isSupportedImageExtension(const std::filesystem::path& path);
+bool isExrPath(const std::filesystem::path& path);
+bool is8BitImagePath(const std::filesystem::path& path);  // .png or .ppm
 
 // Reads PNG/JPEG/PPM/... (8-bit RGB) through stb_image; throws rt::Error.
 Image8 readImage8(const std::filesystem::path& path);
@@ -67,7 +78,10 @@ Image8 readImage8(const std::filesystem::path& path);
 ImageRgba8 readImageRgba8(const std::filesystem::path& path);
 // Same from bytes in memory (embedded glTF images); `name` is for messages.
 ImageRgba8 decodeImageRgba8(const uint8_t* bytes, size_t size, const std::string& name);
-// Reads an OpenEXR file written by writeImage.
+// Reads an OpenEXR file written by writeImage (its RGBA; layers ignored).
 ImageF readExr(const std::filesystem::path& path);
+// One named channel of an EXR file, row-major; throws rt::Error naming the
+// file if it has no such channel.
+std::vector<float> readExrChannel(const std::filesystem::path& path, const std::string& name);
 
 }  // namespace rt

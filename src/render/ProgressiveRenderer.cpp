@@ -79,6 +79,7 @@ ShaderFeatures featuresFor(const Scene& scene, const FlatScene& flat,
   ShaderFeatures features = detectFeatures(scene, flat);
   features.countRays = options.countRays;
   features.samplerKind = static_cast<int>(gpuSamplerKind(options.sampler));
+  features.adaptiveSampling = options.adaptive;
   return features;
 }
 
@@ -104,37 +105,67 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
     rayCounter_.emplace(context, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     rayCounter_->fillZero();
   }
+  if (options.adaptive) {
+    const uint32_t tiles = divideRoundUp(width_, RT_ADAPTIVE_TILE_SIZE) *
+                           divideRoundUp(height_, RT_ADAPTIVE_TILE_SIZE);
+    samplePlan_.emplace(context, VkDeviceSize(tiles) * sizeof(glm::uvec2),
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    samplePlan_->fillZero();
+  }
   kernel_ = buildKernel();
 }
 
-std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(bool countRays, AccelKind accel) {
+std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(bool countRays, AccelKind accel,
+                                                               bool adaptive) {
   std::vector<KernelBinding> bindings = SceneBuffers::bindings(accel);
   bindings.push_back({RT_BINDING_ACCUMULATION, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER});
   bindings.push_back({RT_BINDING_ACCUMULATION_ODD, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER});
   if (countRays) bindings.push_back({RT_BINDING_RAY_COUNTER});
+  if (adaptive) bindings.push_back({RT_BINDING_SAMPLE_PLAN});
   return bindings;
 }
 
 std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
   auto kernel = std::make_unique<ComputeKernel>(
       context_, compiler_.compile("trace.comp", features_.defines()),
-      kernelBindings(rayCounter_.has_value(), flat_.accel),
+      kernelBindings(rayCounter_.has_value(), flat_.accel, samplePlan_.has_value()),
       static_cast<uint32_t>(sizeof(gpu::GpuFrameParams)));
   sceneBuffers_.bindTo(*kernel);
   kernel->bindTexels(RT_BINDING_ACCUMULATION, accumulation_, VK_FORMAT_R32G32B32A32_SFLOAT);
   kernel->bindTexels(RT_BINDING_ACCUMULATION_ODD, oddAccumulation_, VK_FORMAT_R32G32B32A32_SFLOAT);
   if (rayCounter_) kernel->bind(RT_BINDING_RAY_COUNTER, *rayCounter_);
+  if (samplePlan_) kernel->bind(RT_BINDING_SAMPLE_PLAN, *samplePlan_);
   return kernel;
 }
 
 void ProgressiveRenderer::recordSamples(VkCommandBuffer commands, uint32_t row, uint32_t rows,
                                         uint32_t count) const {
+  if (samplePlan_) throw Error("an adaptive render kernel takes its samples from the plan");
+  recordRange(commands, row, rows, samplesDone_, count);
+}
+
+void ProgressiveRenderer::setSamplePlan(const std::vector<glm::uvec2>& ranges) {
+  if (!samplePlan_ || ranges.size() * sizeof(glm::uvec2) != samplePlan_->size()) {
+    throw Error("sample plan: not an adaptive render, or not one range per tile");
+  }
+  samplePlan_->upload(ranges.data(), samplePlan_->size());
+}
+
+void ProgressiveRenderer::recordPlannedSamples(VkCommandBuffer commands, uint32_t row,
+                                               uint32_t rows) const {
+  if (!samplePlan_) throw Error("sample plan: not an adaptive render");
+  // The push constant's range is unused: the kernel reads each tile's own.
+  recordRange(commands, row, rows, 0, 0);
+}
+
+void ProgressiveRenderer::recordRange(VkCommandBuffer commands, uint32_t row, uint32_t rows,
+                                      uint32_t first, uint32_t count) const {
   gpu::GpuFrameParams frame{};
   frame.tileOrigin = {region_.x, region_.y + row};
   frame.tileSize = {region_.width, rows};
-  frame.sampleBegin = samplesDone_;
+  frame.sampleBegin = first;
   frame.sampleCount = count;
-  frame.samplesTotal = std::max(options_.samplesTotal, samplesDone_ + count);
+  frame.samplesTotal = std::max(options_.samplesTotal, first + count);
   frame.seed = options_.seed;
   frame.samplerKind = gpuSamplerKind(options_.sampler);
   if (options_.independentHalves) frame.samplerKind |= RT_SAMPLER_REPLICATES;

@@ -33,6 +33,9 @@ struct ProgressiveOptions : ImageSampling {
   // Even and odd samples as two independent replicates (RT_SAMPLER_REPLICATES),
   // which the error estimate needs; it costs stratified samplers accuracy.
   bool independentHalves = false;
+  // Per-tile sample ranges (setSamplePlan, recordPlannedSamples) instead of
+  // one range for every pixel: adaptive sampling (render/AdaptiveSampling.hpp).
+  bool adaptive = false;
 };
 
 class ProgressiveRenderer {
@@ -57,6 +60,13 @@ class ProgressiveRenderer {
   // recordSamples over the whole image, submitted and waited for.
   void addSamples(uint32_t count);
 
+  // Adaptive kernels only: per tile of RT_ADAPTIVE_TILE_SIZE^2 pixels (row-
+  // major over the image), the first sample index and the count the next
+  // planned dispatches add. recordPlannedSamples records them for rows
+  // [row, row + rows) of the region.
+  void setSamplePlan(const std::vector<glm::uvec2>& ranges);
+  void recordPlannedSamples(VkCommandBuffer commands, uint32_t row, uint32_t rows) const;
+
   // Back to zero samples (e.g. after a camera move).
   void recordReset(VkCommandBuffer commands);
   void reset();
@@ -72,8 +82,8 @@ class ProgressiveRenderer {
 
   const Buffer& accumulation() const { return accumulation_; }
   // Descriptor bindings of the render kernel (trace.comp).
-  static std::vector<KernelBinding> kernelBindings(bool countRays,
-                                                   AccelKind accel = AccelKind::Bvh);
+  static std::vector<KernelBinding> kernelBindings(bool countRays, AccelKind accel = AccelKind::Bvh,
+                                                   bool adaptive = false);
   // Mean radiance per pixel; alpha = the pixel's sample count.
   ImageF resolve();
   // The accumulation sums of all and of the odd-indexed samples.
@@ -88,6 +98,8 @@ class ProgressiveRenderer {
 
  private:
   std::unique_ptr<ComputeKernel> buildKernel() const;
+  void recordRange(VkCommandBuffer commands, uint32_t row, uint32_t rows, uint32_t first,
+                   uint32_t count) const;
 
   VulkanContext& context_;
   const ShaderCompiler& compiler_;
@@ -101,6 +113,7 @@ class ProgressiveRenderer {
   Buffer accumulation_;
   Buffer oddAccumulation_;  // sums of odd sample indices: the error estimate
   std::optional<Buffer> rayCounter_;
+  std::optional<Buffer> samplePlan_;  // adaptive only
   std::unique_ptr<ComputeKernel> kernel_;
   std::vector<std::unique_ptr<ComputeKernel>> retired_;
   uint32_t samplesDone_ = 0;

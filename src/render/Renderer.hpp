@@ -37,6 +37,14 @@ struct RenderOptions : ImageSampling {
   bool estimateError = false;
   double targetRmse = 0;
   std::optional<ToneMapping> displayMapping;
+  // Adaptive sampling (render/AdaptiveSampling.hpp): after a uniform first
+  // pass of kAdaptiveFirstPass samples, rounds give more samples to the
+  // noisiest tiles. samplesPerPixel is then the budget of the mean count per
+  // pixel, targetRmse (if any) the goal; the estimate is always made. Cannot
+  // be combined with sample ranges (firstSample/endSample).
+  bool adaptive = false;
+  // Fill RenderStats::estimatedError (needs estimateError or adaptive).
+  bool keepErrorImage = false;
   double secondsPerDispatch = 0.1;  // target duration of one dispatch
   // Polled between dispatches; returning true ends the render early with
   // the samples accumulated so far (SIGINT, time budgets).
@@ -57,6 +65,7 @@ struct RenderProgress {
 // point does not depend on timing, and estimates cost little.
 uint32_t nextRmseCheckpoint(uint32_t samplesDone);
 constexpr uint32_t kMinSamplesForTarget = 8;
+constexpr uint32_t kAdaptiveFirstPass = 4;
 
 struct RenderStats {
   double setupSeconds = 0;   // flatten, BVH build, upload, shader compile
@@ -65,11 +74,16 @@ struct RenderStats {
   // CPU Vulkan device (lavapipe) did, unaffected by other processes.
   double renderCpuSeconds = 0;
   uint32_t dispatches = 0;
-  uint64_t raysTraced = 0;             // only with RenderOptions::countRays
-  uint32_t samplesDone = 0;            // full passes completed (per pixel)
-  bool stoppedEarly = false;           // by shouldStop
-  bool reachedTarget = false;          // ended by RenderOptions::targetRmse
+  uint64_t raysTraced = 0;     // only with RenderOptions::countRays
+  uint32_t samplesDone = 0;    // full passes completed (per pixel): the fewest any pixel has
+  double meanSamples = 0;      // per pixel of the region (adaptive: varies)
+  uint32_t maxSamples = 0;     // the most any pixel of the region got
+  bool stoppedEarly = false;   // by shouldStop
+  bool reachedTarget = false;  // ended by RenderOptions::targetRmse
   std::optional<double> rmseEstimate;  // at the end, with RenderOptions::estimateError
+  // Per-pixel estimated display RMSE (estimatedErrorImage), row-major; with
+  // RenderOptions::keepErrorImage.
+  std::vector<float> estimatedError;
   uint32_t primitives = 0;
   uint32_t bvhNodes = 0;
   uint32_t bvhDepth = 0;

@@ -177,6 +177,8 @@ struct RenderSettings {
   float indirectClamp = 0.0f;
   uint32_t samplesPerPixel = 0;  // 0: not given in the file
   SamplerKind sampler = SamplerKind::Jittered;
+  bool samplerGiven = false;  // the file names a sampler (else adaptive renders pick Sobol)
+  bool adaptive = false;      // `adaptive`: adaptive sampling (render/AdaptiveSampling.hpp)
 };
 
 struct Scene {

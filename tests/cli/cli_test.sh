@@ -53,6 +53,32 @@ expect_error "bad --conventions" '--conventions' "$SCRATCH/good.json" "$SCRATCH/
   "$RAYTRACER" merge "$SCRATCH/a.exr" "$SCRATCH/b.exr" "$SCRATCH/merged.exr" 2>"$SCRATCH/stderr" &&
   grep -q "6 samples per pixel" "$SCRATCH/stderr" && pass || fail "--samples and merge"
 expect_error "bad --samples" '--samples 5:3' "$SCRATCH/good.json" "$SCRATCH/out.png" --spp 6 --samples 5:3
+
+# --- adaptive sampling: maps, EXR layers, and no splitting ------------------
+if "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/adaptive.exr" --adaptive --spp 16 \
+    --sample-map "$SCRATCH/samples.png" --error-map "$SCRATCH/errors.png" 2>"$SCRATCH/stderr"; then
+  head -c 8 "$SCRATCH/samples.png" | grep -q PNG && head -c 8 "$SCRATCH/errors.png" | grep -q PNG &&
+    pass || fail "--sample-map / --error-map files"
+  grep -Eq 'spp on average \([0-9]+\.\.[0-9]+\)|at [0-9]+ spp' "$SCRATCH/stderr" && grep -q "estimated RMSE" "$SCRATCH/stderr" &&
+    pass || fail "adaptive summary: $(cat "$SCRATCH/stderr")"
+  grep -aq "samples.Y" "$SCRATCH/adaptive.exr" && grep -aq "error.Y" "$SCRATCH/adaptive.exr" &&
+    pass || fail "adaptive EXR layers"
+else
+  fail "adaptive render: $(cat "$SCRATCH/stderr")"
+fi
+expect_error "adaptive --samples" 'cannot be combined with adaptive sampling' \
+  "$SCRATCH/good.json" "$SCRATCH/out.png" --adaptive --spp 8 --samples 0:4
+expect_error "adaptive --region" '--region 0,0,8,8 cannot be combined with adaptive' \
+  "$SCRATCH/good.json" "$SCRATCH/out.png" --adaptive --region 0,0,8,8
+expect_error "--error-map without estimate" '--error-map .*no error estimate' \
+  "$SCRATCH/good.json" "$SCRATCH/out.png" --error-map "$SCRATCH/out-errors.png"
+expect_error "--sample-map extension" 'out-map.exr: a sample or error map is written as .png or .ppm' \
+  "$SCRATCH/good.json" "$SCRATCH/out.png" --sample-map "$SCRATCH/out-map.exr"
+write adaptive.json "${GOOD/\"nbounces\":2,/\"nbounces\":2,\"adaptive\":true,}"
+expect_error "scene key adaptive with --samples" 'cannot be combined with adaptive sampling' \
+  "$SCRATCH/adaptive.json" "$SCRATCH/out.png" --spp 8 --samples 0:4
+"$RAYTRACER" check "$SCRATCH/adaptive.json" 2>/dev/null | grep -q "sampler sobol, adaptive sampling" &&
+  pass || fail "check: adaptive scene key"
 expect_error "merge of a missing file" 'nope\.exr' merge "$SCRATCH/nope.exr" "$SCRATCH/a.exr" "$SCRATCH/out.png"
 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/timed.png" --spp 1000000 --time 1 -q 2>"$SCRATCH/stderr" &&
   grep -q "time budget reached" "$SCRATCH/stderr" && [[ -s "$SCRATCH/timed.png" ]] && pass || fail "--time"

@@ -38,6 +38,19 @@ awk -F, '$2 == 4 { first[$1] = $5 } $2 == 16 { last[$1] = $5 }
 grep -Eq '^sobol +-?[0-9.]+ ' "$SCRATCH/stdout" && grep -Eq '^sampler +slope' "$SCRATCH/stdout" &&
   pass || fail "summary table: $(cat "$SCRATCH/stdout")"
 
+# --- adaptive sampling as a series beside the others ----------------------
+if "$RAYTRACER" converge "$SCENE" --size 64x48 --samplers sobol,adaptive --spp-list 8,16 \
+    --reference-spp 64 --out "$SCRATCH/adaptive" -q >"$SCRATCH/stdout" 2>"$SCRATCH/stderr"; then
+  rows=$(tail -n +2 "$SCRATCH/adaptive.csv" | cut -d, -f1,2 | tr '\n' ' ')
+  [[ "$rows" == "sobol,8 sobol,16 adaptive,8 adaptive,16 " ]] && pass || fail "adaptive CSV rows: $rows"
+  # Adaptive renders always estimate their error.
+  awk -F, '$1 == "adaptive" && !($6 > 0) { bad = 1 } END { exit bad }' "$SCRATCH/adaptive.csv" &&
+    pass || fail "adaptive rows lack the estimate: $(cat "$SCRATCH/adaptive.csv")"
+  grep -Eq '^adaptive +-?[0-9.]+ ' "$SCRATCH/stdout" && pass || fail "adaptive summary: $(cat "$SCRATCH/stdout")"
+else
+  fail "converge with adaptive: $(cat "$SCRATCH/stderr")"
+fi
+
 # --- the saved reference gives the same errors ---------------------------
 if "$RAYTRACER" converge "$SCENE" "${COMMON[@]}" --samplers sobol --spp-list 4,8 \
     --reference "$SCRATCH/study-reference.exr" --estimate --out "$SCRATCH/again" -q >/dev/null 2>&1; then

@@ -76,6 +76,25 @@ TEST_SUITE("image-io") {
     }
   }
 
+  TEST_CASE("EXR layers are extra float channels beside RGBA") {
+    auto path = outputDir() / "layers.exr";
+    ImageF image = gradient(20, 17);  // above tinyexr's no-compression size
+    std::vector<float> counts(20 * 17), errors(20 * 17);
+    for (size_t i = 0; i < counts.size(); ++i) {
+      counts[i] = float(i % 7 + 4);
+      errors[i] = 0.001f * float(i);
+    }
+    writeImage(path, image, {}, {{"samples.Y", counts}, {"error.Y", errors}});
+    CHECK(readExrChannel(path, "samples.Y") == counts);
+    CHECK(readExrChannel(path, "error.Y") == errors);
+    ImageF back = readExr(path);  // RGBA as before
+    CHECK(back.rgba == image.rgba);
+    CHECK_THROWS_WITH_AS(readExrChannel(path, "depth.Z"), doctest::Contains("no such channel"),
+                         Error);
+    CHECK_THROWS_AS(writeImage(outputDir() / "bad-layer.exr", image, {}, {{"x.Y", {1.0f}}}), Error);
+    CHECK_FALSE(std::filesystem::exists(outputDir() / "bad-layer.exr"));
+  }
+
   TEST_CASE("HDR (Radiance RGBE) files are written") {
     auto path = outputDir() / "g.hdr";
     writeImage(path, gradient(8, 8), {});

@@ -262,6 +262,12 @@ bool readSampling(JsonObject& top, JsonObject& camera, RenderSettings& settings)
     if (random->boolean()) sampler = SamplerKind::Random;  // nizqleo: "random": 1
   }
   if (sampler) settings.sampler = *sampler;
+  settings.samplerGiven = sampler.has_value();
+  const auto adaptiveAt = [](JsonObject& object) { return object.optional("adaptive"); };
+  const auto readBoolean = [](const JsonNode& node) { return node.boolean(); };
+  if (const auto adaptive = readFromEither(adaptiveAt(top), adaptiveAt(camera), readBoolean)) {
+    settings.adaptive = *adaptive;
+  }
   if (const auto samples = readFromEither(samplesAt(top), samplesAt(camera), parseSampleCount)) {
     settings.samplesPerPixel = *samples;
   }
@@ -1495,7 +1501,10 @@ Scene readScene(std::string_view jsonText, const fs::path& file) {
   std::optional<JsonObject> nested;
   if (!flat) nested = top.required("scene").object();
   const LightList lights = readSceneObject(flat ? top : *nested, context, scene, flat);
-  if (lights.sampler && !samplerGiven) scene.settings.sampler = *lights.sampler;
+  if (lights.sampler && !samplerGiven) {
+    scene.settings.sampler = *lights.sampler;
+    scene.settings.samplerGiven = true;
+  }
   if (defaultView) chooseDefaultView(scene);
   setConventions(scene, chosen.conventions, std::move(chosen.reason));
   ignoreRendererKeys(top);

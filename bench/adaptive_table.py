@@ -1,0 +1,68 @@
+"""The table of bench/run-adaptive.sh from the CSVs `raytracer converge` wrote.
+
+Per scene and series: CPU seconds to RMSE 0.01 (log-log interpolation
+between the measured points around the crossing, '>' when the series never
+got there), the ratio to uniform jittered, and the RMSE each series had at the
+CPU time adaptive needed (interpolated the same way). Standard library only.
+
+Usage: adaptive_table.py OUT_DIR SCENE.json...
+"""
+import csv
+import math
+import os
+import sys
+
+TARGET = 0.01
+SERIES = ["random", "jittered", "sobol", "adaptive"]
+
+
+def read_points(path):
+    points = {}
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            points.setdefault(row["sampler"], []).append(
+                (float(row["cpu_seconds"]), float(row["rmse"])))
+    return points
+
+
+def seconds_to(points, target):
+    """Log-log interpolated time of the first crossing below target, or None."""
+    for (t0, e0), (t1, e1) in zip(points, points[1:]):
+        if e0 > target >= e1:
+            f = (math.log(e0) - math.log(target)) / (math.log(e0) - math.log(e1))
+            return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0)))
+    return None
+
+
+def rmse_at(points, seconds):
+    """Log-log interpolated RMSE at a time inside the measured span, or None."""
+    for (t0, e0), (t1, e1) in zip(points, points[1:]):
+        if t0 <= seconds <= t1:
+            f = (math.log(seconds) - math.log(t0)) / (math.log(t1) - math.log(t0))
+            return math.exp(math.log(e0) + f * (math.log(e1) - math.log(e0)))
+    return None
+
+
+def main():
+    out, scenes = sys.argv[1], sys.argv[2:]
+    print(f"\ntime to RMSE {TARGET} (CPU s, whole image) and RMSE at adaptive's time")
+    print(f"{'scene':<16} {'series':<9} {'cpu_s@0.01':>11} {'vs jittered':>12} {'rmse@t_adaptive':>16}")
+    for scene in scenes:
+        name = os.path.splitext(os.path.basename(scene))[0]
+        points = read_points(os.path.join(out, name + ".csv"))
+        times = {s: seconds_to(points[s], TARGET) for s in SERIES if s in points}
+        pivot = times.get("adaptive")
+        for series in SERIES:
+            if series not in points:
+                continue
+            t = times[series]
+            last = points[series][-1][0]
+            shown = f"{t:.2f}" if t else f">{last:.2f}"
+            ratio = f"{t / times['jittered']:.2f}x" if t and times.get("jittered") else "-"
+            at = rmse_at(points[series], pivot) if pivot else None
+            print(f"{name:<16} {series:<9} {shown:>11} {ratio:>12} "
+                  f"{(f'{at:.5f}' if at else '-'):>16}")
+
+
+if __name__ == "__main__":
+    main()

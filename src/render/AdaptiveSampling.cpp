@@ -1,0 +1,180 @@
+#include "render/AdaptiveSampling.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rt {
+namespace {
+
+// Tiles aim a little below the target, so that the round after a plan
+// usually reaches it instead of falling just short.
+constexpr double kTargetMargin = 0.9 * 0.9;
+// A tile's noise is raised to this fraction of its noisiest neighbour's.
+constexpr double kNeighbourShare = 0.25;
+
+uint32_t divideRoundUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
+
+// The samples per pixel tile `t` would end with for the multiplier c of the
+// allocation n = c * sqrt(v), never fewer than it has nor more than allowed.
+double plannedSamples(const TileNoise& t, double c, uint32_t maxSamples) {
+  double wanted = c * std::sqrt(t.variance);
+  return std::clamp(wanted, double(t.samples), double(std::max(maxSamples, t.samples)));
+}
+
+double mseAt(const std::vector<TileNoise>& tiles, double c, uint32_t maxSamples) {
+  double sum = 0;
+  double pixels = 0;
+  for (const TileNoise& t : tiles) {
+    if (t.pixels == 0) continue;
+    pixels += t.pixels;
+    if (t.variance > 0) sum += t.pixels * t.variance / plannedSamples(t, c, maxSamples);
+  }
+  return pixels > 0 ? sum / pixels : 0;
+}
+
+double spendAt(const std::vector<TileNoise>& tiles, double c, uint32_t maxSamples) {
+  double spend = 0;
+  for (const TileNoise& t : tiles) {
+    if (t.pixels > 0) spend += t.pixels * (plannedSamples(t, c, maxSamples) - t.samples);
+  }
+  return spend;
+}
+
+// The multiplier where a monotone function of it crosses `level`, by
+// bisection in log space: the largest c with f(c) <= level if f increases,
+// the smallest c with f(c) <= level if it decreases.
+template <typename F>
+double solveMultiplier(F f, double level, bool increasing) {
+  double lo = std::log(1e-9), hi = std::log(1e15);
+  for (int i = 0; i < 80; ++i) {
+    double mid = 0.5 * (lo + hi);
+    bool below = f(std::exp(mid)) <= level;
+    if (below == increasing) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  return std::exp(increasing ? lo : hi);
+}
+
+}  // namespace
+
+double predictedMse(const std::vector<TileNoise>& tiles) { return mseAt(tiles, 0, 0); }
+
+std::vector<uint32_t> allocateSamples(const std::vector<TileNoise>& tiles,
+                                      const AllocationGoal& goal) {
+  std::vector<uint32_t> added(tiles.size(), 0);
+  if (goal.sampleBudget < 1) return added;
+  const uint32_t cap = goal.maxSamples;
+  double c =
+      solveMultiplier([&](double m) { return spendAt(tiles, m, cap); }, goal.sampleBudget, true);
+  if (goal.targetMse > 0) {
+    if (predictedMse(tiles) <= goal.targetMse) return added;
+    double toTarget = solveMultiplier([&](double m) { return mseAt(tiles, m, cap); },
+                                      goal.targetMse * kTargetMargin, false);
+    c = std::min(c, toTarget);
+  }
+  for (size_t i = 0; i < tiles.size(); ++i) {
+    const TileNoise& t = tiles[i];
+    if (t.pixels == 0 || t.samples == 0) continue;
+    // Rounded down: the rounds never spend more than the budget.
+    double wanted = std::floor(plannedSamples(t, c, cap)) - t.samples;
+    // At most doubling: the next round decides again from more samples.
+    added[i] = static_cast<uint32_t>(std::clamp(wanted, 0.0, double(t.samples)));
+  }
+  return added;
+}
+
+AdaptivePlan::AdaptivePlan(uint32_t width, uint32_t height, const PixelRegion& region)
+    : tilesPerRow_(divideRoundUp(width, kTileSize)), width_(width), region_(region) {
+  const uint32_t rows = divideRoundUp(height, kTileSize);
+  pixels_.assign(size_t(tilesPerRow_) * rows, 0);
+  samples_.assign(pixels_.size(), 0);
+  for (uint32_t y = region.y; y < region.y + region.height; ++y) {
+    for (uint32_t x = region.x; x < region.x + region.width; ++x) ++pixels_[tileOf(x, y)];
+  }
+  regionPixels_ = uint64_t(region.width) * region.height;
+}
+
+size_t AdaptivePlan::tileOf(uint32_t x, uint32_t y) const {
+  return size_t(y / kTileSize) * tilesPerRow_ + x / kTileSize;
+}
+
+std::vector<uint32_t> AdaptivePlan::uniformRound(uint32_t count) const {
+  std::vector<uint32_t> added(pixels_.size(), 0);
+  for (size_t i = 0; i < added.size(); ++i) added[i] = pixels_[i] > 0 ? count : 0;
+  return added;
+}
+
+std::vector<TileNoise> AdaptivePlan::measureNoise(const SampleSums& sums,
+                                                  const ToneMapping& mapping) const {
+  std::vector<double> variance(pixels_.size(), 0.0);
+  for (uint32_t y = region_.y; y < region_.y + region_.height; ++y) {
+    for (uint32_t x = region_.x; x < region_.x + region_.width; ++x) {
+      const size_t pixel = size_t(y) * width_ + x;
+      std::optional<double> squared = estimatePixelSquaredError(sums, pixel, mapping);
+      // Error of the mean times the sample count: the variance of one sample.
+      if (squared) variance[tileOf(x, y)] += *squared * sums.all[pixel].w;
+    }
+  }
+  std::vector<TileNoise> tiles(pixels_.size());
+  const int rows = static_cast<int>(pixels_.size() / tilesPerRow_);
+  const int columns = static_cast<int>(tilesPerRow_);
+  for (int ty = 0; ty < rows; ++ty) {
+    for (int tx = 0; tx < columns; ++tx) {
+      const size_t i = size_t(ty) * tilesPerRow_ + tx;
+      TileNoise& tile = tiles[i];
+      tile.pixels = pixels_[i];
+      tile.samples = samples_[i];
+      if (tile.pixels == 0) continue;
+      double own = variance[i] / tile.pixels;
+      double neighbour = 0;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          int nx = tx + dx, ny = ty + dy;
+          if (nx < 0 || ny < 0 || nx >= columns || ny >= rows) continue;
+          const size_t j = size_t(ny) * tilesPerRow_ + nx;
+          if (pixels_[j] > 0) neighbour = std::max(neighbour, variance[j] / pixels_[j]);
+        }
+      }
+      tile.variance = std::max(own, kNeighbourShare * neighbour);
+    }
+  }
+  return tiles;
+}
+
+void AdaptivePlan::addRound(const std::vector<uint32_t>& added) {
+  for (size_t i = 0; i < samples_.size(); ++i) samples_[i] += added[i];
+}
+
+std::vector<glm::uvec2> AdaptivePlan::kernelRanges(const std::vector<uint32_t>& added) const {
+  std::vector<glm::uvec2> ranges(samples_.size());
+  for (size_t i = 0; i < ranges.size(); ++i) ranges[i] = {samples_[i], added[i]};
+  return ranges;
+}
+
+uint64_t AdaptivePlan::pixelSamples() const {
+  uint64_t total = 0;
+  for (size_t i = 0; i < samples_.size(); ++i) total += uint64_t(pixels_[i]) * samples_[i];
+  return total;
+}
+
+uint32_t AdaptivePlan::minSamples() const {
+  uint32_t least = std::numeric_limits<uint32_t>::max();
+  for (size_t i = 0; i < samples_.size(); ++i) {
+    if (pixels_[i] > 0) least = std::min(least, samples_[i]);
+  }
+  return least == std::numeric_limits<uint32_t>::max() ? 0 : least;
+}
+
+uint32_t AdaptivePlan::maxSamples() const {
+  uint32_t most = 0;
+  for (size_t i = 0; i < samples_.size(); ++i) {
+    if (pixels_[i] > 0) most = std::max(most, samples_[i]);
+  }
+  return most;
+}
+
+}  // namespace rt

@@ -1,0 +1,96 @@
+// Adaptive sampling: where the next samples go. The image is cut into square
+// tiles (RT_ADAPTIVE_TILE_SIZE pixels a side); after a uniform first pass,
+// each round estimates every tile's noise from the even/odd replicates
+// (ImageError.hpp) and gives more samples to the tiles where they lower the
+// image's error most, until the estimated RMSE reaches the target or the
+// sample budget is spent.
+//
+// Why these choices:
+// - Tiles, not pixels: one pixel's estimate has a few degrees of freedom and
+//   is often near zero by chance; 64 pixels pooled are steady, so a tile does
+//   not stop early because its few samples happened to agree. The noise of
+//   each tile is also raised to a quarter of its noisiest neighbour's, so an
+//   edge of a noisy area is never starved.
+// - Samples in proportion to the noise's standard deviation: that allocation
+//   minimizes the total sample count at a given mean squared error of the
+//   image (Lagrange: minimize sum n_i s.t. sum v_i / n_i = const gives
+//   n_i ~ sqrt(v_i)), the quantity --target-rmse and `converge` measure.
+// - A tile at most doubles its samples per round, so that every decision
+//   is revisited with an estimate from twice as many samples.
+// - Decisions depend only on the accumulated samples at the end of each
+//   round, never on timing: the image is a pure function of scene, options
+//   and seed. They do depend on the whole image, so adaptive renders cannot
+//   be split into sample ranges or regions and merged.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "gpu_types.h"
+#include "imaging/ImageError.hpp"
+#include "imaging/PixelRegion.hpp"
+#include "io/Image.hpp"
+
+namespace rt {
+
+// One tile as the allocation sees it.
+struct TileNoise {
+  uint32_t pixels = 0;   // pixels of the rendered region in the tile (0: outside it)
+  uint32_t samples = 0;  // samples per pixel so far
+  double variance = 0;   // display-space variance of one sample, mean over its pixels
+};
+
+struct AllocationGoal {
+  double targetMse = 0;     // plan to reach this image mean squared error (0: no target)
+  double sampleBudget = 0;  // pixel-samples this and later rounds may add at most
+  uint32_t maxSamples = 0;  // per pixel
+};
+
+// Samples per pixel to add to each tile this round (0: none). All zero when
+// the goal is met, the budget spent, or no tile has noise left to remove.
+std::vector<uint32_t> allocateSamples(const std::vector<TileNoise>& tiles,
+                                      const AllocationGoal& goal);
+
+// Image mean squared error predicted for the tiles (1/n noise).
+double predictedMse(const std::vector<TileNoise>& tiles);
+
+class AdaptivePlan {
+ public:
+  static constexpr uint32_t kTileSize = RT_ADAPTIVE_TILE_SIZE;
+
+  // Tiles over a width x height image; only pixels of `region` (resolved:
+  // not empty) get samples.
+  AdaptivePlan(uint32_t width, uint32_t height, const PixelRegion& region);
+
+  uint32_t tileCount() const { return static_cast<uint32_t>(pixels_.size()); }
+  uint32_t tilesPerRow() const { return tilesPerRow_; }
+  // Samples per pixel so far, per tile (row-major over the whole image).
+  const std::vector<uint32_t>& samples() const { return samples_; }
+
+  // `count` samples per pixel everywhere in the region.
+  std::vector<uint32_t> uniformRound(uint32_t count) const;
+  // Each tile's noise from the accumulated sums (after dilation).
+  std::vector<TileNoise> measureNoise(const SampleSums& sums, const ToneMapping& mapping) const;
+  // Records that `added` samples per pixel were rendered into each tile.
+  void addRound(const std::vector<uint32_t>& added);
+  // Per tile: (first sample index, count) for the render kernel.
+  std::vector<glm::uvec2> kernelRanges(const std::vector<uint32_t>& added) const;
+
+  uint64_t pixelSamples() const;  // samples rendered over the region so far
+  uint64_t regionPixels() const { return regionPixels_; }
+  uint32_t minSamples() const;
+  uint32_t maxSamples() const;
+
+ private:
+  size_t tileOf(uint32_t x, uint32_t y) const;
+
+  uint32_t tilesPerRow_ = 0;
+  uint32_t width_ = 0;
+  PixelRegion region_;
+  std::vector<uint32_t> pixels_;   // region pixels per tile
+  std::vector<uint32_t> samples_;  // per tile
+  uint64_t regionPixels_ = 0;
+};
+
+}  // namespace rt

@@ -1,0 +1,268 @@
+// Adaptive sampling: the allocation on synthetic tiles, and adaptive renders
+// of the study scenes: deterministic, within the budget, samples where the
+// noise is, more accurate than uniform sampling at the same mean count, and
+// an error estimate that stays honest although tiles stopped at different
+// counts.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <numeric>
+
+#include "formats/json/JsonSceneLoader.hpp"
+#include "imaging/ImageError.hpp"
+#include "render/AdaptiveSampling.hpp"
+#include "render/Renderer.hpp"
+#include "support/TestSupport.hpp"
+#include "util/Error.hpp"
+
+using namespace rt;
+
+namespace {
+
+Scene studyScene(const std::string& name) {
+  return loadJsonScene(std::filesystem::path(RT_SOURCE_SHADER_DIR) / ".." / "scenes" / name);
+}
+
+// 96x72: large enough that the noise sits in some tiles more than in
+// others (12 x 9 tiles).
+RenderOptions smallRender(SamplerKind sampler, uint32_t samples, uint32_t seed = 1,
+                          uint32_t width = 96) {
+  RenderOptions options;
+  options.width = width;
+  options.height = width * 3 / 4;
+  options.sampler = sampler;
+  options.samplesPerPixel = samples;
+  options.seed = seed;
+  return options;
+}
+
+RenderOptions adaptiveRender(uint32_t samples, uint32_t seed = 1, uint32_t width = 96) {
+  RenderOptions options = smallRender(SamplerKind::Sobol, samples, seed, width);
+  options.adaptive = true;
+  options.keepErrorImage = true;
+  return options;
+}
+
+ImageF render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr) {
+  Renderer renderer(test::gpu(), test::shaderCompiler());
+  ImageF image = renderer.render(scene, options, {}, stats);
+  test::checkNoValidationMessages();
+  return image;
+}
+
+// A study scene with 2048 Sobol samples (another seed): its own error is
+// far below the measured renders'.
+const ImageF& studyTruth(const std::string& name, uint32_t width = 96) {
+  static std::map<std::pair<std::string, uint32_t>, ImageF> truths;
+  auto found = truths.find({name, width});
+  if (found == truths.end()) {
+    RenderOptions options = smallRender(SamplerKind::Sobol, 2048, 999, width);
+    found = truths.emplace(std::pair{name, width}, render(studyScene(name), options)).first;
+  }
+  return found->second;
+}
+
+// Mean over channels of the squared display error of pixel i.
+double squaredError(const ImageF& image, const ImageF& truth, size_t i, const ToneMapping& m) {
+  double sum = 0;
+  for (int c = 0; c < 3; ++c) {
+    double d =
+        double(displayValue(image.rgba[i * 4 + c], m)) - displayValue(truth.rgba[i * 4 + c], m);
+    sum += d * d;
+  }
+  return sum / 3.0;
+}
+
+std::vector<TileNoise> syntheticTiles(const std::vector<double>& variances, uint32_t samples) {
+  std::vector<TileNoise> tiles;
+  for (double v : variances) tiles.push_back({64, samples, v});
+  return tiles;
+}
+
+// Runs allocation rounds on tiles whose noise stays as given, as a render
+// would, until no tile gets more samples.
+uint32_t allocateUntilDone(std::vector<TileNoise>& tiles, const AllocationGoal& goal) {
+  double budget = goal.sampleBudget;
+  uint32_t rounds = 0;
+  for (;; ++rounds) {
+    AllocationGoal left = goal;
+    left.sampleBudget = budget;
+    std::vector<uint32_t> added = allocateSamples(tiles, left);
+    if (std::all_of(added.begin(), added.end(), [](uint32_t n) { return n == 0; })) break;
+    for (size_t i = 0; i < tiles.size(); ++i) {
+      CHECK(added[i] <= tiles[i].samples);  // at most doubling per round
+      budget -= double(added[i]) * tiles[i].pixels;
+      tiles[i].samples += added[i];
+    }
+    REQUIRE(rounds < 64);
+  }
+  return rounds;
+}
+
+}  // namespace
+
+TEST_SUITE("adaptive sampling") {
+  TEST_CASE(
+      "noiseless tiles get nothing; the others samples in proportion to the noise's deviation") {
+    std::vector<TileNoise> tiles = syntheticTiles({0.0, 0.01, 0.04, 0.16}, 8);
+    AllocationGoal goal;
+    goal.targetMse = 1e-4;  // RMSE 0.01
+    goal.sampleBudget = 1e12;
+    goal.maxSamples = 1u << 20;
+    uint32_t rounds = allocateUntilDone(tiles, goal);
+    CHECK(rounds >= 2);
+    CHECK(tiles[0].samples == 8);
+    CHECK(double(tiles[2].samples) / tiles[1].samples == doctest::Approx(2.0).epsilon(0.05));
+    CHECK(double(tiles[3].samples) / tiles[1].samples == doctest::Approx(4.0).epsilon(0.05));
+    CHECK(predictedMse(tiles) <= 1e-4);
+    // Uniform sampling would need every tile at the noisiest's count...
+    const double uniform = (0.0 + 0.01 + 0.04 + 0.16) / 4 / 1e-4;
+    const double adaptive =
+        double(tiles[0].samples + tiles[1].samples + tiles[2].samples + tiles[3].samples) / 4;
+    CHECK(adaptive < 0.75 * uniform);  // ...(mean sigma)^2 / mean(sigma^2) = 0.6 of it here
+  }
+
+  TEST_CASE("the budget caps what the rounds add, and a met target adds nothing") {
+    std::vector<TileNoise> tiles = syntheticTiles({0.01, 0.02, 0.5, 0.0}, 8);
+    AllocationGoal goal;
+    goal.sampleBudget = 64.0 * 4 * 24;  // 24 more samples per pixel on average
+    goal.maxSamples = 1u << 20;
+    allocateUntilDone(tiles, goal);
+    double spent = 0;
+    for (const TileNoise& t : tiles) spent += double(t.samples - 8) * t.pixels;
+    CHECK(spent <= goal.sampleBudget);
+    CHECK(spent > 0.9 * goal.sampleBudget);
+    CHECK(tiles[3].samples == 8);
+    goal.targetMse = 1.0;  // far above the predicted error
+    std::vector<uint32_t> added = allocateSamples(tiles, goal);
+    CHECK(std::all_of(added.begin(), added.end(), [](uint32_t n) { return n == 0; }));
+  }
+
+  TEST_CASE("a tile beside a noisy one keeps a share of its noise") {
+    AdaptivePlan plan(24, 8, {0, 0, 24, 8});  // three tiles in a row
+    plan.addRound(plan.uniformRound(4));
+    SampleSums sums{24, 8, std::vector<glm::vec4>(24 * 8), std::vector<glm::vec4>(24 * 8)};
+    for (uint32_t y = 0; y < 8; ++y) {
+      for (uint32_t x = 0; x < 24; ++x) {
+        const size_t i = y * 24 + x;
+        // Halves of two samples each: equal in tiles 1 and 2, 0.2 apart in tile 0.
+        const float odd = x < 8 ? 0.6f : 0.5f;
+        sums.odd[i] = glm::vec4(glm::vec3(2 * odd), 2);
+        sums.all[i] = sums.odd[i] + glm::vec4(glm::vec3(2 * 0.4f), 2);
+        if (x >= 8) sums.all[i] = sums.odd[i] + glm::vec4(glm::vec3(2 * 0.5f), 2);
+      }
+    }
+    std::vector<TileNoise> noise = plan.measureNoise(sums, ToneMapping{});
+    REQUIRE(noise.size() == 3);
+    // (A - B)^2 nA nB / n^2 * n = 0.04 * 4 / 16 * 4.
+    CHECK(noise[0].variance == doctest::Approx(0.04).epsilon(1e-4));
+    CHECK(noise[1].variance == doctest::Approx(0.25 * 0.04).epsilon(1e-4));
+    CHECK(noise[2].variance == 0.0);
+    CHECK(noise[0].samples == 4);
+    CHECK(plan.pixelSamples() == 24 * 8 * 4);
+  }
+
+  TEST_CASE("adaptive renders are deterministic, within the budget, and sample the penumbrae") {
+    Scene scene = studyScene("study-arealight.json");
+    RenderStats first, second;
+    ImageF a = render(scene, adaptiveRender(32), &first);
+    ImageF b = render(scene, adaptiveRender(32), &second);
+    CHECK(a.rgba == b.rgba);
+    CHECK(first.meanSamples <= 32.0);
+    CHECK(first.meanSamples > 16.0);
+    CHECK(first.samplesDone >= kAdaptiveFirstPass);
+    CHECK(first.maxSamples >= 4 * first.samplesDone);  // the counts spread
+    CHECK(first.estimatedError.size() == a.rgba.size() / 4);
+    // Another seed decides differently.
+    ImageF c = render(scene, adaptiveRender(32, 2));
+    CHECK(c.rgba != a.rgba);
+  }
+
+  TEST_CASE("at the same mean sample count adaptive sampling beats uniform sampling") {
+    // At half the study's size (20 x 15 tiles): the gain grows with the
+    // number of tiles that can stop early.
+    constexpr uint32_t kWidth = 160;
+    for (const char* name : {"study-arealight.json", "study-thinlens.json"}) {
+      CAPTURE(std::string(name));
+      Scene scene = studyScene(name);
+      ToneMapping mapping = toneMappingFor(scene);
+      const ImageF& truth = studyTruth(name, kWidth);
+      RenderStats stats;
+      auto error = [&](const RenderOptions& options, RenderStats* s = nullptr) {
+        return displayRmse(render(scene, options, s), truth, mapping);
+      };
+      double adaptive = error(adaptiveRender(32, 1, kWidth), &stats);
+      double jittered = error(smallRender(SamplerKind::Jittered, 32, 1, kWidth));
+      double sobol = error(smallRender(SamplerKind::Sobol, 32, 1, kWidth));
+      CAPTURE(adaptive);
+      CAPTURE(jittered);
+      CAPTURE(sobol);
+      CHECK(stats.meanSamples <= 32.0);
+      CHECK(adaptive < 0.9 * jittered);
+      CHECK(adaptive < 0.9 * sobol);
+    }
+  }
+
+  TEST_CASE("the estimate stays within 25% of the true error for the image and per sample count") {
+    for (const char* name : {"study-arealight.json", "study-thinlens.json"}) {
+      for (uint32_t samples : {24u, 64u}) {
+        CAPTURE(std::string(name));
+        CAPTURE(samples);
+        Scene scene = studyScene(name);
+        ToneMapping mapping = toneMappingFor(scene);
+        const ImageF& truth = studyTruth(name);
+        RenderStats stats;
+        ImageF image = render(scene, adaptiveRender(samples), &stats);
+        double trueRmse = displayRmse(image, truth, mapping);
+        REQUIRE(stats.rmseEstimate);
+        CAPTURE(trueRmse);
+        CHECK(*stats.rmseEstimate == doctest::Approx(trueRmse).epsilon(0.25));
+        // Pixels that stopped early against those that went on: split at
+        // the median count, compare estimated and true RMSE within each.
+        std::vector<float> counts;
+        for (size_t i = 3; i < image.rgba.size(); i += 4) counts.push_back(image.rgba[i]);
+        std::vector<float> sorted = counts;
+        std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+        const float median = sorted[sorted.size() / 2];
+        for (bool early : {true, false}) {
+          double estimated = 0, actual = 0;
+          size_t n = 0;
+          for (size_t i = 0; i < counts.size(); ++i) {
+            if ((counts[i] <= median) != early) continue;
+            double e = stats.estimatedError[i];
+            estimated += e * e;
+            actual += squaredError(image, truth, i, mapping);
+            ++n;
+          }
+          if (n < 64) continue;  // too few pixels for a steady comparison
+          CAPTURE(early);
+          CAPTURE(n);
+          CHECK(std::sqrt(estimated / double(n)) ==
+                doctest::Approx(std::sqrt(actual / double(n))).epsilon(0.25));
+        }
+      }
+    }
+  }
+
+  TEST_CASE("--target-rmse with adaptive sampling stops once the estimate reaches it") {
+    Scene scene = studyScene("study-thinlens.json");
+    RenderOptions options = adaptiveRender(4096);
+    options.targetRmse = 0.012;
+    RenderStats stats;
+    render(scene, options, &stats);
+    REQUIRE(stats.rmseEstimate);
+    CHECK(stats.reachedTarget);
+    CHECK(*stats.rmseEstimate <= 0.012);
+    CHECK(stats.meanSamples < 512);
+  }
+
+  TEST_CASE("an adaptive render cannot be split into sample ranges") {
+    Scene scene = studyScene("study-thinlens.json");
+    RenderOptions options = adaptiveRender(16);
+    options.firstSample = 8;
+    CHECK_THROWS_AS(render(scene, options), Error);
+  }
+}
