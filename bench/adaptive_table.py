@@ -1,6 +1,8 @@
 """The table of bench/run-adaptive.sh from the CSVs `raytracer converge` wrote.
 
-Per scene and series: CPU seconds to RMSE 0.01 (log-log interpolation
+Per target RMSE (0.01, the issue's, which whole images reach in a few samples;
+0.003, where the noise is left in a few places), scene and series: CPU seconds
+to the target (log-log interpolation
 between the measured points around the crossing, '>' when the series never
 got there), the ratio to uniform jittered, and the RMSE each series had at the
 CPU time adaptive needed (interpolated the same way). Standard library only.
@@ -12,7 +14,7 @@ import math
 import os
 import sys
 
-TARGET = 0.01
+TARGETS = [0.01, 0.003]
 SERIES = ["random", "jittered", "sobol", "adaptive"]
 
 
@@ -43,14 +45,13 @@ def rmse_at(points, seconds):
     return None
 
 
-def main():
-    out, scenes = sys.argv[1], sys.argv[2:]
-    print(f"\ntime to RMSE {TARGET} (CPU s, whole image) and RMSE at adaptive's time")
-    print(f"{'scene':<16} {'series':<9} {'cpu_s@0.01':>11} {'vs jittered':>12} {'rmse@t_adaptive':>16}")
+def print_table(out, scenes, target):
+    print(f"\ntime to RMSE {target} (CPU s, whole image) and RMSE at adaptive's time")
+    print(f"{'scene':<16} {'series':<9} {'cpu_s':>9} {'vs jittered':>12} {'rmse@t_adaptive':>16}")
     for scene in scenes:
         name = os.path.splitext(os.path.basename(scene))[0]
         points = read_points(os.path.join(out, name + ".csv"))
-        times = {s: seconds_to(points[s], TARGET) for s in SERIES if s in points}
+        times = {s: seconds_to(points[s], target) for s in SERIES if s in points}
         pivot = times.get("adaptive")
         for series in SERIES:
             if series not in points:
@@ -60,8 +61,14 @@ def main():
             shown = f"{t:.2f}" if t else f">{last:.2f}"
             ratio = f"{t / times['jittered']:.2f}x" if t and times.get("jittered") else "-"
             at = rmse_at(points[series], pivot) if pivot else None
-            print(f"{name:<16} {series:<9} {shown:>11} {ratio:>12} "
+            print(f"{name:<16} {series:<9} {shown:>9} {ratio:>12} "
                   f"{(f'{at:.5f}' if at else '-'):>16}")
+
+
+def main():
+    out, scenes = sys.argv[1], sys.argv[2:]
+    for target in TARGETS:
+        print_table(out, scenes, target)
 
 
 if __name__ == "__main__":

@@ -66,10 +66,11 @@ int runViewCommand(int argc, char** argv) {
                  "Samples per pixel to accumulate, then stop (default: the scene's, else 16)")
       ->check(CLI::Range(1u, kMaxSamples));
   app.add_option("--spp-per-frame", options.samplesPerFrame,
-                 "Fixed samples per pixel per frame over the whole image (default: adaptive "
-                 "row bands sized for --frame-ms)")
+                 "Fixed samples per pixel per frame over the whole image (default: row bands "
+                 "sized for --frame-ms)")
       ->check(CLI::Range(1u, kMaxSamples));
-  app.add_option("--frame-ms", cli.frameMilliseconds, "Target frame time of adaptive mode (75)")
+  app.add_option("--frame-ms", cli.frameMilliseconds,
+                 "Target frame time without --spp-per-frame (75)")
       ->check(CLI::Range(5.0, 2000.0));
   app.add_option("--frames", options.frames, "Exit after N frames (default: when closed)");
   app.add_option("--camera-path", options.cameraPath,
@@ -88,6 +89,8 @@ int runViewCommand(int argc, char** argv) {
   app.add_option("--sampler", cli.sampler,
                  "Sampler of every random dimension (default: the scene's, else jittered)")
       ->check(CLI::IsMember({"random", "jittered", "sobol"}));
+  app.add_flag("--adaptive", options.adaptive,
+               "Adaptive sampling, as the render command: --max-spp is the mean budget");
   app.add_option("--shading", cli.shading, "Shading model (as the render command)")
       ->check(CLI::IsMember({"standard", "coursework"}));
   rt::cli::addConventionsOption(app, cli.conventions);

@@ -4,6 +4,8 @@
 #include <cctype>
 #include <variant>
 
+#include "util/Text.hpp"
+
 namespace rt {
 namespace {
 
@@ -114,10 +116,7 @@ std::string ShaderFeatures::summary() const {
   std::string text;
   for (const auto& [name, value] : defines()) {
     if (name.rfind("RT_FEATURE_", 0) != 0) continue;
-    std::string feature = name.substr(11);
-    std::transform(feature.begin(), feature.end(), feature.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    text += (text.empty() ? "" : " ") + feature;
+    text += (text.empty() ? "" : " ") + lowercase(name.substr(11));
   }
   return text.empty() ? "none" : text;
 }

@@ -158,9 +158,9 @@ Bvh buildTree(const std::vector<Aabb>& boxes, uint32_t leafSize, const FlattenOp
   return buildBvh(boxes, build);
 }
 
-class MeshBuilder {
+class MeshEncoder {
  public:
-  MeshBuilder(const Scene& scene, FlatScene& flat, const FlattenOptions& options)
+  MeshEncoder(const Scene& scene, FlatScene& flat, const FlattenOptions& options)
       : scene_(scene), flat_(flat), options_(options) {}
 
   // `placement` is applied to the vertices: a mesh used by one shape is
@@ -295,7 +295,7 @@ std::vector<std::optional<MeshBlas>> addMeshes(const Scene& scene,
     textured[instance.mesh] =
         textured[instance.mesh] || scene.materials[prim.materialIndex].diffuseTexture >= 0;
   }
-  MeshBuilder builder(scene, flat, options);
+  MeshEncoder builder(scene, flat, options);
   std::vector<std::optional<MeshBlas>> meshes(scene.meshes.size());
   for (const PendingInstance& instance : instances) {
     std::optional<MeshBlas>& blas = meshes[instance.mesh];

@@ -8,15 +8,11 @@
 #include "formats/json/JsonSceneLoader.hpp"
 #include "formats/obj/ObjLoader.hpp"
 #include "util/Error.hpp"
+#include "util/Text.hpp"
 
 namespace rt {
 
-bool isGltfFile(const std::filesystem::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".gltf" || ext == ".glb";
-}
+bool isGltfFile(const std::filesystem::path& file) { return hasExtension(file, {".gltf", ".glb"}); }
 
 Scene loadSceneFile(const std::filesystem::path& file, const SceneLoadOptions& options) {
   Scene scene = isGltfFile(file)  ? loadGltfScene(file)

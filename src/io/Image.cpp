@@ -12,16 +12,10 @@
 
 #include "io/AtomicFile.hpp"
 #include "util/Error.hpp"
+#include "util/Text.hpp"
 
 namespace rt {
 namespace {
-
-std::string lowerExtension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 float srgbEncode(float linear) {
   return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
@@ -155,16 +149,14 @@ Image8 toneMap(const ImageF& image, const ToneMapping& mapping) {
   return out;
 }
 
-bool isExrPath(const std::filesystem::path& path) { return lowerExtension(path) == ".exr"; }
+bool isExrPath(const std::filesystem::path& path) { return hasExtension(path, {".exr"}); }
 
 bool is8BitImagePath(const std::filesystem::path& path) {
-  std::string ext = lowerExtension(path);
-  return ext == ".png" || ext == ".ppm";
+  return hasExtension(path, {".png", ".ppm"});
 }
 
 bool isSupportedImageExtension(const std::filesystem::path& path) {
-  std::string ext = lowerExtension(path);
-  return ext == ".ppm" || ext == ".png" || ext == ".exr" || ext == ".hdr";
+  return hasExtension(path, {".ppm", ".png", ".exr", ".hdr"});
 }
 
 void writeImage(const std::filesystem::path& path, const ImageF& image, const ToneMapping& mapping,

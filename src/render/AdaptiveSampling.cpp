@@ -177,4 +177,64 @@ uint32_t AdaptivePlan::maxSamples() const {
   return most;
 }
 
+AdaptiveRounds::AdaptiveRounds(uint32_t width, uint32_t height, const PixelRegion& region,
+                               const Goal& goal)
+    : plan_(width, height, region),
+      region_(region),
+      goal_(goal),
+      round_(plan_.uniformRound(std::min(goal.meanSamples, kAdaptiveFirstPass))) {
+  finished_ = goal.meanSamples == 0 || plan_.regionPixels() == 0;
+}
+
+uint32_t AdaptiveRounds::bandEnd(uint32_t y, double work) const {
+  const uint32_t tile = AdaptivePlan::kTileSize;
+  const uint32_t bottom = region_.y + region_.height;
+  double sum = 0;
+  uint32_t end = y;
+  while (end < bottom && (end == y || sum < work)) {
+    uint32_t next = std::min((end / tile + 1) * tile, bottom);
+    sum += rowWork(end, next);
+    end = next;
+  }
+  return end;
+}
+
+double AdaptiveRounds::rowWork(uint32_t y, uint32_t end) const {
+  const uint32_t tile = AdaptivePlan::kTileSize;
+  double work = 0;
+  for (uint32_t row = y; row < end;) {
+    uint32_t next = std::min((row / tile + 1) * tile, end);
+    for (uint32_t tx = region_.x / tile; tx * tile < region_.x + region_.width; ++tx) {
+      uint32_t x0 = std::max(tx * tile, region_.x);
+      uint32_t x1 = std::min((tx + 1) * tile, region_.x + region_.width);
+      work +=
+          double(round_[size_t(row / tile) * plan_.tilesPerRow() + tx]) * (x1 - x0) * (next - row);
+    }
+    row = next;
+  }
+  return work;
+}
+
+void AdaptiveRounds::finishRound(const SampleSums& sums, const ToneMapping& mapping) {
+  plan_.addRound(round_);
+  ++rounds_;
+  estimate_ = estimateDisplayRmse(sums, mapping, region_);
+  AllocationGoal next;
+  next.targetMse = goal_.targetRmse * goal_.targetRmse;
+  next.sampleBudget =
+      double(goal_.meanSamples) * double(plan_.regionPixels()) - double(plan_.pixelSamples());
+  next.maxSamples = goal_.maxSamples;
+  round_ = reachedTarget() ? std::vector<uint32_t>(round_.size(), 0)
+                           : allocateSamples(plan_.measureNoise(sums, mapping), next);
+  finished_ = std::none_of(round_.begin(), round_.end(), [](uint32_t n) { return n > 0; });
+}
+
+bool AdaptiveRounds::reachedTarget() const {
+  return goal_.targetRmse > 0 && estimate_ && *estimate_ <= goal_.targetRmse;
+}
+
+double AdaptiveRounds::meanSamples() const {
+  return double(plan_.pixelSamples()) / double(std::max<uint64_t>(plan_.regionPixels(), 1));
+}
+
 }  // namespace rt

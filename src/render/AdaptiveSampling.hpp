@@ -25,6 +25,7 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
 #include <vector>
 
 #include "gpu_types.h"
@@ -33,6 +34,9 @@
 #include "io/Image.hpp"
 
 namespace rt {
+
+// Samples per pixel of the uniform first round.
+constexpr uint32_t kAdaptiveFirstPass = 4;
 
 // One tile as the allocation sees it.
 struct TileNoise {
@@ -91,6 +95,49 @@ class AdaptivePlan {
   std::vector<uint32_t> pixels_;   // region pixels per tile
   std::vector<uint32_t> samples_;  // per tile
   uint64_t regionPixels_ = 0;
+};
+
+// One adaptive render's rounds, shared by the offline renderer and the
+// viewer: the samples the current round adds per tile, bands of whole tile
+// rows to render them in, and after each round the estimate, the stopping
+// test and the next round's plan. The caller renders each round (upload
+// kernelRanges(), dispatch the bands) and then calls finishRound.
+class AdaptiveRounds {
+ public:
+  struct Goal {
+    uint32_t meanSamples = 0;  // budget: samples per pixel on average
+    double targetRmse = 0;     // stop once the estimate reaches it (0: no target)
+    uint32_t maxSamples = 0;   // per pixel
+  };
+
+  AdaptiveRounds(uint32_t width, uint32_t height, const PixelRegion& region, const Goal& goal);
+
+  // No samples left to add: the target is reached or the budget spent.
+  bool finished() const { return finished_; }
+  // The current round's (first sample, count) per tile, for the kernel.
+  std::vector<glm::uvec2> kernelRanges() const { return plan_.kernelRanges(round_); }
+  // The end of a band of whole tile rows from image row `y` (in the region)
+  // holding about `work` pixel-samples of this round (at least one tile row).
+  uint32_t bandEnd(uint32_t y, double work) const;
+  // Pixel-samples this round adds to image rows [y, end).
+  double rowWork(uint32_t y, uint32_t end) const;
+
+  // The round was rendered: `sums` holds every sample so far.
+  void finishRound(const SampleSums& sums, const ToneMapping& mapping);
+
+  std::optional<double> rmseEstimate() const { return estimate_; }
+  bool reachedTarget() const;
+  double meanSamples() const;  // per pixel of the region, rendered so far
+  uint32_t rounds() const { return rounds_; }
+
+ private:
+  AdaptivePlan plan_;
+  PixelRegion region_;
+  Goal goal_;
+  std::vector<uint32_t> round_;  // samples per pixel this round adds, per tile
+  std::optional<double> estimate_;
+  uint32_t rounds_ = 0;
+  bool finished_ = false;
 };
 
 }  // namespace rt

@@ -88,12 +88,11 @@ Renderer::Renderer(VulkanContext& context, const ShaderCompiler& compiler)
 
 namespace {
 
-// One render's sample loop: passes of a few samples over every row of the
-// region, in dispatches the planner sizes, with progress reports and the
-// error estimate at checkpoints.
-class RenderLoop {
- public:
-  RenderLoop(VulkanContext& context, ProgressiveRenderer& job, const RenderOptions& options,
+// What both sample loops share: the job, the options, progress reports and
+// dispatches timed for the planner.
+class SampleLoop {
+ protected:
+  SampleLoop(VulkanContext& context, ProgressiveRenderer& job, const RenderOptions& options,
              const ToneMapping& mapping, const ProgressCallback& onProgress, RenderStats& stats)
       : context_(context),
         job_(job),
@@ -101,7 +100,44 @@ class RenderLoop {
         mapping_(mapping),
         onProgress_(onProgress),
         stats_(stats),
-        planner_(job.region().width, job.region().height, options.secondsPerDispatch),
+        planner_(job.region().width, job.region().height, options.secondsPerDispatch) {}
+
+  bool stopRequested() const { return options_.shouldStop && options_.shouldStop(); }
+
+  void report(double done, uint32_t total, std::optional<double> estimate) const {
+    if (!onProgress_) return;
+    onProgress_(RenderProgress{done, total, secondsSince(start_), estimate, options_.targetRmse});
+  }
+
+  // Submits one dispatch and waits; its time, per `pixelSamples`, sizes the
+  // next ones.
+  template <typename Record>
+  void dispatch(Record record, double pixelSamples) {
+    auto dispatchStart = Clock::now();
+    context_.submitAndWait(record);
+    if (pixelSamples > 0) planner_.record(pixelSamples, secondsSince(dispatchStart));
+    ++stats_.dispatches;
+    if (options_.countRays) stats_.raysTraced = job_.raysTraced();
+  }
+
+  VulkanContext& context_;
+  ProgressiveRenderer& job_;
+  const RenderOptions& options_;
+  ToneMapping mapping_;
+  const ProgressCallback& onProgress_;
+  RenderStats& stats_;
+  DispatchPlanner planner_;
+  const Clock::time_point start_ = Clock::now();
+};
+
+// One render's sample loop: passes of a few samples over every row of the
+// region, in dispatches the planner sizes, with progress reports and the
+// error estimate at checkpoints.
+class RenderLoop : SampleLoop {
+ public:
+  RenderLoop(VulkanContext& context, ProgressiveRenderer& job, const RenderOptions& options,
+             const ToneMapping& mapping, const ProgressCallback& onProgress, RenderStats& stats)
+      : SampleLoop(context, job, options, mapping, onProgress, stats),
         end_(options.endSample ? options.endSample : options.samplesPerPixel),
         estimating_(options.estimateError || options.targetRmse > 0) {}
 
@@ -121,6 +157,7 @@ class RenderLoop {
 
  private:
   uint32_t samplesDone() const { return job_.samplesDone() - options_.firstSample; }
+  uint32_t samplesWanted() const { return end_ - options_.firstSample; }
 
   static bool isCheckpoint(uint32_t done) {
     return done > 0 && nextRmseCheckpoint(done - 1) == done;
@@ -136,167 +173,90 @@ class RenderLoop {
   bool updateEstimate() {
     estimate_ = job_.estimateRmse(mapping_);
     estimatedAt_ = samplesDone();
-    report(samplesDone());
+    report(samplesDone(), samplesWanted(), estimate_);
     stats_.reachedTarget = options_.targetRmse > 0 && estimate_ &&
                            *estimate_ <= options_.targetRmse &&
                            samplesDone() >= kMinSamplesForTarget;
     return stats_.reachedTarget;
   }
 
-  void report(double done) const {
-    if (!onProgress_) return;
-    RenderProgress progress{done, end_ - options_.firstSample, secondsSince(start_), estimate_,
-                            options_.targetRmse};
-    onProgress_(progress);
-  }
-
   // Adds `samples` to every row of the region; false if stopped part way.
   bool renderPass(uint32_t samples) {
     const uint32_t height = job_.region().height;
     for (uint32_t row = 0; row < height;) {
-      if (options_.shouldStop && options_.shouldStop()) return false;
+      if (stopRequested()) return false;
       uint32_t rows = std::min(planner_.rowsPerDispatch(samples), height - row);
-      auto dispatchStart = Clock::now();
-      context_.submitAndWait(
-          [&](VkCommandBuffer commands) { job_.recordSamples(commands, row, rows, samples); });
-      planner_.record(double(job_.region().width) * rows * samples, secondsSince(dispatchStart));
-      ++stats_.dispatches;
+      dispatch([&](VkCommandBuffer commands) { job_.recordSamples(commands, row, rows, samples); },
+               double(job_.region().width) * rows * samples);
       row += rows;
-      if (options_.countRays) stats_.raysTraced = job_.raysTraced();
-      report(samplesDone() + samples * double(row) / height);
+      report(samplesDone() + samples * double(row) / height, samplesWanted(), estimate_);
     }
     return true;
   }
 
-  VulkanContext& context_;
-  ProgressiveRenderer& job_;
-  const RenderOptions& options_;
-  ToneMapping mapping_;
-  const ProgressCallback& onProgress_;
-  RenderStats& stats_;
-  DispatchPlanner planner_;
   const uint32_t end_;
   const bool estimating_;
-  const Clock::time_point start_ = Clock::now();
   std::optional<double> estimate_;
   uint32_t estimatedAt_ = 0;
 };
 
-// An adaptive render's rounds (AdaptiveSampling.hpp): a uniform first pass,
-// then after each round the estimate, the stopping test and the next
-// round's per-tile sample counts.
-class AdaptiveLoop {
+// An adaptive render (AdaptiveSampling.hpp): each round in bands of whole
+// tile rows, each about one dispatch's work.
+class AdaptiveLoop : SampleLoop {
  public:
   AdaptiveLoop(VulkanContext& context, ProgressiveRenderer& job, const RenderOptions& options,
                const ToneMapping& mapping, const ProgressCallback& onProgress, RenderStats& stats)
-      : context_(context),
-        job_(job),
-        options_(options),
-        mapping_(mapping),
-        onProgress_(onProgress),
-        stats_(stats),
-        planner_(job.region().width, job.region().height, options.secondsPerDispatch),
-        plan_(job.width(), job.height(), job.region()),
-        budget_(double(options.samplesPerPixel) * double(plan_.regionPixels())) {}
+      : SampleLoop(context, job, options, mapping, onProgress, stats),
+        rounds_(job.width(), job.height(), job.region(),
+                {options.samplesPerPixel, options.targetRmse, kMaxSamplesPerPixel}) {}
 
   void run() {
-    std::vector<uint32_t> added =
-        plan_.uniformRound(std::min(options_.samplesPerPixel, kAdaptiveFirstPass));
-    while (std::any_of(added.begin(), added.end(), [](uint32_t n) { return n > 0; })) {
-      if (!renderRound(added)) {
+    while (!rounds_.finished()) {
+      if (!renderRound()) {
         stats_.stoppedEarly = true;
         break;
       }
-      plan_.addRound(added);
-      SampleSums sums = job_.sampleSums();
-      stats_.rmseEstimate = estimateDisplayRmse(sums, mapping_, job_.region());
-      report(meanSamples());
-      if (reachedTarget()) break;
-      AllocationGoal goal;
-      goal.targetMse = options_.targetRmse * options_.targetRmse;
-      goal.sampleBudget = budget_ - double(plan_.pixelSamples());
-      goal.maxSamples = kMaxSamplesPerPixel;
-      added = allocateSamples(plan_.measureNoise(sums, mapping_), goal);
+      rounds_.finishRound(job_.sampleSums(), mapping_);
+      stats_.rmseEstimate = rounds_.rmseEstimate();
+      stats_.reachedTarget = rounds_.reachedTarget();
+      report(rounds_.meanSamples(), options_.samplesPerPixel, stats_.rmseEstimate);
     }
   }
 
  private:
-  double meanSamples() const {
-    return double(plan_.pixelSamples()) / double(std::max<uint64_t>(plan_.regionPixels(), 1));
-  }
-
-  bool reachedTarget() {
-    stats_.reachedTarget = options_.targetRmse > 0 && stats_.rmseEstimate &&
-                           *stats_.rmseEstimate <= options_.targetRmse;
-    return stats_.reachedTarget;
-  }
-
-  void report(double done) const {
-    if (!onProgress_) return;
-    onProgress_(RenderProgress{done, options_.samplesPerPixel, secondsSince(start_),
-                               stats_.rmseEstimate, options_.targetRmse});
-  }
-
-  // Bands of whole tile rows, each about one dispatch's work; false if
-  // stopped part way.
-  bool renderRound(const std::vector<uint32_t>& added) {
-    job_.setSamplePlan(plan_.kernelRanges(added));
+  // False if stopped part way.
+  bool renderRound() {
+    job_.setSamplePlan(rounds_.kernelRanges());
     const PixelRegion& region = job_.region();
-    const uint32_t tile = AdaptivePlan::kTileSize;
-    const double done = meanSamples();
-    uint32_t y = region.y;
-    while (y < region.y + region.height) {
-      if (options_.shouldStop && options_.shouldStop()) return false;
-      double work = 0;
-      uint32_t end = y;
-      while (end < region.y + region.height && (end == y || work < planner_.workPerDispatch())) {
-        uint32_t next = std::min((end / tile + 1) * tile, region.y + region.height);
-        work += rowWork(added, end, next);
-        end = next;
-      }
-      auto dispatchStart = Clock::now();
-      context_.submitAndWait([&](VkCommandBuffer commands) {
-        job_.recordPlannedSamples(commands, y - region.y, end - y);
-      });
-      if (work > 0) planner_.record(work, secondsSince(dispatchStart));
-      ++stats_.dispatches;
+    for (uint32_t y = region.y; y < region.y + region.height;) {
+      if (stopRequested()) return false;
+      uint32_t end = rounds_.bandEnd(y, planner_.workPerDispatch());
+      dispatch(
+          [&](VkCommandBuffer commands) {
+            job_.recordPlannedSamples(commands, y - region.y, end - y);
+          },
+          rounds_.rowWork(y, end));
       y = end;
-      if (options_.countRays) stats_.raysTraced = job_.raysTraced();
-      report(done);
+      report(rounds_.meanSamples(), options_.samplesPerPixel, stats_.rmseEstimate);
     }
     return true;
   }
 
-  // Pixel-samples `added` puts into image rows [y, end) of the region, all
-  // in one row of tiles.
-  double rowWork(const std::vector<uint32_t>& added, uint32_t y, uint32_t end) const {
-    const PixelRegion& region = job_.region();
-    const uint32_t tile = AdaptivePlan::kTileSize;
-    double work = 0;
-    for (uint32_t tx = region.x / tile; tx * tile < region.x + region.width; ++tx) {
-      uint32_t x0 = std::max(tx * tile, region.x);
-      uint32_t x1 = std::min((tx + 1) * tile, region.x + region.width);
-      work += double(added[size_t(y / tile) * plan_.tilesPerRow() + tx]) * (x1 - x0) * (end - y);
-    }
-    return work;
-  }
-
-  VulkanContext& context_;
-  ProgressiveRenderer& job_;
-  const RenderOptions& options_;
-  ToneMapping mapping_;
-  const ProgressCallback& onProgress_;
-  RenderStats& stats_;
-  DispatchPlanner planner_;
-  AdaptivePlan plan_;
-  const double budget_;
-  const Clock::time_point start_ = Clock::now();
+  AdaptiveRounds rounds_;
 };
 
 // Sample counts over the region from the accumulation, and the per-pixel
 // error image when asked for.
 void finishStats(ProgressiveRenderer& job, const RenderOptions& options, const ToneMapping& mapping,
                  RenderStats& stats) {
+  const bool uniform = !options.adaptive && !stats.stoppedEarly;
+  if (uniform && !options.keepErrorImage) {
+    // Every pixel got every pass: no need to read the counts back.
+    stats.samplesDone = job.samplesDone() - options.firstSample;
+    stats.meanSamples = stats.samplesDone;
+    stats.maxSamples = stats.samplesDone;
+    return;
+  }
   SampleSums sums = job.sampleSums();
   const PixelRegion& region = job.region();
   double total = 0;

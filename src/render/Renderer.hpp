@@ -38,7 +38,7 @@ struct RenderOptions : ImageSampling {
   double targetRmse = 0;
   std::optional<ToneMapping> displayMapping;
   // Adaptive sampling (render/AdaptiveSampling.hpp): after a uniform first
-  // pass of kAdaptiveFirstPass samples, rounds give more samples to the
+  // pass of kAdaptiveFirstPass samples (AdaptiveSampling.hpp), rounds give more samples to the
   // noisiest tiles. samplesPerPixel is then the budget of the mean count per
   // pixel, targetRmse (if any) the goal; the estimate is always made. Cannot
   // be combined with sample ranges (firstSample/endSample).
@@ -65,7 +65,6 @@ struct RenderProgress {
 // point does not depend on timing, and estimates cost little.
 uint32_t nextRmseCheckpoint(uint32_t samplesDone);
 constexpr uint32_t kMinSamplesForTarget = 8;
-constexpr uint32_t kAdaptiveFirstPass = 4;
 
 struct RenderStats {
   double setupSeconds = 0;   // flatten, BVH build, upload, shader compile

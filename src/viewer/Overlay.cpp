@@ -27,7 +27,12 @@ void showStatistics(const OverlayStats& stats) {
   ImGui::Text("%ux%u on %s", stats.renderSize.x, stats.renderSize.y, stats.device.c_str());
   ImGui::Text("features: %s", stats.features.c_str());
   ImGui::Separator();
-  ImGui::Text("samples per pixel: %u / %u", stats.samplesDone, stats.samplesTarget);
+  if (stats.adaptive) {
+    ImGui::Text("samples per pixel: %.1f / %u (mean)", stats.samplesDone, stats.samplesTarget);
+    if (stats.rmseEstimate) ImGui::Text("estimated RMSE: %.5f", *stats.rmseEstimate);
+  } else {
+    ImGui::Text("samples per pixel: %.0f / %u", stats.samplesDone, stats.samplesTarget);
+  }
   ImGui::Text("samples/s: %.2f M", stats.samplesPerSecond * 1e-6);
   ImGui::Text("frame time: %.1f ms", stats.frameMilliseconds);
 }
@@ -37,6 +42,7 @@ void editRenderSettings(OverlaySettings& settings, OverlayActions& actions) {
   // In SamplerKind order.
   const char* samplers[] = {"random", "jittered", "sobol"};
   actions.samplerChanged = ImGui::Combo("sampler", &settings.sampler, samplers, 3);
+  actions.adaptiveChanged = ImGui::Checkbox("adaptive sampling", &settings.adaptive);
   bool stepped = ImGui::InputInt("target spp", &settings.samplesTarget, 1, 16,
                                  ImGuiInputTextFlags_EnterReturnsTrue);
   settings.samplesTarget = std::clamp(settings.samplesTarget, 1, kMaxSamplesTarget);

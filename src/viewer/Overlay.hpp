@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 
 namespace rt {
@@ -19,8 +20,10 @@ class Swapchain;
 class Window;
 
 struct OverlayStats {
-  uint32_t samplesDone = 0;
+  double samplesDone = 0;  // per pixel; the mean under adaptive sampling
   uint32_t samplesTarget = 0;
+  bool adaptive = false;
+  std::optional<double> rmseEstimate;  // adaptive sampling's, after its first round
   double samplesPerSecond = 0.0;
   double frameMilliseconds = 0.0;
   glm::uvec2 renderSize{0};
@@ -33,6 +36,7 @@ struct OverlayStats {
 struct OverlaySettings {
   int sampler = 1;  // SamplerKind: 0 random, 1 jittered, 2 sobol
   int samplesTarget = 16;
+  bool adaptive = false;  // adaptive sampling: samplesTarget is the mean budget
   int bounces = 4;
   float indirectClamp = 0.0f;  // firefly clamp, 0: off (RenderSettings::indirectClamp)
   float exposure = 1.0f;
@@ -51,6 +55,7 @@ struct OverlayMessages {
 // What the user asked for this frame.
 struct OverlayActions {
   bool samplerChanged = false;
+  bool adaptiveChanged = false;
   bool targetChanged = false;
   bool bouncesChanged = false;
   bool clampChanged = false;

@@ -4,14 +4,13 @@
 
 #include <vulkan/vulkan.h>
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
+// clang-format off: the includes must stay between the two.
+#include "util/ThirdPartyBegin.hpp"
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
 #include <imgui.h>
-#pragma GCC diagnostic pop
+
+#include "util/ThirdPartyEnd.hpp"
+// clang-format on

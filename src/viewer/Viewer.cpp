@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <limits>
 #include <utility>
 
 #include "formats/SceneFile.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
 #include "render/BatchIntersector.hpp"
+#include "scene/Limits.hpp"
 #include "util/Error.hpp"
 #include "viewer/DisplayPass.hpp"
 #include "viewer/SceneBounds.hpp"
@@ -131,7 +133,12 @@ void Viewer::initialiseSettings() {
       options_.samplesTarget ? *options_.samplesTarget : (fromScene ? fromScene : kDefaultSamples));
   settings_.bounces = static_cast<int>(scene_.settings.maxBounces);
   settings_.indirectClamp = scene_.settings.indirectClamp;
-  SamplerKind sampler = options_.sampler.value_or(scene_.settings.sampler);
+  settings_.adaptive = options_.adaptive || scene_.settings.adaptive;
+  // As the render command: adaptive renders default to Sobol.
+  SamplerKind fallback = settings_.adaptive && !scene_.settings.samplerGiven
+                             ? SamplerKind::Sobol
+                             : scene_.settings.sampler;
+  SamplerKind sampler = options_.sampler.value_or(fallback);
   settings_.sampler = static_cast<int>(sampler);
   settings_.exposure = toneMappingFor(scene_).exposure * options_.exposure;
   settings_.apertureRadius = camera_.camera().apertureRadius;
@@ -190,6 +197,8 @@ std::unique_ptr<ProgressiveRenderer> Viewer::makeRenderer(glm::uvec2 size) const
   options.seed = options_.seed;
   options.sampler = samplerSetting();
   options.shading = options_.shading;
+  options.adaptive = settings_.adaptive;
+  options.independentHalves = settings_.adaptive;  // the rounds' noise estimate
   return std::make_unique<ProgressiveRenderer>(*context_, *compiler_, scene, options);
 }
 
@@ -217,6 +226,14 @@ bool Viewer::rebuildRenderer(glm::uvec2 size) {
 
 void Viewer::restartAccumulation() {
   planner_.restart();
+  adaptive_.reset();
+  adaptiveRow_ = 0;
+  if (settings_.adaptive) {
+    AdaptiveRounds::Goal goal{static_cast<uint32_t>(settings_.samplesTarget), 0.0,
+                              kMaxSamplesPerPixel};
+    adaptive_.emplace(renderer_->width(), renderer_->height(),
+                      PixelRegion{0, 0, renderer_->width(), renderer_->height()}, goal);
+  }
   doneLogged_ = false;
   accumulationStart_ = Clock::now();
 }
@@ -262,7 +279,21 @@ void Viewer::recreateSwapchain() {
 }
 
 bool Viewer::accumulating() const {
+  if (adaptive_) return !adaptive_->finished();
   return renderer_->samplesDone() < static_cast<uint32_t>(settings_.samplesTarget);
+}
+
+double Viewer::samplesPerPixel() const {
+  if (!adaptive_) return double(renderer_->samplesDone());
+  // Finished rounds, and the bands of the current one recorded so far.
+  double pixels = double(renderer_->width()) * renderer_->height();
+  double underway = adaptive_->finished() ? 0.0 : adaptive_->rowWork(0, adaptiveRow_);
+  return adaptive_->meanSamples() + underway / std::max(pixels, 1.0);
+}
+
+std::string Viewer::samplesText() const {
+  if (adaptive_) return fmt::format("{:.2f} mean", samplesPerPixel());
+  return std::to_string(renderer_->samplesDone());
 }
 
 int Viewer::run() {
@@ -441,16 +472,43 @@ void Viewer::recordFrame(VkCommandBuffer commands, uint32_t imageIndex) {
   }
 }
 
+std::vector<Band> Viewer::planAdaptiveBands() {
+  const uint32_t height = renderer_->height();
+  if (adaptiveRow_ >= height) {
+    // The round's last band was in the frame just finished: with nothing
+    // in flight, read the sums back and plan the next round.
+    adaptive_->finishRound(renderer_->sampleSums(), displayMapping());
+    adaptiveRow_ = 0;
+    frameBusy_ = true;
+  }
+  if (adaptive_->finished()) return {};
+  if (adaptiveRow_ == 0) renderer_->setSamplePlan(adaptive_->kernelRanges());
+  // Scripted runs with fixed samples per frame render a whole round a frame.
+  double budget =
+      options_.samplesPerFrame > 0 ? std::numeric_limits<double>::infinity() : planner_.budget();
+  uint32_t end = adaptive_->bandEnd(adaptiveRow_, budget);
+  Band band{adaptiveRow_, end - adaptiveRow_, 0, end == height};
+  adaptiveRow_ = end;
+  return {band};
+}
+
 Viewer::RowRange Viewer::recordRenderBands(VkCommandBuffer commands) {
   std::vector<Band> bands =
-      planner_.plan(renderer_->width(), renderer_->height(), renderer_->samplesDone(),
-                    static_cast<uint32_t>(settings_.samplesTarget));
+      adaptive_ ? planAdaptiveBands()
+                : planner_.plan(renderer_->width(), renderer_->height(), renderer_->samplesDone(),
+                                static_cast<uint32_t>(settings_.samplesTarget));
   submittedPixelSamples_ = 0;
   uint32_t first = renderer_->height();
   uint32_t end = 0;
   for (const Band& band : bands) {
     first = std::min(first, band.row);
     end = std::max(end, band.row + band.rows);
+    if (adaptive_) {
+      renderer_->recordPlannedSamples(commands, band.row, band.rows);
+      submittedPixelSamples_ +=
+          static_cast<uint64_t>(adaptive_->rowWork(band.row, band.row + band.rows));
+      continue;
+    }
     renderer_->recordSamples(commands, band.row, band.rows, band.samples);
     // Sample indices of the next band start after this pass.
     if (band.endsPass) renderer_->finishPass(band.samples);
@@ -465,15 +523,15 @@ void Viewer::logFrame() {
   uint32_t target = static_cast<uint32_t>(settings_.samplesTarget);
   bool due = options_.verbose || now - lastLogAt_ >= kLogInterval;
   if (due && (submittedFrameRendered_ || options_.verbose)) {
-    std::printf("frame %llu spp=%u/%u ms=%.1f msps=%.3f work=%llu\n",
-                static_cast<unsigned long long>(framesPresented_), renderer_->samplesDone(), target,
+    std::printf("frame %llu spp=%s/%u ms=%.1f msps=%.3f work=%llu\n",
+                static_cast<unsigned long long>(framesPresented_), samplesText().c_str(), target,
                 frameMilliseconds_, rate_.perSecond() * 1e-6,
                 static_cast<unsigned long long>(submittedPixelSamples_));
     lastLogAt_ = now;
   }
   if (!accumulating() && !doneLogged_) {
     double seconds = std::chrono::duration<double>(now - accumulationStart_).count();
-    std::printf("done: spp=%u in %.2f s (frame %llu)\n", renderer_->samplesDone(), seconds,
+    std::printf("done: spp=%s in %.2f s (frame %llu)\n", samplesText().c_str(), seconds,
                 static_cast<unsigned long long>(framesPresented_));
     doneLogged_ = true;
   }
@@ -482,7 +540,9 @@ void Viewer::logFrame() {
 
 OverlayStats Viewer::overlayStats() const {
   OverlayStats stats;
-  stats.samplesDone = renderer_->samplesDone();
+  stats.samplesDone = samplesPerPixel();
+  stats.adaptive = adaptive_.has_value();
+  if (adaptive_) stats.rmseEstimate = adaptive_->rmseEstimate();
   stats.samplesTarget = static_cast<uint32_t>(settings_.samplesTarget);
   stats.samplesPerSecond = rate_.perSecond();
   stats.frameMilliseconds = frameMilliseconds_;

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "render/AdaptiveSampling.hpp"
 #include "render/ProgressiveRenderer.hpp"
 #include "scene/Scene.hpp"
 #include "viewer/CameraPath.hpp"
@@ -116,9 +117,14 @@ class Viewer {
     uint32_t count = 0;
   };
   RowRange recordRenderBands(VkCommandBuffer commands);
+  // Adaptive sampling: this frame's band of the current round, after
+  // planning the next round when the last one is rendered.
+  std::vector<Band> planAdaptiveBands();
   void recreateSwapchain();
   void logFrame();
   bool accumulating() const;
+  double samplesPerPixel() const;   // the mean under adaptive sampling
+  std::string samplesText() const;  // for the log: "16", or "12.37 mean" when adaptive
   OverlayStats overlayStats() const;
 
   ViewerOptions options_;
@@ -143,6 +149,10 @@ class Viewer {
   bool swapchainStale_ = false;
 
   FramePlanner planner_;
+  // Adaptive sampling (settings_.adaptive): the rounds since the last
+  // restart, and the first row of the current round not yet recorded.
+  std::optional<AdaptiveRounds> adaptive_;
+  uint32_t adaptiveRow_ = 0;
   OrbitCamera camera_;
   CameraPathPlayer path_;
   OverlaySettings settings_;

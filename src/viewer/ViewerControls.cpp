@@ -253,12 +253,14 @@ void Viewer::applyPathStep(const PathStep& step) {
 
 void Viewer::applyOverlayActions(const OverlayActions& actions) {
   glm::uvec2 size{renderer_->width(), renderer_->height()};
-  if (actions.bouncesChanged || actions.clampChanged || actions.samplerChanged) {
+  if (actions.bouncesChanged || actions.clampChanged || actions.samplerChanged ||
+      actions.adaptiveChanged) {
     rebuildRenderer(size);
   } else if (actions.targetChanged) {
     // The jittered sampler stratifies for the target count: a new target is
-    // a new sample pattern. Random samples stay valid; just go on.
-    if (samplerSetting() == SamplerKind::Jittered) {
+    // a new sample pattern. Random samples stay valid; just go on. Adaptive
+    // rounds plan for their budget: a new one starts again.
+    if (samplerSetting() == SamplerKind::Jittered || settings_.adaptive) {
       rebuildRenderer(size);
     } else {
       doneLogged_ = false;
@@ -333,7 +335,7 @@ void Viewer::saveImage(std::filesystem::path path) {
   }
   try {
     writeImage(path, renderer_->resolve(), displayMapping());
-    notice(fmt::format("saved: {} ({} spp)", path.string(), renderer_->samplesDone()));
+    notice(fmt::format("saved: {} ({} spp)", path.string(), samplesText()));
   } catch (const std::exception& e) {
     notice(fmt::format("save: error {}", e.what()));
   }

@@ -28,6 +28,7 @@ struct ViewerOptions {
   std::optional<uint32_t> deviceIndex;
   uint32_t seed = 0;
   std::optional<SamplerKind> sampler;
+  bool adaptive = false;  // adaptive sampling (also when the scene asks for it)
   std::optional<ShadingModel> shading;
   std::optional<Conventions> conventions;  // default: what the scene's keys say
   float exposure = 1.0f;                   // extra factor on the scene's exposure

@@ -22,13 +22,6 @@ using namespace rt;
 
 namespace {
 
-TriangleMesh bumpySphere(uint32_t rings, uint32_t segments) {
-  BumpySphereShape shape;
-  shape.rings = rings;
-  shape.segments = segments;
-  return rt::bumpySphere(shape);
-}
-
 // Placements of one mesh: rotated, non-uniformly scaled, mirrored.
 std::vector<glm::mat4> placements() {
   glm::mat4 identity(1.0f);
@@ -43,7 +36,7 @@ std::vector<glm::mat4> placements() {
 Scene meshScene(bool flattened, uint32_t instances = 3) {
   Scene scene;
   scene.materials.push_back({});
-  TriangleMesh mesh = bumpySphere(24, 32);
+  TriangleMesh mesh = bumpySphere({24, 32});
   std::vector<glm::mat4> where = placements();
   for (uint32_t i = 0; i < instances; ++i) {
     if (flattened || scene.meshes.empty()) scene.meshes.push_back(mesh);
@@ -174,7 +167,7 @@ TEST_SUITE("bvh-gpu") {
     CHECK(features.looseTriangles);  // the floor quad
     Scene meshOnly;
     meshOnly.materials.push_back({});
-    meshOnly.meshes.push_back(bumpySphere(4, 6));
+    meshOnly.meshes.push_back(bumpySphere({4, 6}));
     meshOnly.shapes.push_back(
         {MeshInstance{0, glm::scale(glm::mat4(1.0f), glm::vec3(2.0f))}, 0, ""});
     features = detectFeatures(meshOnly, flattenScene(meshOnly));

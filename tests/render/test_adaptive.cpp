@@ -22,10 +22,6 @@ using namespace rt;
 
 namespace {
 
-Scene studyScene(const std::string& name) {
-  return loadJsonScene(std::filesystem::path(RT_SOURCE_SHADER_DIR) / ".." / "scenes" / name);
-}
-
 // 96x72: large enough that the noise sits in some tiles more than in
 // others (12 x 9 tiles).
 RenderOptions smallRender(SamplerKind sampler, uint32_t samples, uint32_t seed = 1,
@@ -46,13 +42,6 @@ RenderOptions adaptiveRender(uint32_t samples, uint32_t seed = 1, uint32_t width
   return options;
 }
 
-ImageF render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr) {
-  Renderer renderer(test::gpu(), test::shaderCompiler());
-  ImageF image = renderer.render(scene, options, {}, stats);
-  test::checkNoValidationMessages();
-  return image;
-}
-
 // A study scene with 2048 Sobol samples (another seed): its own error is
 // far below the measured renders'.
 const ImageF& studyTruth(const std::string& name, uint32_t width = 96) {
@@ -60,7 +49,8 @@ const ImageF& studyTruth(const std::string& name, uint32_t width = 96) {
   auto found = truths.find({name, width});
   if (found == truths.end()) {
     RenderOptions options = smallRender(SamplerKind::Sobol, 2048, 999, width);
-    found = truths.emplace(std::pair{name, width}, render(studyScene(name), options)).first;
+    found = truths.emplace(std::pair{name, width}, test::render(test::projectScene(name), options))
+                .first;
   }
   return found->second;
 }
@@ -166,10 +156,10 @@ TEST_SUITE("adaptive sampling") {
   }
 
   TEST_CASE("adaptive renders are deterministic, within the budget, and sample the penumbrae") {
-    Scene scene = studyScene("study-arealight.json");
+    Scene scene = test::projectScene("study-arealight.json");
     RenderStats first, second;
-    ImageF a = render(scene, adaptiveRender(32), &first);
-    ImageF b = render(scene, adaptiveRender(32), &second);
+    ImageF a = test::render(scene, adaptiveRender(32), &first);
+    ImageF b = test::render(scene, adaptiveRender(32), &second);
     CHECK(a.rgba == b.rgba);
     CHECK(first.meanSamples <= 32.0);
     CHECK(first.meanSamples > 16.0);
@@ -177,7 +167,7 @@ TEST_SUITE("adaptive sampling") {
     CHECK(first.maxSamples >= 4 * first.samplesDone);  // the counts spread
     CHECK(first.estimatedError.size() == a.rgba.size() / 4);
     // Another seed decides differently.
-    ImageF c = render(scene, adaptiveRender(32, 2));
+    ImageF c = test::render(scene, adaptiveRender(32, 2));
     CHECK(c.rgba != a.rgba);
   }
 
@@ -187,12 +177,12 @@ TEST_SUITE("adaptive sampling") {
     constexpr uint32_t kWidth = 160;
     for (const char* name : {"study-arealight.json", "study-thinlens.json"}) {
       CAPTURE(std::string(name));
-      Scene scene = studyScene(name);
+      Scene scene = test::projectScene(name);
       ToneMapping mapping = toneMappingFor(scene);
       const ImageF& truth = studyTruth(name, kWidth);
       RenderStats stats;
       auto error = [&](const RenderOptions& options, RenderStats* s = nullptr) {
-        return displayRmse(render(scene, options, s), truth, mapping);
+        return displayRmse(test::render(scene, options, s), truth, mapping);
       };
       double adaptive = error(adaptiveRender(32, 1, kWidth), &stats);
       double jittered = error(smallRender(SamplerKind::Jittered, 32, 1, kWidth));
@@ -211,11 +201,11 @@ TEST_SUITE("adaptive sampling") {
       for (uint32_t samples : {24u, 64u}) {
         CAPTURE(std::string(name));
         CAPTURE(samples);
-        Scene scene = studyScene(name);
+        Scene scene = test::projectScene(name);
         ToneMapping mapping = toneMappingFor(scene);
         const ImageF& truth = studyTruth(name);
         RenderStats stats;
-        ImageF image = render(scene, adaptiveRender(samples), &stats);
+        ImageF image = test::render(scene, adaptiveRender(samples), &stats);
         double trueRmse = displayRmse(image, truth, mapping);
         REQUIRE(stats.rmseEstimate);
         CAPTURE(trueRmse);
@@ -248,11 +238,11 @@ TEST_SUITE("adaptive sampling") {
   }
 
   TEST_CASE("--target-rmse with adaptive sampling stops once the estimate reaches it") {
-    Scene scene = studyScene("study-thinlens.json");
+    Scene scene = test::projectScene("study-thinlens.json");
     RenderOptions options = adaptiveRender(4096);
     options.targetRmse = 0.012;
     RenderStats stats;
-    render(scene, options, &stats);
+    test::render(scene, options, &stats);
     REQUIRE(stats.rmseEstimate);
     CHECK(stats.reachedTarget);
     CHECK(*stats.rmseEstimate <= 0.012);
@@ -260,9 +250,9 @@ TEST_SUITE("adaptive sampling") {
   }
 
   TEST_CASE("an adaptive render cannot be split into sample ranges") {
-    Scene scene = studyScene("study-thinlens.json");
+    Scene scene = test::projectScene("study-thinlens.json");
     RenderOptions options = adaptiveRender(16);
     options.firstSample = 8;
-    CHECK_THROWS_AS(render(scene, options), Error);
+    CHECK_THROWS_AS(test::render(scene, options), Error);
   }
 }

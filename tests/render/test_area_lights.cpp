@@ -17,13 +17,10 @@ namespace {
 constexpr float kPi = glm::pi<float>();
 
 ImageF renderScene(const Scene& scene, uint32_t spp, SamplerKind sampler = SamplerKind::Sobol) {
-  Renderer renderer(test::gpu(), test::shaderCompiler());
   RenderOptions options;
   options.samplesPerPixel = spp;
   options.sampler = sampler;
-  ImageF image = renderer.render(scene, options);
-  test::checkNoValidationMessages();
-  return image;
+  return test::render(scene, options);
 }
 
 glm::vec3 pixel(const ImageF& image, uint32_t x, uint32_t y) {
@@ -44,15 +41,6 @@ float meanAround(const ImageF& image, uint32_t x, uint32_t y, uint32_t half, int
   return float(sum / count);
 }
 
-Material diffuse(glm::vec3 color, float kd = 1.0f) {
-  Material m;
-  m.diffuseColor = color;
-  m.kd = kd;
-  m.ks = 0.0f;
-  m.specularExponent = 1;
-  return m;
-}
-
 uint32_t addShape(Scene& scene, Geometry geometry, const Material& material) {
   scene.materials.push_back(material);
   Shape shape;
@@ -63,7 +51,7 @@ uint32_t addShape(Scene& scene, Geometry geometry, const Material& material) {
 }
 
 void addAreaLight(Scene& scene, Geometry geometry, float intensity, uint32_t samples) {
-  Material emitter = diffuse(glm::vec3(0), 0);
+  Material emitter = test::diffuse(glm::vec3(0), 0);
   AreaLight light;
   light.shape = addShape(scene, geometry, emitter);
   light.diffuseIntensity = light.specularIntensity = glm::vec3(intensity);
@@ -82,7 +70,7 @@ Scene wallScene(uint32_t size) {
   scene.camera.forward = {0, 0, -1};
   scene.camera.fovYDegrees = 40;
   addShape(scene, Quad{{-20, -20, 0}, {20, -20, 0}, {20, 20, 0}, {-20, 20, 0}},
-           diffuse(glm::vec3(1)));
+           test::diffuse(glm::vec3(1)));
   return scene;
 }
 
@@ -106,7 +94,7 @@ Scene causticStage() {
 }
 
 void addGlassBall(Scene& scene) {
-  Material glass = diffuse(glm::vec3(0), 0);
+  Material glass = test::diffuse(glm::vec3(0), 0);
   glass.transmission = 1;
   glass.ior = 1.5f;
   addShape(scene, Sphere{{0, 0, 1.1f}, 0.5f}, glass);
@@ -118,13 +106,6 @@ RenderOptions standardShading(uint32_t spp) {
   options.sampler = SamplerKind::Sobol;
   options.shading = ShadingModel::Standard;
   return options;
-}
-
-ImageF render(const Scene& scene, const RenderOptions& options) {
-  Renderer renderer(test::gpu(), test::shaderCompiler());
-  ImageF image = renderer.render(scene, options);
-  test::checkNoValidationMessages();
-  return image;
 }
 
 double maxRelativeDifference(const ImageF& a, const ImageF& b, float floor) {
@@ -144,7 +125,7 @@ TEST_SUITE("area lights") {
     const glm::vec3 centre{0.3f, 2.5f, 1.5f};
     Scene point = wallScene(48);
     point.pointLights.push_back({centre, glm::vec3(3), glm::vec3(3)});
-    const ImageF expected = render(point, standardShading(16));
+    const ImageF expected = test::render(point, standardShading(16));
 
     Scene tinyQuad = wallScene(48);
     const float h = 5e-4f;
@@ -152,13 +133,14 @@ TEST_SUITE("area lights") {
                  Quad{centre + glm::vec3(-h, 0, -h), centre + glm::vec3(h, 0, -h),
                       centre + glm::vec3(h, 0, h), centre + glm::vec3(-h, 0, h)},
                  3.0f, 1);
-    CHECK(maxRelativeDifference(render(tinyQuad, standardShading(16)), expected, 1e-3f) < 2e-3);
+    CHECK(maxRelativeDifference(test::render(tinyQuad, standardShading(16)), expected, 1e-3f) <
+          2e-3);
 
     // A Lambertian sphere wholly above a surface lights it exactly like a
     // point at its centre, however large it is.
     Scene lamp = wallScene(48);
     addAreaLight(lamp, Sphere{centre, 0.5f}, 3.0f, 4);
-    CHECK(maxRelativeDifference(render(lamp, standardShading(64)), expected, 1e-3f) < 0.02);
+    CHECK(maxRelativeDifference(test::render(lamp, standardShading(64)), expected, 1e-3f) < 0.02);
   }
 
   TEST_CASE("a large quad light gives the irradiance of its points' quadrature") {
@@ -168,7 +150,7 @@ TEST_SUITE("area lights") {
     Scene scene = wallScene(33);
     addAreaLight(scene, Quad{{-1, 2.5f, 0.5f}, {1, 2.5f, 0.5f}, {1, 2.5f, 1.5f}, {-1, 2.5f, 1.5f}},
                  intensity, 4);
-    const ImageF image = render(scene, standardShading(256));
+    const ImageF image = test::render(scene, standardShading(256));
     // The centre pixel sees the wall at the origin (normal +z).
     double sum = 0;
     const int n = 400;
@@ -187,7 +169,7 @@ TEST_SUITE("area lights") {
     // Lambertian, the same power: radiance 2 pi I lightScale / A from each
     // face, so each point sends 2 |cos| times as much (normal along y).
     scene.areaLights[0].profile = EmissionProfile::Lambertian;
-    const ImageF lambertian = render(scene, standardShading(256));
+    const ImageF lambertian = test::render(scene, standardShading(256));
     sum = 0;
     for (int i = 0; i < n; ++i) {
       for (int j = 0; j < n; ++j) {
@@ -205,10 +187,10 @@ TEST_SUITE("area lights") {
     // A black ball between the wall and a light above the view.
     // Each pixel against the same scene without the ball.
     const auto shadowBand = [](Scene scene) {
-      const ImageF image = render(scene, standardShading(64));
-      scene.materials[scene.shapes[1].material] = diffuse(glm::vec3(0), 0);
+      const ImageF image = test::render(scene, standardShading(64));
+      scene.materials[scene.shapes[1].material] = test::diffuse(glm::vec3(0), 0);
       scene.shapes[1].geometry = Sphere{{0, 0, -5}, 0.1f};  // out of the way, behind the wall
-      const ImageF unshadowed = render(scene, standardShading(64));
+      const ImageF unshadowed = test::render(scene, standardShading(64));
       uint32_t partial = 0;
       uint32_t dark = 0;
       for (uint32_t y = 0; y < image.height; ++y) {
@@ -221,7 +203,7 @@ TEST_SUITE("area lights") {
       return std::pair{partial, dark};
     };
     Scene point = wallScene(64);
-    addShape(point, Sphere{{0, 0, 1}, 0.4f}, diffuse(glm::vec3(0), 0));
+    addShape(point, Sphere{{0, 0, 1}, 0.4f}, test::diffuse(glm::vec3(0), 0));
     Scene area = point;
     point.pointLights.push_back({{0, 2, 2.5f}, glm::vec3(40), glm::vec3(40)});
     addAreaLight(area, Quad{{-0.5f, 2, 2}, {0.5f, 2, 2}, {0.5f, 2, 3}, {-0.5f, 2, 3}}, 40.0f, 8);
@@ -255,14 +237,14 @@ TEST_SUITE("area lights") {
     // Seen head on: pi * I * lightScale / A (README "Area lights"), twice
     // that when Lambertian.
     const float expected = kPi * intensity / (4 * kPi) / (side * side);
-    CHECK(pixel(render(direct, standardShading(4)), 16, 16).x ==
+    CHECK(pixel(test::render(direct, standardShading(4)), 16, 16).x ==
           doctest::Approx(expected).epsilon(1e-3));
     direct.areaLights[0].profile = EmissionProfile::Lambertian;
-    CHECK(pixel(render(direct, standardShading(4)), 16, 16).x ==
+    CHECK(pixel(test::render(direct, standardShading(4)), 16, 16).x ==
           doctest::Approx(2 * expected).epsilon(1e-3));
 
     Scene mirrored = wallScene(32);
-    Material mirror = diffuse(glm::vec3(0), 0);
+    Material mirror = test::diffuse(glm::vec3(0), 0);
     mirror.reflectivity = 1;
     mirrored.materials[mirrored.shapes[0].material] = mirror;
     addAreaLight(mirrored,
@@ -271,7 +253,7 @@ TEST_SUITE("area lights") {
                       {side / 2, side / 2, 6},
                       {-side / 2, side / 2, 6}},
                  intensity, 1);
-    CHECK(pixel(render(mirrored, standardShading(4)), 16, 16).x ==
+    CHECK(pixel(test::render(mirrored, standardShading(4)), 16, 16).x ==
           doctest::Approx(expected).epsilon(1e-3));
   }
 }
@@ -283,7 +265,7 @@ TEST_SUITE("path tracer and distributed bounces") {
     scene.materials.clear();
     scene.conventions = Conventions::Textbook;
     scene.backgroundColor = glm::vec3(1);
-    addShape(scene, Sphere{{0, 0, 0}, 1.0f}, diffuse({0.5f, 0.25f, 1.0f}, 0.8f));
+    addShape(scene, Sphere{{0, 0, 0}, 1.0f}, test::diffuse({0.5f, 0.25f, 1.0f}, 0.8f));
     scene.settings.mode = RenderMode::PathTracer;
     scene.settings.maxBounces = 3;
     const ImageF image = renderScene(scene, 64);
@@ -308,9 +290,9 @@ TEST_SUITE("path tracer and distributed bounces") {
     Scene scene = wallScene(32);
     scene.pointLights.push_back({{1, 1, 2}, glm::vec3(4), glm::vec3(4)});
     addOverheadQuadLight(scene);
-    const ImageF phong = render(scene, standardShading(64));
+    const ImageF phong = test::render(scene, standardShading(64));
     scene.settings.mode = RenderMode::PathTracer;
-    const ImageF traced = render(scene, standardShading(64));
+    const ImageF traced = test::render(scene, standardShading(64));
     CHECK(maxRelativeDifference(traced, phong, 1e-3f) < 1e-4);
   }
 
@@ -318,10 +300,10 @@ TEST_SUITE("path tracer and distributed bounces") {
     const Scene bare = causticStage();
     Scene scene = bare;
     addGlassBall(scene);
-    const float lit = meanAround(render(bare, standardShading(16)), 24, 24, 1);
-    const float whitted = meanAround(render(scene, standardShading(16)), 24, 24, 1);
+    const float lit = meanAround(test::render(bare, standardShading(16)), 24, 24, 1);
+    const float whitted = meanAround(test::render(scene, standardShading(16)), 24, 24, 1);
     scene.settings.mode = RenderMode::PathTracer;
-    const ImageF traced = render(scene, standardShading(512));
+    const ImageF traced = test::render(scene, standardShading(512));
     test::savePng(toneMap(traced, ToneMapping{}), "caustic-pathtraced.png");
     const float caustic = meanAround(traced, 24, 24, 1);
     CAPTURE(lit);
@@ -339,21 +321,21 @@ TEST_SUITE("path tracer and distributed bounces") {
     Scene wall = wallScene(32);
     wall.settings.mode = RenderMode::PathTracer;
     addOverheadQuadLight(wall);
-    const ImageF unclamped = render(wall, standardShading(16));
+    const ImageF unclamped = test::render(wall, standardShading(16));
     wall.settings.indirectClamp = 1e-4f;
-    CHECK(maxRelativeDifference(render(wall, standardShading(16)), unclamped, 1e-3f) == 0.0);
+    CHECK(maxRelativeDifference(test::render(wall, standardShading(16)), unclamped, 1e-3f) == 0.0);
 
     // The caustic above is all light after a diffuse bounce: each sample
     // adds at most two clamped contributions per vertex, plus the sky.
     Scene caustic = causticStage();
     addGlassBall(caustic);
     caustic.settings.mode = RenderMode::PathTracer;
-    const float focused = meanAround(render(caustic, standardShading(256)), 24, 24, 1);
+    const float focused = meanAround(test::render(caustic, standardShading(256)), 24, 24, 1);
     caustic.settings.indirectClamp = 1e6f;  // above every contribution: no change
-    const float highClamp = meanAround(render(caustic, standardShading(256)), 24, 24, 1);
+    const float highClamp = meanAround(test::render(caustic, standardShading(256)), 24, 24, 1);
     const float limit = 0.02f;
     caustic.settings.indirectClamp = limit;
-    const float clamped = meanAround(render(caustic, standardShading(256)), 24, 24, 1);
+    const float clamped = meanAround(test::render(caustic, standardShading(256)), 24, 24, 1);
     CAPTURE(focused);
     CAPTURE(clamped);
     CHECK(highClamp == focused);
@@ -366,11 +348,11 @@ TEST_SUITE("path tracer and distributed bounces") {
     Scene scene = wallScene(32);
     // A red wall standing on the white one, to the image's right.
     addShape(scene, Quad{{0.5f, -3, 0}, {0.5f, 3, 0}, {0.5f, 3, 3}, {0.5f, -3, 3}},
-             diffuse({1, 0, 0}));
+             test::diffuse({1, 0, 0}));
     scene.pointLights.push_back({{-1, 0, 3}, glm::vec3(30), glm::vec3(30)});
-    const ImageF direct = render(scene, standardShading(16));
+    const ImageF direct = test::render(scene, standardShading(16));
     scene.settings.distributedBounces = 1;
-    const ImageF bounced = render(scene, standardShading(64));
+    const ImageF bounced = test::render(scene, standardShading(64));
     const glm::vec3 floorDirect = pixel(direct, 10, 16);
     const glm::vec3 floorBounced = pixel(bounced, 10, 16);
     CHECK(floorDirect.x == doctest::Approx(floorDirect.y));
@@ -388,7 +370,7 @@ TEST_SUITE("path tracer and distributed bounces") {
       RenderOptions options;
       options.samplesPerPixel = 256;
       options.sampler = scene.settings.sampler;
-      const Image8 ours = toneMap(render(scene, options), toneMappingFor(scene));
+      const Image8 ours = toneMap(test::render(scene, options), toneMappingFor(scene));
       const Image8 theirs = readImage8(folder / name / "ref.png");
       test::savePng(ours, std::string("student-") + name + ".png");
       CHECK(test::psnr(ours, theirs) > 36.0);

@@ -22,10 +22,6 @@ using namespace rt;
 
 namespace {
 
-Scene studyScene(const std::string& name) {
-  return loadJsonScene(std::filesystem::path(RT_SOURCE_SHADER_DIR) / ".." / "scenes" / name);
-}
-
 RenderOptions smallRender(SamplerKind sampler, uint32_t samples, uint32_t seed = 1) {
   RenderOptions options;
   options.width = 48;
@@ -36,21 +32,15 @@ RenderOptions smallRender(SamplerKind sampler, uint32_t samples, uint32_t seed =
   return options;
 }
 
-ImageF render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr) {
-  Renderer renderer(test::gpu(), test::shaderCompiler());
-  ImageF image = renderer.render(scene, options, {}, stats);
-  test::checkNoValidationMessages();
-  return image;
-}
-
 // A study scene at 48x36, 1024 Sobol samples (another seed).
 const ImageF& studyTruth(const std::string& name) {
   static std::map<std::string, ImageF> truths;
   auto found = truths.find(name);
   if (found == truths.end()) {
-    found =
-        truths.emplace(name, render(studyScene(name), smallRender(SamplerKind::Sobol, 1024, 999)))
-            .first;
+    found = truths
+                .emplace(name, test::render(test::projectScene(name),
+                                            smallRender(SamplerKind::Sobol, 1024, 999)))
+                .first;
   }
   return found->second;
 }
@@ -93,7 +83,7 @@ TEST_SUITE("convergence") {
   TEST_CASE("the error estimate is within 25% of the true error for every sampler") {
     for (const char* name : {"study-thinlens.json", "study-arealight.json"}) {
       CAPTURE(name);
-      Scene scene = studyScene(name);
+      Scene scene = test::projectScene(name);
       ToneMapping mapping = toneMappingFor(scene);
       const ImageF& truth = studyTruth(name);
       for (SamplerKind sampler : {SamplerKind::Random, SamplerKind::Jittered, SamplerKind::Sobol}) {
@@ -101,7 +91,7 @@ TEST_SUITE("convergence") {
           RenderOptions options = smallRender(sampler, samples);
           options.estimateError = true;
           RenderStats stats;
-          double trueRmse = displayRmse(render(scene, options, &stats), truth, mapping);
+          double trueRmse = displayRmse(test::render(scene, options, &stats), truth, mapping);
           CAPTURE(std::string(samplerKindName(sampler)));
           CAPTURE(samples);
           CAPTURE(trueRmse);
@@ -116,7 +106,7 @@ TEST_SUITE("convergence") {
     // Without independent replicates the even and odd samples of a jittered
     // render split one stratified set: their difference is much larger than
     // the error of their mean, so the renderer offers no estimate then.
-    Scene scene = studyScene("study-thinlens.json");
+    Scene scene = test::projectScene("study-thinlens.json");
     ToneMapping mapping = toneMappingFor(scene);
     const ImageF& truth = thinLensTruth();
     ProgressiveOptions options;
@@ -135,11 +125,11 @@ TEST_SUITE("convergence") {
   }
 
   TEST_CASE("--target-rmse stops at the first checkpoint whose estimate reaches the target") {
-    Scene scene = studyScene("study-thinlens.json");
+    Scene scene = test::projectScene("study-thinlens.json");
     RenderOptions options = smallRender(SamplerKind::Sobol, 4096);
     options.targetRmse = 0.012;
     RenderStats stats;
-    render(scene, options, &stats);
+    test::render(scene, options, &stats);
     REQUIRE(stats.reachedTarget);
     CHECK(*stats.rmseEstimate <= 0.012);
     CHECK(stats.samplesDone < 4096);
@@ -153,20 +143,20 @@ TEST_SUITE("convergence") {
       RenderOptions shorter = smallRender(SamplerKind::Sobol, before);
       shorter.estimateError = true;
       RenderStats shorterStats;
-      render(scene, shorter, &shorterStats);
+      test::render(scene, shorter, &shorterStats);
       CHECK(*shorterStats.rmseEstimate > 0.012);
     }
   }
 
   TEST_CASE("split Sobol renders merge into the whole render") {
-    Scene scene = studyScene("study-thinlens.json");
+    Scene scene = test::projectScene("study-thinlens.json");
     RenderOptions options = smallRender(SamplerKind::Sobol, 10);
-    ImageF whole = render(scene, options);
+    ImageF whole = test::render(scene, options);
     std::vector<ImageF> parts;
     for (auto [first, end] : {std::pair{0u, 3u}, {3u, 8u}, {8u, 10u}}) {
       options.firstSample = first;
       options.endSample = end;
-      parts.push_back(render(scene, options));
+      parts.push_back(test::render(scene, options));
     }
     ImageF merged = mergeRenders(parts);
     double worst = 0;
@@ -178,11 +168,11 @@ TEST_SUITE("convergence") {
   }
 
   TEST_CASE("a region render samples only the region") {
-    Scene scene = studyScene("study-thinlens.json");
+    Scene scene = test::projectScene("study-thinlens.json");
     RenderOptions options = smallRender(SamplerKind::Sobol, 4);
-    ImageF whole = render(scene, options);
+    ImageF whole = test::render(scene, options);
     options.region = {10, 5, 17, 9};
-    ImageF part = render(scene, options);
+    ImageF part = test::render(scene, options);
     bool insideSame = true, outsideEmpty = true;
     for (uint32_t y = 0; y < part.height; ++y) {
       for (uint32_t x = 0; x < part.width; ++x) {
@@ -196,7 +186,7 @@ TEST_SUITE("convergence") {
     CHECK(insideSame);
     CHECK(outsideEmpty);
     options.region = {40, 30, 9, 1};  // past the right edge
-    CHECK_THROWS_AS(render(scene, options), Error);
+    CHECK_THROWS_AS(test::render(scene, options), Error);
   }
 
   TEST_CASE("error checkpoints grow by 2^(1/4) from 8") {

@@ -37,9 +37,7 @@ Image8 renderFigure(const Scene& scene, std::optional<ShadingModel> shading) {
   RenderOptions options;
   options.samplesPerPixel = 4;
   options.shading = shading;
-  Renderer renderer(test::gpu(), test::shaderCompiler());
-  ImageF image = renderer.render(scene, options);
-  test::checkNoValidationMessages();
+  ImageF image = test::render(scene, options);
   // The figures are 800x800 renders shrunk to 383x383 for the handout.
   return test::downscale(toneMap(image, toneMappingFor(scene)), 383, 383);
 }
@@ -63,10 +61,7 @@ Image8 renderFamilyB(const std::filesystem::path& shared, const FamilyBReference
   if (conventions) setConventions(scene, *conventions, "test");
   RenderOptions options;
   options.samplesPerPixel = 4;
-  Renderer renderer(test::gpu(), test::shaderCompiler());
-  ImageF image = renderer.render(scene, options);
-  test::checkNoValidationMessages();
-  return toneMap(image, toneMappingFor(scene));
+  return toneMap(test::render(scene, options), toneMappingFor(scene));
 }
 
 }  // namespace

@@ -15,13 +15,6 @@ using namespace rt;
 
 namespace {
 
-ImageF renderScene(const Scene& scene, RenderOptions options) {
-  Renderer renderer(test::gpu(), test::shaderCompiler());
-  ImageF image = renderer.render(scene, options);
-  test::checkNoValidationMessages();
-  return image;
-}
-
 // Camera on +z looking at the origin, one point light beside the camera
 // (family B conventions: no falloff, unit scale).
 Scene baseScene(uint32_t width, uint32_t height) {
@@ -53,15 +46,6 @@ bool allFinite(const ImageF& image) {
   return true;
 }
 
-Material diffuse(glm::vec3 color, float kd = 1.0f, float ks = 0.0f) {
-  Material m;
-  m.diffuseColor = color;
-  m.kd = kd;
-  m.ks = ks;
-  m.specularExponent = 20;
-  return m;
-}
-
 }  // namespace
 
 TEST_SUITE("render") {
@@ -69,10 +53,10 @@ TEST_SUITE("render") {
     // Light and eye on the axis: n.l = n.h = 1 at the centre pixel, so
     // L = kd * Cd * I + ks * Cs * I exactly.
     Scene scene = baseScene(101, 101);
-    addSphere(scene, diffuse({0.5f, 0.25f, 1.0f}, 0.6f, 0.3f));
+    addSphere(scene, test::diffuse({0.5f, 0.25f, 1.0f}, 0.6f, 0.3f));
     RenderOptions options;
     options.samplesPerPixel = 1;
-    ImageF image = renderScene(scene, options);
+    ImageF image = test::render(scene, options);
     glm::vec3 expected = 0.8f * (0.6f * glm::vec3(0.5f, 0.25f, 1.0f) + 0.3f * glm::vec3(1.0f));
     glm::vec3 centre = pixel(image, 50, 50);
     // The jittered sample lands anywhere in the pixel: the normal there is
@@ -85,11 +69,11 @@ TEST_SUITE("render") {
     // Light and eye on the axis, the light 4 units in front of the sphere:
     // the centre's radiance is (kd Cd + ks Cs) I / (4 pi 4^2).
     Scene scene = test::frontStage(101, 101, {0, 0, 5}, 50.0f);
-    addSphere(scene, diffuse({0.5f, 0.25f, 1.0f}, 0.6f, 0.3f));
+    addSphere(scene, test::diffuse({0.5f, 0.25f, 1.0f}, 0.6f, 0.3f));
     setConventions(scene, Conventions::Physical, "test");
     RenderOptions options;
     options.samplesPerPixel = 1;
-    const ImageF image = renderScene(scene, options);
+    const ImageF image = test::render(scene, options);
     const float falloff = 50.0f / (4.0f * 3.14159265f * 16.0f);
     const glm::vec3 expected =
         falloff * (0.6f * glm::vec3(0.5f, 0.25f, 1.0f) + 0.3f * glm::vec3(1.0f));
@@ -102,13 +86,13 @@ TEST_SUITE("render") {
 
   TEST_CASE("a perfect mirror sphere shows the background it reflects") {
     Scene scene = baseScene(32, 32);
-    Material mirror = diffuse(glm::vec3(0), 0, 0);
+    Material mirror = test::diffuse(glm::vec3(0), 0, 0);
     mirror.reflectivity = 1;
     addSphere(scene, mirror);
     scene.settings.maxBounces = 3;
     RenderOptions options;
     options.samplesPerPixel = 4;
-    ImageF image = renderScene(scene, options);
+    ImageF image = test::render(scene, options);
     CHECK(glm::all(
         glm::lessThan(glm::abs(pixel(image, 16, 16) - scene.backgroundColor), glm::vec3(1e-6f))));
   }
@@ -119,7 +103,7 @@ TEST_SUITE("render") {
     auto sphereScene = [](float reflectivity, Conventions conventions) {
       Scene scene = baseScene(32, 32);
       setConventions(scene, conventions, "test");
-      Material material = diffuse({1.0f, 0.5f, 0.5f}, 0.9f, 0.5f);
+      Material material = test::diffuse({1.0f, 0.5f, 0.5f}, 0.9f, 0.5f);
       material.reflectivity = reflectivity;
       addSphere(scene, material);
       scene.settings.maxBounces = 3;
@@ -130,32 +114,33 @@ TEST_SUITE("render") {
     // At the centre the mirror looks back along the camera ray, at nothing.
     const glm::vec3 background = baseScene(1, 1).backgroundColor;
     glm::vec3 mirror =
-        pixel(renderScene(sphereScene(1, Conventions::CourseworkB), options), 16, 16);
+        pixel(test::render(sphereScene(1, Conventions::CourseworkB), options), 16, 16);
     CHECK(glm::all(glm::lessThan(glm::abs(mirror - background), glm::vec3(1e-6f))));
-    glm::vec3 matte = pixel(renderScene(sphereScene(0, Conventions::CourseworkB), options), 16, 16);
+    glm::vec3 matte =
+        pixel(test::render(sphereScene(0, Conventions::CourseworkB), options), 16, 16);
     glm::vec3 half =
-        pixel(renderScene(sphereScene(0.5f, Conventions::CourseworkB), options), 16, 16);
+        pixel(test::render(sphereScene(0.5f, Conventions::CourseworkB), options), 16, 16);
     CHECK(glm::all(glm::lessThan(glm::abs(half - 0.5f * (matte + background)), glm::vec3(1e-5f))));
     // The ambient term: 0.4 of the diffuse colour comes on top of the light.
     CHECK(matte.x <= 1.0f);
     CHECK(matte.y > 0.4f * 0.5f);
-    glm::vec3 added = pixel(renderScene(sphereScene(1, Conventions::Textbook), options), 16, 16);
+    glm::vec3 added = pixel(test::render(sphereScene(1, Conventions::Textbook), options), 16, 16);
     CHECK(added.x > background.x + 0.5f);
   }
 
   TEST_CASE("glass with the index of the surrounding air is invisible") {
     Scene scene = baseScene(40, 30);
-    addSphere(scene, diffuse({1, 1, 0}), {0, 0, -3}, 1.5f);
+    addSphere(scene, test::diffuse({1, 1, 0}), {0, 0, -3}, 1.5f);
     Scene withGlass = scene;
-    Material glass = diffuse(glm::vec3(0), 0, 0);
+    Material glass = test::diffuse(glm::vec3(0), 0, 0);
     glass.transmission = 1;
     glass.ior = 1;
     addSphere(withGlass, glass, {0, 0, 0}, 1.0f);
     withGlass.settings.maxBounces = 4;
     RenderOptions options;
     options.samplesPerPixel = 2;
-    ImageF plain = renderScene(scene, options);
-    ImageF glassy = renderScene(withGlass, options);
+    ImageF plain = test::render(scene, options);
+    ImageF glassy = test::render(withGlass, options);
     double maxDifference = 0;
     for (size_t i = 0; i < plain.rgba.size(); ++i) {
       maxDifference = std::max(maxDifference, double(std::abs(plain.rgba[i] - glassy.rgba[i])));
@@ -167,42 +152,42 @@ TEST_SUITE("render") {
   TEST_CASE("binary mode paints hits in one colour and misses in the background colour") {
     Scene scene = baseScene(32, 32);
     scene.settings.mode = RenderMode::Binary;
-    addSphere(scene, diffuse({0.3f, 0.3f, 0.3f}));
+    addSphere(scene, test::diffuse({0.3f, 0.3f, 0.3f}));
     RenderOptions options;
     options.samplesPerPixel = 1;
-    ImageF image = renderScene(scene, options);
+    ImageF image = test::render(scene, options);
     CHECK(pixel(image, 16, 16) == glm::vec3(1, 0, 0));
     CHECK(pixel(image, 0, 0) == scene.backgroundColor);
   }
 
   TEST_CASE("renders are reproducible and do not depend on how samples are split") {
     Scene scene = baseScene(48, 40);
-    addSphere(scene, diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
-    addSphere(scene, diffuse({0.2f, 0.5f, 0.9f}), {1.2f, 0.5f, -1}, 0.7f);
+    addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
+    addSphere(scene, test::diffuse({0.2f, 0.5f, 0.9f}), {1.2f, 0.5f, -1}, 0.7f);
     RenderOptions options;
     options.samplesPerPixel = 7;
     options.seed = 42;
     options.secondsPerDispatch = 10;  // everything in one dispatch
-    ImageF whole = renderScene(scene, options);
+    ImageF whole = test::render(scene, options);
     options.secondsPerDispatch = 1e-9;  // one sample and one row per dispatch
-    ImageF split = renderScene(scene, options);
+    ImageF split = test::render(scene, options);
     CHECK(bitwiseEqual(whole, split));
     options.seed = 43;
-    CHECK_FALSE(bitwiseEqual(whole, renderScene(scene, options)));
+    CHECK_FALSE(bitwiseEqual(whole, test::render(scene, options)));
   }
 
   TEST_CASE("renders of split sample ranges merge into the whole render") {
     Scene scene = baseScene(40, 30);
-    addSphere(scene, diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
+    addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
     RenderOptions options;
     options.samplesPerPixel = 7;
-    ImageF whole = renderScene(scene, options);
+    ImageF whole = test::render(scene, options);
     options.firstSample = 0;
     options.endSample = 3;
-    ImageF first = renderScene(scene, options);
+    ImageF first = test::render(scene, options);
     options.firstSample = 3;
     options.endSample = 7;
-    ImageF second = renderScene(scene, options);
+    ImageF second = test::render(scene, options);
     CHECK(first.rgba[3] == 3.0f);  // alpha carries the sample count
     ImageF merged = mergeRenders({first, second});
     double worst = 0;
@@ -216,7 +201,7 @@ TEST_SUITE("render") {
 
   TEST_CASE("a render can be stopped between dispatches and keeps its samples") {
     Scene scene = baseScene(40, 30);
-    addSphere(scene, diffuse({0.9f, 0.5f, 0.2f}));
+    addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}));
     RenderOptions options;
     options.samplesPerPixel = 50;
     options.secondsPerDispatch = 1e-9;  // many small dispatches
@@ -232,17 +217,17 @@ TEST_SUITE("render") {
 
   TEST_CASE("thin lens: aperture 0 is the pinhole image; an open lens blurs off the focal plane") {
     Scene scene = baseScene(48, 36);
-    addSphere(scene, diffuse({0.9f, 0.5f, 0.2f}));                          // at distance 5
-    addSphere(scene, diffuse({0.2f, 0.5f, 0.9f}), {1.5f, 0.5f, -5}, 1.0f);  // at distance 10
+    addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}));                          // at distance 5
+    addSphere(scene, test::diffuse({0.2f, 0.5f, 0.9f}), {1.5f, 0.5f, -5}, 1.0f);  // at distance 10
     RenderOptions options;
     options.samplesPerPixel = 16;
-    ImageF pinhole = renderScene(scene, options);
+    ImageF pinhole = test::render(scene, options);
     scene.camera.type = CameraType::ThinLens;
     scene.camera.apertureRadius = 0.0f;
     scene.camera.focusDistance = 5.0f;
-    CHECK(bitwiseEqual(pinhole, renderScene(scene, options)));
+    CHECK(bitwiseEqual(pinhole, test::render(scene, options)));
     scene.camera.apertureRadius = 0.3f;
-    ImageF lens = renderScene(scene, options);
+    ImageF lens = test::render(scene, options);
     // The near sphere's centre (in focus) is unchanged; the far sphere's
     // silhouette (out of focus) is smeared.
     double nearChange = glm::length(pixel(lens, 24, 18) - pixel(pinhole, 24, 18));
@@ -257,13 +242,13 @@ TEST_SUITE("render") {
 
   TEST_CASE("both samplers converge to the same image") {
     Scene scene = baseScene(24, 24);
-    addSphere(scene, diffuse({0.9f, 0.9f, 0.9f}));
+    addSphere(scene, test::diffuse({0.9f, 0.9f, 0.9f}));
     RenderOptions options;
     options.samplesPerPixel = 64;
     options.sampler = SamplerKind::Random;
-    ImageF random = renderScene(scene, options);
+    ImageF random = test::render(scene, options);
     options.sampler = SamplerKind::Jittered;
-    ImageF jittered = renderScene(scene, options);
+    ImageF jittered = test::render(scene, options);
     double sum = 0;
     for (size_t i = 0; i < random.rgba.size(); ++i)
       sum += std::abs(random.rgba[i] - jittered.rgba[i]);
@@ -281,7 +266,7 @@ TEST_SUITE("render") {
       options.width = 60;
       options.height = 40;
       options.samplesPerPixel = 2;
-      ImageF image = renderScene(scene, options);
+      ImageF image = test::render(scene, options);
       CHECK(allFinite(image));
       float first = image.rgba[0];
       bool varied = false;

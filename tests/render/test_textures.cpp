@@ -44,9 +44,7 @@ glm::vec3 renderedAt(const ImageF& image, float u, float v) {
 ImageF render(const Scene& scene) {
   RenderOptions options;
   options.samplesPerPixel = 1;
-  ImageF image = Renderer(test::gpu(), test::shaderCompiler()).render(scene, options);
-  test::checkNoValidationMessages();
-  return image;
+  return test::render(scene, options);
 }
 
 void checkColor(glm::vec3 actual, glm::vec3 expected) {

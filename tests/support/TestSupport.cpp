@@ -11,6 +11,8 @@
 #include <memory>
 #include <random>
 
+#include "formats/json/JsonSceneLoader.hpp"
+
 namespace rt::test {
 
 std::vector<gpu::GpuRay> raysTowardsOrigin(size_t count, uint32_t seed, float targetExtent) {
@@ -104,6 +106,26 @@ void checkNoValidationMessages() {
   uint32_t now = gpu().validationMessageCount();
   CHECK_MESSAGE(now == seen, "Vulkan validation layer reported ", now - seen, " message(s)");
   seen = now;
+}
+
+Material diffuse(glm::vec3 color, float kd, float ks) {
+  Material m;
+  m.diffuseColor = color;
+  m.kd = kd;
+  m.ks = ks;
+  m.specularExponent = 20;
+  return m;
+}
+
+ImageF render(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
+  Renderer renderer(gpu(), shaderCompiler());
+  ImageF image = renderer.render(scene, options, {}, stats);
+  checkNoValidationMessages();
+  return image;
+}
+
+Scene projectScene(const std::string& name) {
+  return loadJsonScene(std::filesystem::path(RT_SOURCE_SHADER_DIR) / ".." / "scenes" / name);
 }
 
 double psnr(const Image8& a, const Image8& b) {

@@ -14,6 +14,7 @@
 #include "gpu/VulkanContext.hpp"
 #include "gpu_types.h"
 #include "io/Image.hpp"
+#include "render/Renderer.hpp"
 #include "scene/Scene.hpp"
 
 namespace rt::test {
@@ -63,6 +64,17 @@ std::filesystem::path scratchShaderDir(const std::string& name);
 // Fails the current test if the validation layer said anything since the
 // last call.
 void checkNoValidationMessages();
+
+// A Blinn-Phong material: diffuse `color` weighted kd, white highlights
+// weighted ks (exponent 20), nothing reflected or refracted.
+Material diffuse(glm::vec3 color, float kd = 1.0f, float ks = 0.0f);
+
+// Renders `scene` with a fresh Renderer on the test context; fails the
+// current test on any validation message the render caused.
+ImageF render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr);
+
+// A scene file of the project's scenes/ folder, loaded.
+Scene projectScene(const std::string& name);
 
 // Peak signal-to-noise ratio of two same-sized 8-bit images, in dB.
 double psnr(const Image8& a, const Image8& b);

@@ -102,6 +102,20 @@ case_offscreen_match() {
   grep -q "^done: spp=$SPP " "$SCRATCH/log" || fail "no 'done: spp=$SPP' line in the log"
   compare "window vs offline" "$SCRATCH/window.png" "$SCRATCH/offline.png" --max-diff 0
 
+  # Adaptive sampling: the window's rounds (one a frame) decide as the render
+  # command's do, so the two images are the same.
+  "$RAYTRACER" "$SCENE_SOURCE" "$SCRATCH/offline-adaptive.png" --size $SIZE --spp 16 --adaptive -q ||
+    fail "offline adaptive render"
+  xvfb_run "$RAYTRACER" view "$SCENE_SOURCE" --size $SIZE --max-spp 16 --adaptive \
+    --spp-per-frame 1 --frames 30 --no-overlay --no-watch --validation \
+    --screenshot "$SCRATCH/window-adaptive.png" >"$SCRATCH/log-adaptive" 2>"$SCRATCH/err-adaptive"
+  status=$?
+  [[ $status -eq 0 ]] || fail "adaptive viewer exit status $status: $(cat "$SCRATCH/err-adaptive")"
+  grep -Eq "^done: spp=[0-9]+\.[0-9]+ mean " "$SCRATCH/log-adaptive" ||
+    fail "no 'done: spp=... mean' line in the adaptive viewer's log"
+  compare "adaptive window vs offline" "$SCRATCH/window-adaptive.png" \
+    "$SCRATCH/offline-adaptive.png" --max-diff 0
+
   # The same with the overlay on: the screenshot is the presented image, so
   # the overlay shows in it (and only covers part of it).
   xvfb_run "$RAYTRACER" view "$SCENE_SOURCE" --size 640x480 --max-spp 1 --spp-per-frame 1 \

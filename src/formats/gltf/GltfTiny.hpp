@@ -14,17 +14,9 @@
 #define TINYGLTF_NO_EXTERNAL_IMAGE
 #endif
 
-// tinygltf is third-party code compiled into our targets; its own warnings
-// are not ours to fix.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wall"
-#pragma GCC diagnostic ignored "-Wextra"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+// clang-format off: the includes must stay between the two.
 #include <tiny_gltf.h>
-#pragma GCC diagnostic pop
+
+#include "util/ThirdPartyBegin.hpp"
+#include "util/ThirdPartyEnd.hpp"
+// clang-format on

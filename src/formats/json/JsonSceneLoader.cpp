@@ -26,6 +26,7 @@
 #include "formats/ply/PlyLoader.hpp"
 #include "scene/Limits.hpp"
 #include "util/Error.hpp"
+#include "util/Text.hpp"
 
 namespace rt {
 
@@ -79,12 +80,6 @@ const Json* findKey(const Json& object, std::string_view key) {
 
 bool anyElement(const Json* array, bool (*predicate)(const Json&)) {
   return array && array->is_array() && std::any_of(array->begin(), array->end(), predicate);
-}
-
-std::string lowercase(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
 }
 
 // TsFreddie's renderer (metallic/transmit/roughness materials) lit its
@@ -553,9 +548,8 @@ Quad cyclicQuad(const Quad& q, const JsonObject& shape) {
 
 // ------------------------------------------------------------------- lights
 
-bool isAreaLightType(std::string type) {
-  std::transform(type.begin(), type.end(), type.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+bool isAreaLightType(const std::string& written) {
+  const std::string type = lowercase(written);
   return type.find("area") != std::string::npos || type == "rectlight" || type == "quadlight";
 }
 

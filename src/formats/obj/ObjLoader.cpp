@@ -17,12 +17,14 @@
 #include "formats/common/ModelFraming.hpp"
 #include "formats/common/SceneTextures.hpp"
 #include "util/Error.hpp"
+#include "util/Text.hpp"
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wconversion"
+// clang-format off: the includes must stay between the two.
 #include <tiny_obj_loader.h>
-#pragma GCC diagnostic pop
+
+#include "util/ThirdPartyBegin.hpp"
+#include "util/ThirdPartyEnd.hpp"
+// clang-format on
 
 namespace rt {
 namespace {
@@ -364,11 +366,6 @@ Scene loadObjScene(const fs::path& file) {
   return scene;
 }
 
-bool isObjFile(const fs::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".obj";
-}
+bool isObjFile(const fs::path& file) { return hasExtension(file, {".obj"}); }
 
 }  // namespace rt

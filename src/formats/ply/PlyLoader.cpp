@@ -666,7 +666,8 @@ class AsciiReader : public Cursor {
 
 // ---------------------------------------------------------------- decoding
 
-struct MeshBuilder {
+// The mesh as the elements fill it in.
+struct PlyMeshInProgress {
   TriangleMesh mesh;
   uint64_t vertexCount = 0;       // from the header: faces may come before vertices
   std::vector<uint32_t> corners;  // one polygon or strip, reused
@@ -680,7 +681,7 @@ float finiteFloat(double value, const Property& property, const Cursor& cursor) 
 }
 
 template <typename Reader>
-void readVertices(Reader& reader, const ElementPlan& plan, MeshBuilder& out) {
+void readVertices(Reader& reader, const ElementPlan& plan, PlyMeshInProgress& out) {
   const Element& element = *plan.element;
   const bool hasNormals = std::count(plan.slots.begin(), plan.slots.end(), kNx) > 0;
   const bool hasUvs = std::count(plan.slots.begin(), plan.slots.end(), kU) > 0;
@@ -708,7 +709,8 @@ void readVertices(Reader& reader, const ElementPlan& plan, MeshBuilder& out) {
 
 // Reads one index list into out.corners; -1 becomes kStripRestart when allowed.
 template <typename Reader>
-void readIndexList(Reader& reader, const Property& list, bool allowRestart, MeshBuilder& out) {
+void readIndexList(Reader& reader, const Property& list, bool allowRestart,
+                   PlyMeshInProgress& out) {
   const uint64_t length = reader.listLength(list);
   if (!allowRestart && length < 3) {
     reader.failValue("a face needs at least 3 vertex indices, got " + std::to_string(length));
@@ -727,7 +729,7 @@ void readIndexList(Reader& reader, const Property& list, bool allowRestart, Mesh
   }
 }
 
-void addTriangle(MeshBuilder& out, uint32_t a, uint32_t b, uint32_t c, const Cursor& cursor) {
+void addTriangle(PlyMeshInProgress& out, uint32_t a, uint32_t b, uint32_t c, const Cursor& cursor) {
   if (out.mesh.faces.size() >= kMaxTriangles) {
     cursor.failValue("more than " + std::to_string(kMaxTriangles) + " triangles");
   }
@@ -735,14 +737,14 @@ void addTriangle(MeshBuilder& out, uint32_t a, uint32_t b, uint32_t c, const Cur
 }
 
 // Polygons become a fan around their first corner.
-void addPolygon(MeshBuilder& out, const Cursor& cursor) {
+void addPolygon(PlyMeshInProgress& out, const Cursor& cursor) {
   const std::vector<uint32_t>& c = out.corners;
   for (size_t i = 1; i + 1 < c.size(); ++i) addTriangle(out, c[0], c[i], c[i + 1], cursor);
 }
 
 // Strip triangles alternate their winding; the repeated-index triangles that
 // stitch strips together are dropped.
-void addStrip(MeshBuilder& out, const Cursor& cursor) {
+void addStrip(PlyMeshInProgress& out, const Cursor& cursor) {
   const std::vector<uint32_t>& c = out.corners;
   size_t start = 0;
   for (size_t i = 0; i < c.size(); ++i) {
@@ -759,7 +761,7 @@ void addStrip(MeshBuilder& out, const Cursor& cursor) {
 }
 
 template <typename Reader>
-void readIndexElement(Reader& reader, const ElementPlan& plan, MeshBuilder& out) {
+void readIndexElement(Reader& reader, const ElementPlan& plan, PlyMeshInProgress& out) {
   const Element& element = *plan.element;
   const bool strips = plan.role == Role::Strips;
   if (!strips) out.mesh.faces.reserve(out.mesh.faces.size() + element.count);
@@ -792,7 +794,7 @@ void readSkipped(Reader& reader, const Element& element) {
 }
 
 template <typename Reader>
-void readElements(Reader& reader, const std::vector<ElementPlan>& plans, MeshBuilder& out) {
+void readElements(Reader& reader, const std::vector<ElementPlan>& plans, PlyMeshInProgress& out) {
   for (const ElementPlan& plan : plans) {
     switch (plan.role) {
       case Role::Vertices: readVertices(reader, plan, out); break;
@@ -816,7 +818,7 @@ TriangleMesh parseMesh(std::string_view bytes, std::string_view name) {
   const Header header = readHeader(bytes, diagnostics);
   const std::vector<ElementPlan> plans = planElements(header, diagnostics);
   checkCountsFit(plans, header.format, bytes.size() - header.dataStart, diagnostics);
-  MeshBuilder out;
+  PlyMeshInProgress out;
   out.vertexCount = vertexCountOf(plans);
   if (header.format == Format::Ascii) {
     AsciiReader reader(bytes, header.dataStart, diagnostics);

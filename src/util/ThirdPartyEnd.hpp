@@ -1,0 +1,3 @@
+// Closes the diagnostic scope util/ThirdPartyBegin.hpp opened.
+// No include guard: it pairs with each use of ThirdPartyBegin.hpp.
+#pragma GCC diagnostic pop
