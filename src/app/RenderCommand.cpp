@@ -364,7 +364,7 @@ int runRenderCommand(int argc, char** argv) {
                "Estimate the displayed image's RMSE while rendering (even and odd samples become "
                "independent halves, which costs jittered and sobol some accuracy)");
   app.add_flag("--adaptive", cli.adaptive,
-               "Adaptive sampling: after 8 samples per pixel, rounds give more samples to the "
+               "Adaptive sampling: after 4 samples per pixel, rounds give more samples to the "
                "noisiest 8x8 tiles; --spp is then the budget of the mean count per pixel, "
                "--target-rmse the goal (default sampler: sobol; cannot be split with --samples "
                "or --region)");

@@ -59,6 +59,14 @@ std::vector<uint32_t> allocateSamples(const std::vector<TileNoise>& tiles,
 // Image mean squared error predicted for the tiles (1/n noise).
 double predictedMse(const std::vector<TileNoise>& tiles);
 
+// One read of the accumulated sums: every tile's noise and the image's
+// estimated RMSE (estimateDisplayRmse over the region), which come from the
+// same per-pixel estimates.
+struct NoiseMeasurement {
+  std::vector<TileNoise> tiles;
+  std::optional<double> rmse;  // nullopt when a pixel lacks one of its halves
+};
+
 class AdaptivePlan {
  public:
   static constexpr uint32_t kTileSize = RT_ADAPTIVE_TILE_SIZE;
@@ -74,8 +82,9 @@ class AdaptivePlan {
 
   // `count` samples per pixel everywhere in the region.
   std::vector<uint32_t> uniformRound(uint32_t count) const;
-  // Each tile's noise from the accumulated sums (after dilation).
-  std::vector<TileNoise> measureNoise(const SampleSums& sums, const ToneMapping& mapping) const;
+  // Each tile's noise from the accumulated sums (after dilation), and the
+  // region's estimated RMSE.
+  NoiseMeasurement measureNoise(const SampleSums& sums, const ToneMapping& mapping) const;
   // Records that `added` samples per pixel were rendered into each tile.
   void addRound(const std::vector<uint32_t>& added);
   // Per tile: (first sample index, count) for the render kernel.
@@ -88,6 +97,8 @@ class AdaptivePlan {
 
  private:
   size_t tileOf(uint32_t x, uint32_t y) const;
+  // Tiles with noise v_i raised to a share of their noisiest neighbour's.
+  std::vector<TileNoise> dilatedTiles(const std::vector<double>& variance) const;
 
   uint32_t tilesPerRow_ = 0;
   uint32_t width_ = 0;

@@ -5,14 +5,12 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
-#include <limits>
 #include <utility>
 
 #include "formats/SceneFile.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
 #include "render/BatchIntersector.hpp"
-#include "scene/Limits.hpp"
 #include "util/Error.hpp"
 #include "viewer/DisplayPass.hpp"
 #include "viewer/SceneBounds.hpp"
@@ -88,7 +86,7 @@ ToneMapping Viewer::displayMapping() const {
 }
 
 Viewer::Viewer(const ViewerOptions& options)
-    : options_(options), planner_(options.frameSeconds, options.samplesPerFrame) {
+    : options_(options), accumulation_(options.frameSeconds, options.samplesPerFrame) {
   scene_ = loadViewedScene();
   for (const std::string& warning : scene_.warnings) {
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
@@ -225,17 +223,8 @@ bool Viewer::rebuildRenderer(glm::uvec2 size) {
 }
 
 void Viewer::restartAccumulation() {
-  planner_.restart();
-  adaptive_.reset();
-  adaptiveRow_ = 0;
-  if (settings_.adaptive) {
-    AdaptiveRounds::Goal goal{static_cast<uint32_t>(settings_.samplesTarget), 0.0,
-                              kMaxSamplesPerPixel};
-    adaptive_.emplace(renderer_->width(), renderer_->height(),
-                      PixelRegion{0, 0, renderer_->width(), renderer_->height()}, goal);
-  }
-  doneLogged_ = false;
-  accumulationStart_ = Clock::now();
+  accumulation_.restart(*renderer_, static_cast<uint32_t>(settings_.samplesTarget),
+                        settings_.adaptive);
 }
 
 void Viewer::applyCameraChange() {
@@ -278,24 +267,6 @@ void Viewer::recreateSwapchain() {
   }
 }
 
-bool Viewer::accumulating() const {
-  if (adaptive_) return !adaptive_->finished();
-  return renderer_->samplesDone() < static_cast<uint32_t>(settings_.samplesTarget);
-}
-
-double Viewer::samplesPerPixel() const {
-  if (!adaptive_) return double(renderer_->samplesDone());
-  // Finished rounds, and the bands of the current one recorded so far.
-  double pixels = double(renderer_->width()) * renderer_->height();
-  double underway = adaptive_->finished() ? 0.0 : adaptive_->rowWork(0, adaptiveRow_);
-  return adaptive_->meanSamples() + underway / std::max(pixels, 1.0);
-}
-
-std::string Viewer::samplesText() const {
-  if (adaptive_) return fmt::format("{:.2f} mean", samplesPerPixel());
-  return std::to_string(renderer_->samplesDone());
-}
-
 int Viewer::run() {
   installSignalHandlers();
   bool lastFrameSubmitted = false;
@@ -322,7 +293,9 @@ int Viewer::run() {
 
 bool Viewer::scripted() const { return options_.frames > 0 || !path_.finished(); }
 
-bool Viewer::idle() const { return !scripted() && !accumulating() && !reloadSavedAt_ && !quit_; }
+bool Viewer::idle() const {
+  return !scripted() && !accumulation_.accumulating() && !reloadSavedAt_ && !quit_;
+}
 
 bool Viewer::prepareFrame() {
   if (idle()) {
@@ -357,7 +330,7 @@ void Viewer::waitForFrame() {
   lastFrameDone_ = now;
   frameMilliseconds_ = seconds * 1e3;
   // Only plain rendering frames say how much work fits into one.
-  if (submittedFrameRendered_ && !submittedFrameBusy_) planner_.frameTook(seconds);
+  if (submittedFrameRendered_ && !submittedFrameBusy_) accumulation_.frameTook(seconds);
   rate_.add(double(submittedPixelSamples_), now);
 
   if (submittedReloadSavedAt_) {
@@ -472,50 +445,12 @@ void Viewer::recordFrame(VkCommandBuffer commands, uint32_t imageIndex) {
   }
 }
 
-std::vector<Band> Viewer::planAdaptiveBands() {
-  const uint32_t height = renderer_->height();
-  if (adaptiveRow_ >= height) {
-    // The round's last band was in the frame just finished: with nothing
-    // in flight, read the sums back and plan the next round.
-    adaptive_->finishRound(renderer_->sampleSums(), displayMapping());
-    adaptiveRow_ = 0;
-    frameBusy_ = true;
-  }
-  if (adaptive_->finished()) return {};
-  if (adaptiveRow_ == 0) renderer_->setSamplePlan(adaptive_->kernelRanges());
-  // Scripted runs with fixed samples per frame render a whole round a frame.
-  double budget =
-      options_.samplesPerFrame > 0 ? std::numeric_limits<double>::infinity() : planner_.budget();
-  uint32_t end = adaptive_->bandEnd(adaptiveRow_, budget);
-  Band band{adaptiveRow_, end - adaptiveRow_, 0, end == height};
-  adaptiveRow_ = end;
-  return {band};
-}
-
 Viewer::RowRange Viewer::recordRenderBands(VkCommandBuffer commands) {
-  std::vector<Band> bands =
-      adaptive_ ? planAdaptiveBands()
-                : planner_.plan(renderer_->width(), renderer_->height(), renderer_->samplesDone(),
-                                static_cast<uint32_t>(settings_.samplesTarget));
-  submittedPixelSamples_ = 0;
-  uint32_t first = renderer_->height();
-  uint32_t end = 0;
-  for (const Band& band : bands) {
-    first = std::min(first, band.row);
-    end = std::max(end, band.row + band.rows);
-    if (adaptive_) {
-      renderer_->recordPlannedSamples(commands, band.row, band.rows);
-      submittedPixelSamples_ +=
-          static_cast<uint64_t>(adaptive_->rowWork(band.row, band.row + band.rows));
-      continue;
-    }
-    renderer_->recordSamples(commands, band.row, band.rows, band.samples);
-    // Sample indices of the next band start after this pass.
-    if (band.endsPass) renderer_->finishPass(band.samples);
-    submittedPixelSamples_ += uint64_t(renderer_->width()) * band.rows * band.samples;
-  }
-  submittedFrameRendered_ = !bands.empty();
-  return bands.empty() ? RowRange{} : RowRange{first, end - first};
+  Accumulation::FrameSamples frame = accumulation_.record(commands, displayMapping());
+  if (frame.readBack) frameBusy_ = true;
+  submittedPixelSamples_ = frame.pixelSamples;
+  submittedFrameRendered_ = frame.rows > 0;
+  return {frame.firstRow, frame.rows};
 }
 
 void Viewer::logFrame() {
@@ -524,25 +459,23 @@ void Viewer::logFrame() {
   bool due = options_.verbose || now - lastLogAt_ >= kLogInterval;
   if (due && (submittedFrameRendered_ || options_.verbose)) {
     std::printf("frame %llu spp=%s/%u ms=%.1f msps=%.3f work=%llu\n",
-                static_cast<unsigned long long>(framesPresented_), samplesText().c_str(), target,
-                frameMilliseconds_, rate_.perSecond() * 1e-6,
-                static_cast<unsigned long long>(submittedPixelSamples_));
+                static_cast<unsigned long long>(framesPresented_),
+                accumulation_.samplesText().c_str(), target, frameMilliseconds_,
+                rate_.perSecond() * 1e-6, static_cast<unsigned long long>(submittedPixelSamples_));
     lastLogAt_ = now;
   }
-  if (!accumulating() && !doneLogged_) {
-    double seconds = std::chrono::duration<double>(now - accumulationStart_).count();
-    std::printf("done: spp=%s in %.2f s (frame %llu)\n", samplesText().c_str(), seconds,
-                static_cast<unsigned long long>(framesPresented_));
-    doneLogged_ = true;
+  if (std::optional<double> seconds = accumulation_.takeDoneSeconds()) {
+    std::printf("done: spp=%s in %.2f s (frame %llu)\n", accumulation_.samplesText().c_str(),
+                *seconds, static_cast<unsigned long long>(framesPresented_));
   }
   std::fflush(stdout);
 }
 
 OverlayStats Viewer::overlayStats() const {
   OverlayStats stats;
-  stats.samplesDone = samplesPerPixel();
-  stats.adaptive = adaptive_.has_value();
-  if (adaptive_) stats.rmseEstimate = adaptive_->rmseEstimate();
+  stats.samplesDone = accumulation_.samplesPerPixel();
+  stats.adaptive = accumulation_.adaptive();
+  stats.rmseEstimate = accumulation_.rmseEstimate();
   stats.samplesTarget = static_cast<uint32_t>(settings_.samplesTarget);
   stats.samplesPerSecond = rate_.perSecond();
   stats.frameMilliseconds = frameMilliseconds_;

@@ -5,7 +5,7 @@
 // Frame loop (one frame in flight): wait for the previous frame's fence; with
 // nothing on the GPU, apply what changed (file reloads, camera moves, edited
 // settings, window size); then record one command buffer: the render bands
-// the FramePlanner chose, the display pass (tone map the rows that changed,
+// the Accumulation chose, the display pass (tone map the rows that changed,
 // copy them into an RGBA8 image, blit that into the swapchain image), the
 // overlay render pass and, when asked, a copy of the swapchain image for a
 // screenshot; submit and present. The render always has the window's size:
@@ -22,12 +22,11 @@
 #include <string>
 #include <vector>
 
-#include "render/AdaptiveSampling.hpp"
 #include "render/ProgressiveRenderer.hpp"
 #include "scene/Scene.hpp"
+#include "viewer/Accumulation.hpp"
 #include "viewer/CameraPath.hpp"
 #include "viewer/FileWatcher.hpp"
-#include "viewer/FramePlanner.hpp"
 #include "viewer/OrbitCamera.hpp"
 #include "viewer/Overlay.hpp"
 #include "viewer/ViewerOptions.hpp"
@@ -117,14 +116,8 @@ class Viewer {
     uint32_t count = 0;
   };
   RowRange recordRenderBands(VkCommandBuffer commands);
-  // Adaptive sampling: this frame's band of the current round, after
-  // planning the next round when the last one is rendered.
-  std::vector<Band> planAdaptiveBands();
   void recreateSwapchain();
   void logFrame();
-  bool accumulating() const;
-  double samplesPerPixel() const;   // the mean under adaptive sampling
-  std::string samplesText() const;  // for the log: "16", or "12.37 mean" when adaptive
   OverlayStats overlayStats() const;
 
   ViewerOptions options_;
@@ -148,11 +141,7 @@ class Viewer {
   bool frameInFlight_ = false;
   bool swapchainStale_ = false;
 
-  FramePlanner planner_;
-  // Adaptive sampling (settings_.adaptive): the rounds since the last
-  // restart, and the first row of the current round not yet recorded.
-  std::optional<AdaptiveRounds> adaptive_;
-  uint32_t adaptiveRow_ = 0;
+  Accumulation accumulation_;
   OrbitCamera camera_;
   CameraPathPlayer path_;
   OverlaySettings settings_;
@@ -171,7 +160,6 @@ class Viewer {
   uint64_t framesPresented_ = 0;
   Clock::time_point lastFrameDone_ = Clock::now();
   Clock::time_point lastInputAt_ = Clock::now();
-  Clock::time_point accumulationStart_ = Clock::now();
   Clock::time_point lastLogAt_{};
   Clock::time_point lastPresentAt_{};
   double frameMilliseconds_ = 0.0;
@@ -180,7 +168,6 @@ class Viewer {
   bool submittedFrameRendered_ = false;
   uint64_t submittedPixelSamples_ = 0;
   RateMeter rate_;
-  bool doneLogged_ = false;
   std::vector<std::filesystem::path> screenshots_;  // of the frame being prepared
   std::vector<std::filesystem::path> submittedScreenshots_;
   // When the file behind a successful reload was saved, until the first

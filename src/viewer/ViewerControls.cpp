@@ -263,7 +263,7 @@ void Viewer::applyOverlayActions(const OverlayActions& actions) {
     if (samplerSetting() == SamplerKind::Jittered || settings_.adaptive) {
       rebuildRenderer(size);
     } else {
-      doneLogged_ = false;
+      accumulation_.setTarget(static_cast<uint32_t>(settings_.samplesTarget));
     }
   }
   if (actions.lensChanged) {
@@ -335,7 +335,7 @@ void Viewer::saveImage(std::filesystem::path path) {
   }
   try {
     writeImage(path, renderer_->resolve(), displayMapping());
-    notice(fmt::format("saved: {} ({} spp)", path.string(), samplesText()));
+    notice(fmt::format("saved: {} ({} spp)", path.string(), accumulation_.samplesText()));
   } catch (const std::exception& e) {
     notice(fmt::format("save: error {}", e.what()));
   }

@@ -145,7 +145,12 @@ TEST_SUITE("adaptive sampling") {
         if (x >= 8) sums.all[i] = sums.odd[i] + glm::vec4(glm::vec3(2 * 0.5f), 2);
       }
     }
-    std::vector<TileNoise> noise = plan.measureNoise(sums, ToneMapping{});
+    NoiseMeasurement measured = plan.measureNoise(sums, ToneMapping{});
+    // Squared error of the mean 0.04 * 4 / 16 in tile 0, none in the others
+    // (before dilation, which only steers samples).
+    REQUIRE(measured.rmse);
+    CHECK(*measured.rmse == doctest::Approx(std::sqrt(0.01 / 3)).epsilon(1e-4));
+    std::vector<TileNoise>& noise = measured.tiles;
     REQUIRE(noise.size() == 3);
     // (A - B)^2 nA nB / n^2 * n = 0.04 * 4 / 16 * 4.
     CHECK(noise[0].variance == doctest::Approx(0.04).epsilon(1e-4));
