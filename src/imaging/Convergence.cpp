@@ -100,11 +100,19 @@ std::vector<ConvergencePoint> ConvergenceStudy::measure(const ImageF& reference,
                                                         const SeriesKind& series,
                                                         const std::vector<uint32_t>& counts,
                                                         const PointCallback& onPoint) {
-  std::vector<ConvergencePoint> points;
-  for (uint32_t samples : counts) {
+  auto seriesOptions = [&](uint32_t samples) {
     RenderOptions options = optionsFor(series.sampler, samples, setup_.seed);
     options.estimateError = setup_.estimateError;
     options.adaptive = series.adaptive;
+    return options;
+  };
+  // An untimed render first: lavapipe compiles a kernel to machine code at
+  // its first dispatch (0.3-1.5 s, measured), which the series' first point
+  // would otherwise count as rendering time.
+  if (!counts.empty()) renderer_.render(scene_, seriesOptions(counts.front()));
+  std::vector<ConvergencePoint> points;
+  for (uint32_t samples : counts) {
+    RenderOptions options = seriesOptions(samples);
     RenderStats stats;
     ImageF image = renderer_.render(scene_, options, {}, &stats);
     ConvergencePoint point{series.sampler,
