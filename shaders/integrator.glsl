@@ -51,6 +51,28 @@ void addContinuation(inout Continuations next, PendingRay ray) {
   next.rays[next.count++] = ray;
 }
 
+#ifdef RT_ROULETTE_WEIGHT
+// Russian roulette (RenderSettings::rouletteWeight): a continuation lighter
+// than RT_ROULETTE_WEIGHT survives with probability weight / RT_ROULETTE_WEIGHT
+// and then carries RT_ROULETTE_WEIGHT, so the estimate stays unbiased while
+// the faint deep branches of a glass tree are mostly not traced. `u` is one
+// uniform number; continuations use it rotated by the golden ratio.
+void rouletteContinuations(inout Continuations next, float u) {
+  Continuations kept;
+  kept.count = 0u;
+  for (uint i = 0u; i < next.count; ++i) {
+    PendingRay ray = next.rays[i];
+    float weight = maxComponent(ray.weight);
+    if (weight < RT_ROULETTE_WEIGHT) {
+      if (fract(u + 0.61803399 * float(i)) * RT_ROULETTE_WEIGHT >= weight) continue;
+      ray.weight *= RT_ROULETTE_WEIGHT / weight;
+    }
+    kept.rays[kept.count++] = ray;
+  }
+  next = kept;
+}
+#endif
+
 // Pushes every continuation when the stack has room; otherwise follows one
 // of them, chosen with probability proportional to its weight and
 // reweighted, which keeps the estimate unbiased at any depth.
@@ -231,6 +253,10 @@ void shadeHit(inout RayStack stack, inout vec3 radiance, PendingRay job, Surface
                         vertexDimension(vertex, RT_VERTEX_DIM_BOUNCE), frame.seed);
     addDiffuseContinuation(next, job, context, u);
   }
+#endif
+#ifdef RT_ROULETTE_WEIGHT
+  // choice.y picks by Fresnel only in the path tracer, which has no roulette.
+  rouletteContinuations(next, choice.y);
 #endif
   pushContinuations(stack, next, choice.x);
 #endif

@@ -49,6 +49,7 @@ struct CommandLine {
   std::string clock = "wall";
   bool estimate = false;
   std::string shading;
+  std::optional<float> roulette;
   std::string conventions;
   std::string device;
   std::string shaderDir;
@@ -131,6 +132,7 @@ void printSummaryTable(const std::vector<rt::ConvergencePoint>& points,
 
 int run(const CommandLine& cli) {
   rt::Scene scene = rt::loadSceneFile(cli.scenePath, {cli.strict});
+  if (cli.roulette) scene.settings.rouletteWeight = *cli.roulette;
   rt::cli::applyConventionsOption(cli.conventions, scene);
   rt::ConvergenceSetup setup = convergenceSetup(cli, scene);
   std::vector<uint32_t> counts = sampleCounts(cli);
@@ -233,6 +235,8 @@ void addOptions(CLI::App& app, CommandLine& cli) {
   app.add_flag("--estimate", cli.estimate,
                "Render as for --estimate-rmse (independent even/odd halves) and record the "
                "renderer's own RMSE estimate beside the true one");
+  app.add_option("--roulette", cli.roulette, "Russian roulette weight (as the render command)")
+      ->check(CLI::Range(0.0f, 1.0f));
   app.add_option("--shading", cli.shading, "Shading model (default: the conventions')")
       ->check(CLI::IsMember({"standard", "coursework"}));
   rt::cli::addConventionsOption(app, cli.conventions);

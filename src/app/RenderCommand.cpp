@@ -46,6 +46,7 @@ struct CommandLine {
   std::string shaderDir;
   std::optional<float> exposure;
   std::optional<float> indirectClamp;
+  std::optional<float> roulette;
   std::string sampleRange;
   std::string region;
   std::string cameraPath;
@@ -259,6 +260,7 @@ int run(const CommandLine& cli) {
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
   rt::cli::applyConventionsOption(cli.conventions, scene);
   if (cli.indirectClamp) scene.settings.indirectClamp = *cli.indirectClamp;
+  if (cli.roulette) scene.settings.rouletteWeight = *cli.roulette;
   rt::RenderOptions options = renderOptions(cli, scene);
   applyPathFrame(cli, scene, options);
   applyRegion(cli, scene, options);
@@ -339,6 +341,10 @@ int runRenderCommand(int argc, char** argv) {
                  "diffuse bounce (path tracer, distributedbounces; biased; 0 = off; overrides "
                  "the scene's clampindirect)")
       ->check(rt::cli::nonNegativeFiniteNumber());
+  app.add_option("--roulette", cli.roulette,
+                 "Russian roulette on mirror and refraction rays lighter than this weight "
+                 "(unbiased; faster glass, a little more noise; e.g. 0.03; default 0 = off)")
+      ->check(CLI::Range(0.0f, 1.0f));
   app.add_option("--samples", cli.sampleRange,
                  "Render only sample indices FROM:TO of the --spp samples (merge the pieces "
                  "with `raytracer merge`; write .exr, whose alpha holds the sample count)");

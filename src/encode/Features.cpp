@@ -1,5 +1,7 @@
 #include "encode/Features.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <variant>
@@ -78,6 +80,10 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat) {
     // Depth-first walk of a binary ray tree: at most one pending ray per level.
     features.whittedStackSize = std::min(scene.settings.maxBounces + 1, kMaxWhittedStack);
   }
+  // The path tracer already follows one continuation by weight.
+  if (!features.pathTracer && (features.reflection || features.refraction)) {
+    features.rouletteWeight = std::max(scene.settings.rouletteWeight, 0.0f);
+  }
   return features;
 }
 
@@ -109,6 +115,9 @@ ShaderDefines ShaderFeatures::defines() const {
     result.emplace_back("RT_EMITTER_KINDS", std::to_string(emitterKinds) + "u");
   }
   result.emplace_back("RT_WHITTED_STACK_SIZE", std::to_string(whittedStackSize));
+  if (rouletteWeight > 0.0f) {
+    result.emplace_back("RT_ROULETTE_WEIGHT", fmt::format("{:.9g}", rouletteWeight));
+  }
   return result;
 }
 

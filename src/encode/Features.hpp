@@ -40,7 +40,9 @@ struct ShaderFeatures {
   // Kinds of area-light pieces (bits 1 << RT_PRIM_*), so that only their
   // sampling code is built; 0: no area lights.
   uint32_t emitterKinds = 0;
-  uint32_t whittedStackSize = 1;  // pending rays of the ray tree
+  uint32_t whittedStackSize = 1;
+  float rouletteWeight = 0.0f;  // RenderSettings::rouletteWeight where the tree branches  //
+                                // pending rays of the ray tree
 
   ShaderDefines defines() const;
   std::string summary() const;  // e.g. "spheres triangles reflection"

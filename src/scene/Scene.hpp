@@ -175,6 +175,15 @@ struct RenderSettings {
   // emitter contribution may add after a diffuse bounce; 0 = off. Biased
   // (it darkens caustics), so off unless asked for.
   float indirectClamp = 0.0f;
+  // Russian roulette on the mirror and refraction rays of the Whitted tree:
+  // a branch whose weight is below this survives with probability
+  // weight / rouletteWeight, reweighted to rouletteWeight (unbiased). On
+  // default.json 0.03 made samples 1.27x faster for 4-6% more error at equal
+  // samples. Off (0: every branch is traced) unless asked for (`--roulette`):
+  // after a camera move the viewer's camera differs from the render
+  // command's replay of the move in the last bits, invisible in 8-bit images
+  // until a roulette decision flips with it.
+  float rouletteWeight = 0.0f;
   uint32_t samplesPerPixel = 0;  // 0: not given in the file
   SamplerKind sampler = SamplerKind::Jittered;
   bool samplerGiven = false;  // the file names a sampler (else adaptive renders pick Sobol)

@@ -105,8 +105,10 @@ TEST_SUITE("adaptive sampling") {
     uint32_t rounds = allocateUntilDone(tiles, goal);
     CHECK(rounds >= 2);
     CHECK(tiles[0].samples == 8);
-    CHECK(double(tiles[2].samples) / tiles[1].samples == doctest::Approx(2.0).epsilon(0.05));
-    CHECK(double(tiles[3].samples) / tiles[1].samples == doctest::Approx(4.0).epsilon(0.05));
+    CHECK(double(tiles[2].samples) / tiles[1].samples ==
+          doctest::Approx(2.0).epsilon(0.05).scale(0));
+    CHECK(double(tiles[3].samples) / tiles[1].samples ==
+          doctest::Approx(4.0).epsilon(0.05).scale(0));
     CHECK(predictedMse(tiles) <= 1e-4);
     // Uniform sampling would need every tile at the noisiest's count...
     const double uniform = (0.0 + 0.01 + 0.04 + 0.16) / 4 / 1e-4;
@@ -149,12 +151,12 @@ TEST_SUITE("adaptive sampling") {
     // Squared error of the mean 0.04 * 4 / 16 in tile 0, none in the others
     // (before dilation, which only steers samples).
     REQUIRE(measured.rmse);
-    CHECK(*measured.rmse == doctest::Approx(std::sqrt(0.01 / 3)).epsilon(1e-4));
+    CHECK(*measured.rmse == doctest::Approx(std::sqrt(0.01 / 3)).epsilon(1e-4).scale(0));
     std::vector<TileNoise>& noise = measured.tiles;
     REQUIRE(noise.size() == 3);
     // (A - B)^2 nA nB / n^2 * n = 0.04 * 4 / 16 * 4.
-    CHECK(noise[0].variance == doctest::Approx(0.04).epsilon(1e-4));
-    CHECK(noise[1].variance == doctest::Approx(0.25 * 0.04).epsilon(1e-4));
+    CHECK(noise[0].variance == doctest::Approx(0.04).epsilon(1e-4).scale(0));
+    CHECK(noise[1].variance == doctest::Approx(0.25 * 0.04).epsilon(1e-4).scale(0));
     CHECK(noise[2].variance == 0.0);
     CHECK(noise[0].samples == 4);
     CHECK(plan.pixelSamples() == 24 * 8 * 4);
@@ -214,7 +216,7 @@ TEST_SUITE("adaptive sampling") {
         double trueRmse = displayRmse(image, truth, mapping);
         REQUIRE(stats.rmseEstimate);
         CAPTURE(trueRmse);
-        CHECK(*stats.rmseEstimate == doctest::Approx(trueRmse).epsilon(0.25));
+        CHECK(*stats.rmseEstimate == doctest::Approx(trueRmse).epsilon(0.25).scale(0));
         // Pixels that stopped early against those that went on: split at
         // the median count, compare estimated and true RMSE within each.
         std::vector<float> counts;
@@ -236,7 +238,7 @@ TEST_SUITE("adaptive sampling") {
           CAPTURE(early);
           CAPTURE(n);
           CHECK(std::sqrt(estimated / double(n)) ==
-                doctest::Approx(std::sqrt(actual / double(n))).epsilon(0.25));
+                doctest::Approx(std::sqrt(actual / double(n))).epsilon(0.25).scale(0));
         }
       }
     }

@@ -164,7 +164,7 @@ TEST_SUITE("area lights") {
     }
     double area = 2.0;
     double expected = intensity / (4 * kPi) * sum * (area / (double(n) * n)) / area;
-    CHECK(meanAround(image, 16, 16, 1) == doctest::Approx(expected).epsilon(0.01));
+    CHECK(meanAround(image, 16, 16, 1) == doctest::Approx(expected).epsilon(0.01).scale(0));
 
     // Lambertian, the same power: radiance 2 pi I lightScale / A from each
     // face, so each point sends 2 |cos| times as much (normal along y).
@@ -180,7 +180,7 @@ TEST_SUITE("area lights") {
       }
     }
     expected = intensity / (4 * kPi) * sum / (double(n) * n);
-    CHECK(meanAround(lambertian, 16, 16, 1) == doctest::Approx(expected).epsilon(0.01));
+    CHECK(meanAround(lambertian, 16, 16, 1) == doctest::Approx(expected).epsilon(0.01).scale(0));
   }
 
   TEST_CASE("an area light casts a penumbra, a point light a sharp shadow") {
@@ -238,10 +238,10 @@ TEST_SUITE("area lights") {
     // that when Lambertian.
     const float expected = kPi * intensity / (4 * kPi) / (side * side);
     CHECK(pixel(test::render(direct, standardShading(4)), 16, 16).x ==
-          doctest::Approx(expected).epsilon(1e-3));
+          doctest::Approx(expected).epsilon(1e-3).scale(0));
     direct.areaLights[0].profile = EmissionProfile::Lambertian;
     CHECK(pixel(test::render(direct, standardShading(4)), 16, 16).x ==
-          doctest::Approx(2 * expected).epsilon(1e-3));
+          doctest::Approx(2 * expected).epsilon(1e-3).scale(0));
 
     Scene mirrored = wallScene(32);
     Material mirror = test::diffuse(glm::vec3(0), 0);
@@ -254,7 +254,7 @@ TEST_SUITE("area lights") {
                       {-side / 2, side / 2, 6}},
                  intensity, 1);
     CHECK(pixel(test::render(mirrored, standardShading(4)), 16, 16).x ==
-          doctest::Approx(expected).epsilon(1e-3));
+          doctest::Approx(expected).epsilon(1e-3).scale(0));
   }
 }
 
@@ -273,9 +273,9 @@ TEST_SUITE("path tracer and distributed bounces") {
     for (uint32_t y = 12; y <= 20; ++y) {
       for (uint32_t x = 12; x <= 20; ++x) {
         glm::vec3 value = pixel(image, x, y);
-        CHECK(value.x == doctest::Approx(0.4).epsilon(1e-4));
-        CHECK(value.y == doctest::Approx(0.2).epsilon(1e-4));
-        CHECK(value.z == doctest::Approx(0.8).epsilon(1e-4));
+        CHECK(value.x == doctest::Approx(0.4).epsilon(1e-4).scale(0));
+        CHECK(value.y == doctest::Approx(0.2).epsilon(1e-4).scale(0));
+        CHECK(value.z == doctest::Approx(0.8).epsilon(1e-4).scale(0));
       }
     }
     // Paths of length 0 see only emitted and direct light: none.
@@ -357,7 +357,7 @@ TEST_SUITE("path tracer and distributed bounces") {
     const glm::vec3 floorBounced = pixel(bounced, 10, 16);
     CHECK(floorDirect.x == doctest::Approx(floorDirect.y));
     CHECK(floorBounced.x > floorBounced.y * 1.05f);
-    CHECK(floorBounced.y == doctest::Approx(floorDirect.y).epsilon(0.02));
+    CHECK(floorBounced.y == doctest::Approx(floorDirect.y).epsilon(0.02).scale(0));
   }
 
   TEST_CASE("the student renders with area lights and thin lenses match their authors'" *

@@ -22,24 +22,24 @@ using namespace rt;
 
 namespace {
 
-RenderOptions smallRender(SamplerKind sampler, uint32_t samples, uint32_t seed = 1) {
+RenderOptions smallRender(SamplerKind sampler, uint32_t samples, uint32_t seed = 1,
+                          uint32_t width = 48) {
   RenderOptions options;
-  options.width = 48;
-  options.height = 36;
+  options.width = width;
+  options.height = width * 3 / 4;
   options.sampler = sampler;
   options.samplesPerPixel = samples;
   options.seed = seed;
   return options;
 }
 
-// A study scene at 48x36, 1024 Sobol samples (another seed).
-const ImageF& studyTruth(const std::string& name) {
-  static std::map<std::string, ImageF> truths;
-  auto found = truths.find(name);
+// A study scene at width x (3/4 width), 1024 Sobol samples (another seed).
+const ImageF& studyTruth(const std::string& name, uint32_t width = 48) {
+  static std::map<std::pair<std::string, uint32_t>, ImageF> truths;
+  auto found = truths.find({name, width});
   if (found == truths.end()) {
-    found = truths
-                .emplace(name, test::render(test::projectScene(name),
-                                            smallRender(SamplerKind::Sobol, 1024, 999)))
+    RenderOptions options = smallRender(SamplerKind::Sobol, 1024, 999, width);
+    found = truths.emplace(std::pair{name, width}, test::render(test::projectScene(name), options))
                 .first;
   }
   return found->second;
@@ -59,11 +59,11 @@ TEST_SUITE("convergence") {
     ToneMapping mapping;  // clamp to [0, 1], exposure 1
     ImageF a = uniformImage(4, 3, 0.5f);
     ImageF b = uniformImage(4, 3, 0.6f);
-    CHECK(displayRmse(a, b, mapping) == doctest::Approx(0.1).epsilon(1e-5));
+    CHECK(displayRmse(a, b, mapping) == doctest::Approx(0.1).epsilon(1e-5).scale(0));
     // Above 1 everything displays as 1.
     CHECK(displayRmse(uniformImage(4, 3, 2.0f), uniformImage(4, 3, 5.0f), mapping) == 0.0);
     b.pixel(3, 2)[0] = 1.5f;  // only pixel (3, 2) differs more
-    CHECK(displayRmse(a, b, mapping, {0, 0, 2, 2}) == doctest::Approx(0.1).epsilon(1e-5));
+    CHECK(displayRmse(a, b, mapping, {0, 0, 2, 2}) == doctest::Approx(0.1).epsilon(1e-5).scale(0));
     CHECK(displayRmse(a, b, mapping) > 0.1);
     CHECK_THROWS_AS(displayRmse(a, b, mapping, {3, 2, 2, 2}), Error);
     CHECK_THROWS_AS(displayRmse(a, uniformImage(3, 3, 0.5f), mapping), Error);
@@ -75,20 +75,22 @@ TEST_SUITE("convergence") {
     sums.odd = {glm::vec4(0.7f, 0.7f, 0.7f, 1)};
     std::optional<double> estimate = estimateDisplayRmse(sums, ToneMapping{});
     REQUIRE(estimate);
-    CHECK(*estimate == doctest::Approx(std::sqrt(0.3 * 0.3 * 2.0 / 9.0)).epsilon(1e-5));
+    CHECK(*estimate == doctest::Approx(std::sqrt(0.3 * 0.3 * 2.0 / 9.0)).epsilon(1e-5).scale(0));
     sums.odd[0] = glm::vec4(0);  // no odd sample yet: no estimate
     CHECK_FALSE(estimateDisplayRmse(sums, ToneMapping{}));
   }
 
   TEST_CASE("the error estimate is within 25% of the true error for every sampler") {
     for (const char* name : {"study-thinlens.json", "study-arealight.json"}) {
-      CAPTURE(name);
+      CAPTURE(std::string(name));
       Scene scene = test::projectScene(name);
       ToneMapping mapping = toneMappingFor(scene);
-      const ImageF& truth = studyTruth(name);
+      // 96x72: at 48x36 a few pixels of the penumbra carry the image's
+      // error, and one unlucky sample moves it more than 25%.
+      const ImageF& truth = studyTruth(name, 96);
       for (SamplerKind sampler : {SamplerKind::Random, SamplerKind::Jittered, SamplerKind::Sobol}) {
         for (uint32_t samples : {9u, 24u}) {
-          RenderOptions options = smallRender(sampler, samples);
+          RenderOptions options = smallRender(sampler, samples, 1, 96);
           options.estimateError = true;
           RenderStats stats;
           double trueRmse = displayRmse(test::render(scene, options, &stats), truth, mapping);
@@ -96,7 +98,7 @@ TEST_SUITE("convergence") {
           CAPTURE(samples);
           CAPTURE(trueRmse);
           REQUIRE(stats.rmseEstimate);
-          CHECK(*stats.rmseEstimate == doctest::Approx(trueRmse).epsilon(0.25));
+          CHECK(*stats.rmseEstimate == doctest::Approx(trueRmse).epsilon(0.25).scale(0));
         }
       }
     }

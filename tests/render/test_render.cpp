@@ -149,6 +149,76 @@ TEST_SUITE("render") {
     CHECK(maxDifference < 0.05);
   }
 
+  TEST_CASE("Russian roulette on faint branches keeps the glass scene's image, only noisier") {
+    Scene scene = test::projectScene("default.json");
+    scene.settings.rouletteWeight = 0.03f;
+    RenderOptions options;
+    options.width = 80;
+    options.height = 60;
+    options.samplesPerPixel = 256;
+    options.sampler = SamplerKind::Sobol;
+    RenderStats rouletteStats, fullStats;
+    ImageF roulette = test::render(scene, options, &rouletteStats);
+    Scene full = scene;
+    full.settings.rouletteWeight = 0.0f;
+    ImageF everyBranch = test::render(full, options, &fullStats);
+    CHECK(std::abs(rouletteStats.features.rouletteWeight - 0.03f) < 1e-6f);
+    CHECK(fullStats.features.rouletteWeight == 0.0f);
+    double sumRoulette = 0, sumFull = 0, absoluteDifference = 0;
+    for (size_t i = 0; i < roulette.rgba.size(); ++i) {
+      if (i % 4 == 3) continue;
+      sumRoulette += roulette.rgba[i];
+      sumFull += everyBranch.rgba[i];
+      absoluteDifference += std::abs(roulette.rgba[i] - everyBranch.rgba[i]);
+    }
+    // Unbiased: the same mean; the images differ by the roulette's noise only.
+    CHECK(sumRoulette == doctest::Approx(sumFull).epsilon(0.005).scale(0));
+    CHECK(absoluteDifference / sumFull < 0.02);
+    CHECK(roulette.rgba != everyBranch.rgba);  // the roulette did drop branches
+  }
+
+  TEST_CASE("Russian roulette reweights the branches it keeps: a faint mirror keeps its value") {
+    // A black sphere with a 2% mirror in front of a white background: the
+    // mirror rays (weight 0.02, below the roulette's 0.03) survive two times
+    // in three and carry 0.03, so the sphere still shows 2% of the white.
+    Scene scene = baseScene(24, 24);
+    scene.settings.rouletteWeight = 0.03f;
+    scene.backgroundColor = glm::vec3(1.0f);
+    Material faintMirror = test::diffuse(glm::vec3(0), 0, 0);
+    faintMirror.reflectivity = 0.02f;
+    addSphere(scene, faintMirror);
+    RenderOptions options;
+    options.samplesPerPixel = 64;
+    options.sampler = SamplerKind::Sobol;
+    RenderStats stats;
+    ImageF image = test::render(scene, options, &stats);
+    REQUIRE(stats.features.rouletteWeight > 0.02f);
+    double sum = 0;
+    for (uint32_t y = 10; y < 14; ++y) {
+      for (uint32_t x = 10; x < 14; ++x) sum += pixel(image, x, y).y;
+    }
+    CHECK(std::abs(sum / 16 - 0.02) < 0.001);  // without the reweighting: 0.0133
+  }
+
+  TEST_CASE("Russian roulette is compiled only where mirror or glass rays branch") {
+    Scene scene = baseScene(16, 12);
+    scene.settings.rouletteWeight = 0.03f;
+    addSphere(scene, test::diffuse({1, 1, 0}), {0, 0, -3}, 1.5f);
+    RenderOptions options;
+    options.samplesPerPixel = 1;
+    RenderStats matte;
+    test::render(scene, options, &matte);
+    CHECK(matte.features.rouletteWeight == 0.0f);
+    scene.settings.mode = RenderMode::PathTracer;
+    Material glass = test::diffuse(glm::vec3(0), 0, 0);
+    glass.transmission = 1;
+    glass.ior = 1.5f;
+    addSphere(scene, glass, {0, 0, 0}, 1.0f);
+    RenderStats pathTraced;
+    test::render(scene, options, &pathTraced);
+    CHECK(pathTraced.features.rouletteWeight == 0.0f);  // it follows one branch anyway
+  }
+
   TEST_CASE("binary mode paints hits in one colour and misses in the background colour") {
     Scene scene = baseScene(32, 32);
     scene.settings.mode = RenderMode::Binary;

@@ -161,8 +161,10 @@ TEST_SUITE("robustness-edge") {
       ImageF image = render(scene, 4, unguardedCompiler());
       REQUIRE(nonFiniteValues(image) == 0);
       glm::dvec3 mean = meanColor(image);
-      CHECK(mean.x == doctest::Approx(0.5).epsilon(0.02));
-      CHECK(mean.y == doctest::Approx(0.5).epsilon(0.02));
+      // At ior 4 (total internal reflection in most directions) the depth
+      // limit and the cutoff lose 2.1% (mean 0.4893, measured).
+      CHECK(mean.x == doctest::Approx(0.5).epsilon(0.03).scale(0));
+      CHECK(mean.y == doctest::Approx(0.5).epsilon(0.03).scale(0));
     }
   }
 
@@ -199,7 +201,7 @@ TEST_SUITE("robustness-edge") {
     ImageF dullTriangle = render(dullScene, 1, unguardedCompiler());
     float highlight =
         flat.pixel(onTriangleX, onTriangleY)[1] - dullTriangle.pixel(onTriangleX, onTriangleY)[1];
-    CHECK(highlight == doctest::Approx(0.3f * 0.8f).epsilon(1e-4));
+    CHECK(highlight == doctest::Approx(0.3f * 0.8f).epsilon(1e-4).scale(0));
 
     scene.materials[0].specularExponent = 1e6f;
     scene.materials[1].specularExponent = 1e6f;
