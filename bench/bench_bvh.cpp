@@ -62,7 +62,7 @@ rt::Scene meshScene(rt::TriangleMesh mesh) {
   scene.camera.position = bounds.center() + glm::vec3(0.0f, 0.0f, 2.6f * radius);
   scene.materials.push_back({});
   scene.meshes.push_back(std::move(mesh));
-  scene.shapes.push_back({rt::MeshInstance{0, glm::mat4(1.0f)}, 0, ""});
+  scene.shapes.push_back({rt::MeshInstance{0, rt::WorldTransform(1.0)}, 0, ""});
   return scene;
 }
 
@@ -173,7 +173,7 @@ double onOffRatio(const std::string& path, rt::Renderer& renderer) {
 // The plain reference kernel on the bunny, with the renderer's camera.
 void printPlainReference(rt::VulkanContext& context, const rt::TriangleMesh& bunny) {
   rt::Scene scene = meshScene(bunny);
-  bench::PlainCamera camera{scene.camera.position,
+  bench::PlainCamera camera{glm::vec3(scene.camera.position),
                             std::tan(glm::radians(scene.camera.fovYDegrees) * 0.5f)};
   std::printf(
       "\nplain reference kernel (bench/PlainBvhKernel.hpp) on the bunny, same camera, image size, "

@@ -30,6 +30,11 @@ std::string vec(glm::vec3 v) {
   return fmt::format("({:g}, {:g}, {:g})", v.x + 0.0f, v.y + 0.0f, v.z + 0.0f);
 }
 
+// Positions in their double precision: the shortest text that reads back the same.
+std::string vec(const glm::dvec3& v) {
+  return fmt::format("({}, {}, {})", v.x + 0.0, v.y + 0.0, v.z + 0.0);
+}
+
 const char* modeName(rt::RenderMode mode) {
   switch (mode) {
     case rt::RenderMode::Binary: return "binary";

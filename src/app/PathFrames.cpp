@@ -5,9 +5,9 @@
 #include <algorithm>
 
 #include "app/CommandLine.hpp"
+#include "scene/SceneBounds.hpp"
 #include "util/Error.hpp"
 #include "viewer/OrbitCamera.hpp"
-#include "viewer/SceneBounds.hpp"
 
 namespace rt::cli {
 namespace {
@@ -62,7 +62,7 @@ PathFrame pathFrame(const Scene& scene, const std::vector<PathStep>& steps,
                             frames == 0 ? 0 : frames - 1));
   }
   viewer::OrbitCamera camera;
-  viewer::BoundingSphere bounds = viewer::boundingSphere(scene);
+  BoundingSphere bounds = boundingSphere(scene);
   camera.setHome(scene.camera, bounds.center, bounds.radius);
   PathFrame result{scene.camera, width, height};
   // The player hands out the step of each frame as the viewer's loop asks.

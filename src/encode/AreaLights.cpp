@@ -52,7 +52,7 @@ glm::vec3 emittedRadiance(const AreaLight& light, const Shape& shape, float area
   return faces * kPi * intensity / area;
 }
 
-SurfacePieces piecesOf(const Shape& shape, const Scene& scene, const glm::vec3& origin) {
+SurfacePieces piecesOf(const Shape& shape, const Scene& scene, const GpuFrame& frame) {
   SurfacePieces out;
   std::visit(
       [&](const auto& g) {
@@ -60,27 +60,28 @@ SurfacePieces piecesOf(const Shape& shape, const Scene& scene, const glm::vec3& 
         if constexpr (std::is_same_v<T, Sphere>) {
           gpu::GpuEmitter piece{};
           piece.kind = RT_PRIM_SPHERE;
-          piece.a = glm::vec4(g.center - origin, g.radius);
+          piece.a = glm::vec4(frame.point(g.center), g.radius);
           piece.area = 4.0f * kPi * g.radius * g.radius;
           out.pieces.push_back(piece);
         } else if constexpr (std::is_same_v<T, Cylinder>) {
           gpu::GpuEmitter piece{};
           piece.kind = RT_PRIM_CYLINDER;
-          piece.a = glm::vec4(g.center - origin, g.radius);
+          piece.a = glm::vec4(frame.point(g.center), g.radius);
           piece.b = glm::vec4(g.axis, g.halfHeight);
           piece.area = 2.0f * kPi * g.radius * (2.0f * g.halfHeight + g.radius);
           out.pieces.push_back(piece);
         } else if constexpr (std::is_same_v<T, Triangle>) {
-          out.addTriangle(g.v0 - origin, g.v1 - origin, g.v2 - origin);
+          out.addTriangle(frame.point(g.v0), frame.point(g.v1), frame.point(g.v2));
         } else if constexpr (std::is_same_v<T, Quad>) {
-          out.addTriangle(g.v0 - origin, g.v1 - origin, g.v2 - origin);
-          out.addTriangle(g.v0 - origin, g.v2 - origin, g.v3 - origin);
+          out.addTriangle(frame.point(g.v0), frame.point(g.v1), frame.point(g.v2));
+          out.addTriangle(frame.point(g.v0), frame.point(g.v2), frame.point(g.v3));
         } else if constexpr (std::is_same_v<T, MeshInstance>) {
           const TriangleMesh& mesh = scene.meshes.at(g.mesh);
+          const glm::mat4 placement = frame.transform(g.objectToWorld);
           std::vector<glm::vec3> points;
           points.reserve(mesh.positions.size());
           for (const glm::vec3& p : mesh.positions) {
-            points.push_back(glm::vec3(g.objectToWorld * glm::vec4(p, 1.0f)) - origin);
+            points.push_back(glm::vec3(placement * glm::vec4(p, 1.0f)));
           }
           for (const glm::uvec3& face : mesh.faces) {
             out.addTriangle(points[face.x], points[face.y], points[face.z]);
@@ -93,12 +94,11 @@ SurfacePieces piecesOf(const Shape& shape, const Scene& scene, const glm::vec3& 
 
 }  // namespace
 
-FlatAreaLights flattenAreaLights(const Scene& scene, const glm::vec3& frameOrigin,
-                                 float lightScale) {
+FlatAreaLights flattenAreaLights(const Scene& scene, const GpuFrame& frame, float lightScale) {
   FlatAreaLights flat;
   for (const AreaLight& light : scene.areaLights) {
     const Shape& shape = scene.shapes.at(light.shape);
-    SurfacePieces surface = piecesOf(shape, scene, frameOrigin);
+    SurfacePieces surface = piecesOf(shape, scene, frame);
     if (surface.pieces.empty()) {
       throw Error(scene.sourcePath.string() + ": area light on shape " +
                   std::to_string(light.shape) +

@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "encode/GpuFrame.hpp"
 #include "gpu_types.h"
 #include "scene/Scene.hpp"
 
@@ -17,9 +18,8 @@ struct FlatAreaLights {
   std::vector<glm::vec3> emission;  // of each light's surface (GpuMaterial::emission)
 };
 
-// `frameOrigin` is the world point at the GPU coordinates' origin;
-// `lightScale` the scene's (LightingConventions), which emission includes.
-FlatAreaLights flattenAreaLights(const Scene& scene, const glm::vec3& frameOrigin,
-                                 float lightScale);
+// `frame` places the surfaces in GPU coordinates; `lightScale` is the
+// scene's (LightingConventions), which emission includes.
+FlatAreaLights flattenAreaLights(const Scene& scene, const GpuFrame& frame, float lightScale);
 
 }  // namespace rt

@@ -13,6 +13,7 @@
 #include "encode/AreaLights.hpp"
 #include "encode/Conventions.hpp"
 #include "encode/GpuBvh.hpp"
+#include "scene/SceneBounds.hpp"
 #include "util/Error.hpp"
 
 namespace rt {
@@ -47,7 +48,8 @@ gpu::GpuPrimitive makeTriangle(const glm::vec3& v0, const glm::vec3& v1, const g
 
 // Points a triangle at three GpuVertex records.
 void attachVertices(gpu::GpuPrimitive& prim, glm::uvec3 indices, bool smooth) {
-  setTriangleRows(prim, triangleRows(prim.a, prim.b, prim.c, indices));
+  setTriangleRows(prim,
+                  triangleRows(glm::vec3(prim.a), glm::vec3(prim.b), glm::vec3(prim.c), indices));
   prim.flags |= RT_PRIM_HAS_VERTICES | (smooth ? RT_PRIM_SMOOTH : 0u);
 }
 
@@ -67,7 +69,7 @@ glm::vec2 projectedUv(const glm::vec3& p, const glm::vec3& center, uint32_t pole
 struct PendingInstance {
   uint32_t primitive;  // index of its GpuPrimitive (kind RT_PRIM_INSTANCE)
   uint32_t mesh;
-  glm::mat4 objectToWorld;
+  glm::mat4 objectToFrame;  // object space to GPU coordinates
 };
 
 // Turns shapes into GPU primitives, and adds vertex records where a
@@ -77,20 +79,22 @@ struct PrimitiveSink {
   FlatScene& flat;
   std::vector<PendingInstance>& instances;
 
+  glm::vec3 at(const WorldPoint& p) const { return flat.frame.point(p); }
+
   void operator()(const Sphere& s) const {
     gpu::GpuPrimitive prim{};
     prim.kind = RT_PRIM_SPHERE;
-    prim.a = glm::vec4(s.center, s.radius);
+    prim.a = glm::vec4(at(s.center), s.radius);
     flat.primitives.push_back(prim);
   }
   // A lone triangle's UVs are its barycentric coordinates: (0,0), (1,0), (0,1).
   void operator()(const Triangle& t) const {
-    flat.primitives.push_back(makeTriangle(t.v0, t.v1, t.v2));
+    flat.primitives.push_back(makeTriangle(at(t.v0), at(t.v1), at(t.v2)));
   }
   // Quads map the unit square onto v0 v1 v2 v3 (v0 at uv (0,0), v1 at (1,0)).
   void operator()(const Quad& q) const {
-    gpu::GpuPrimitive first = makeTriangle(q.v0, q.v1, q.v2);
-    gpu::GpuPrimitive second = makeTriangle(q.v0, q.v2, q.v3);
+    gpu::GpuPrimitive first = makeTriangle(at(q.v0), at(q.v1), at(q.v2));
+    gpu::GpuPrimitive second = makeTriangle(at(q.v0), at(q.v2), at(q.v3));
     if (material.diffuseTexture >= 0) {
       uint32_t base = addVertices({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
       attachVertices(first, {base, base + 1, base + 2}, false);
@@ -102,15 +106,15 @@ struct PrimitiveSink {
   void operator()(const Cylinder& c) const {
     gpu::GpuPrimitive prim{};
     prim.kind = RT_PRIM_CYLINDER;
-    prim.a = glm::vec4(c.center, c.radius);
+    prim.a = glm::vec4(at(c.center), c.radius);
     prim.b = glm::vec4(c.axis, c.halfHeight);
     flat.primitives.push_back(prim);
   }
   void operator()(const MeshInstance& instance) const {
     gpu::GpuPrimitive prim{};
     prim.kind = RT_PRIM_INSTANCE;
-    instances.push_back(
-        {static_cast<uint32_t>(flat.primitives.size()), instance.mesh, instance.objectToWorld});
+    instances.push_back({static_cast<uint32_t>(flat.primitives.size()), instance.mesh,
+                         flat.frame.transform(instance.objectToWorld)});
     flat.primitives.push_back(prim);
   }
 
@@ -259,29 +263,6 @@ std::vector<PendingInstance> collectPrimitives(const Scene& scene,
   return instances;
 }
 
-// Camera-relative coordinates (before the BVH is built): floats are coarse
-// far from the world origin (ulp 0.0625 at 1e6), so a scene far from it is
-// moved next to the camera, where what the camera sees is resolved finely.
-// Each coordinate is one float subtraction, rounded once; a scene that is
-// only translated gives the GPU the very same numbers.
-// Mesh instances move by their transforms (applied when meshes are built).
-void recenterOnCamera(FlatScene& flat, std::vector<PendingInstance>& instances) {
-  glm::vec3 origin = flat.info.cameraPosition;
-  for (PendingInstance& instance : instances) {
-    instance.objectToWorld = glm::translate(glm::mat4(1.0f), -origin) * instance.objectToWorld;
-  }
-  for (gpu::GpuPrimitive& prim : flat.primitives) {
-    if (prim.kind == RT_PRIM_INSTANCE) continue;
-    prim.a = glm::vec4(glm::vec3(prim.a) - origin, prim.a.w);
-    if (prim.kind != RT_PRIM_TRIANGLE) continue;
-    prim.b = glm::vec4(glm::vec3(prim.b) - origin, prim.b.w);
-    prim.c = glm::vec4(glm::vec3(prim.c) - origin, prim.c.w);
-  }
-  for (gpu::GpuPointLight& light : flat.pointLights) light.position -= origin;
-  flat.info.cameraPosition = glm::vec3(0.0f);
-  flat.frameOrigin = origin;
-}
-
 // Builds each used mesh's triangles and BVH once, and fills its instances'
 // primitives (world-to-object rows, flags). Returns the BVHs by mesh.
 std::vector<std::optional<MeshBlas>> addMeshes(const Scene& scene,
@@ -301,11 +282,11 @@ std::vector<std::optional<MeshBlas>> addMeshes(const Scene& scene,
     std::optional<MeshBlas>& blas = meshes[instance.mesh];
     bool bake = uses[instance.mesh] == 1;
     if (!blas) {
-      blas = builder.build(instance.mesh, bake ? instance.objectToWorld : glm::mat4(1.0f),
+      blas = builder.build(instance.mesh, bake ? instance.objectToFrame : glm::mat4(1.0f),
                            textured[instance.mesh]);
       blas->baked = bake;
     }
-    glm::mat4 worldToObject = bake ? glm::mat4(1.0f) : glm::inverse(instance.objectToWorld);
+    glm::mat4 worldToObject = bake ? glm::mat4(1.0f) : glm::inverse(instance.objectToFrame);
     gpu::GpuPrimitive& prim = flat.primitives[instance.primitive];
     // glm is column-major: row r of the matrix is (m[0][r], m[1][r], m[2][r], m[3][r]).
     glm::vec4* rows[3] = {&prim.a, &prim.b, &prim.c};
@@ -381,7 +362,7 @@ void addBvh(const std::vector<PendingInstance>& instances,
     const MeshBlas& blas = *meshes[instance.mesh];
     flat.bvhNodes[1 + instance.primitive] = flat.bvhNodes[blas.root];
     flat.instances.push_back({instance.primitive, flatMeshOf[instance.mesh],
-                              blas.baked ? glm::mat4(1.0f) : instance.objectToWorld});
+                              blas.baked ? glm::mat4(1.0f) : instance.objectToFrame});
   }
   flat.bvhDepth = top.depth + meshDepth;
 }
@@ -474,10 +455,10 @@ Aabb primitiveBounds(const gpu::GpuPrimitive& prim) {
   return box;
 }
 
-void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuSceneInfo& info,
-                const glm::vec3& frameOrigin) {
+void fillCamera(const Camera& camera, uint32_t width, uint32_t height, const GpuFrame& frame,
+                gpu::GpuSceneInfo& info) {
   CameraBasis basis = cameraBasis(camera);
-  info.cameraPosition = camera.position - frameOrigin;
+  info.cameraPosition = frame.point(camera.position);
   info.cameraForward = basis.forward;
   info.cameraRight = basis.right;
   info.cameraUp = basis.up;
@@ -490,16 +471,23 @@ void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuS
 }
 
 FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
+  if (const std::optional<std::string> problem = precisionProblem(scene)) {
+    throw Error((scene.sourcePath.empty() ? "scene" : scene.sourcePath.string()) + ": " + *problem);
+  }
   FlatScene flat;
   flat.accel = options.accel;
   uint32_t width = options.width ? options.width : scene.camera.width;
   uint32_t height = options.height ? options.height : scene.camera.height;
-  fillCamera(scene.camera, width, height, flat.info);
+  // Camera-relative coordinates: floats are coarse far from the world origin
+  // (ulp 0.0625 at 1e6), so the scene is moved next to the camera, where
+  // what the camera sees is resolved finely, before anything is rounded.
+  flat.frame.origin = scene.camera.position;
+  fillCamera(scene.camera, width, height, flat.frame, flat.info);
   for (const Material& m : scene.materials) flat.materials.push_back(toGpu(m));
   addTextures(scene, flat);
   for (const PointLight& light : scene.pointLights) {
-    flat.pointLights.push_back(
-        {light.position, 0.0f, light.diffuseIntensity, 0.0f, light.specularIntensity, 0.0f});
+    flat.pointLights.push_back({flat.frame.point(light.position), 0.0f, light.diffuseIntensity,
+                                0.0f, light.specularIntensity, 0.0f});
   }
   flat.info.sphereUvPole = dominantAxis(scene.camera.up);
   LightingConventions conventions = lightingConventionsFor(scene, options.shading);
@@ -507,14 +495,11 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
       options.shading == ShadingModel::Coursework) {
     flat.warnings.push_back("the path tracer uses the standard shading model");
   }
-  // Camera-relative frame (see recenterOnCamera), known before anything moves.
-  FlatAreaLights areaLights =
-      flattenAreaLights(scene, flat.info.cameraPosition, conventions.lightScale);
+  FlatAreaLights areaLights = flattenAreaLights(scene, flat.frame, conventions.lightScale);
   flat.areaLights = std::move(areaLights.lights);
   flat.emitters = std::move(areaLights.emitters);
   std::vector<uint32_t> shapeMaterials = addLightMaterials(scene, areaLights, flat);
   std::vector<PendingInstance> instances = collectPrimitives(scene, shapeMaterials, flat);
-  recenterOnCamera(flat, instances);
   std::vector<std::optional<MeshBlas>> meshes = addMeshes(scene, instances, options, flat);
   addBvh(instances, meshes, options, flat);
 

@@ -8,6 +8,7 @@
 
 #include "bvh/Bvh.hpp"
 #include "encode/Conventions.hpp"
+#include "encode/GpuFrame.hpp"
 #include "gpu_types.h"
 #include "scene/Scene.hpp"
 
@@ -50,7 +51,7 @@ struct FlatScene {
   std::vector<gpu::GpuTextureInfo> textureInfos;
   std::vector<uint32_t> texels;       // RGBA8 of every texture, packed
   uint32_t bvhDepth = 0;              // top level plus the deepest mesh
-  glm::vec3 frameOrigin{0.0f};        // world point at the GPU coordinates' origin (the camera)
+  GpuFrame frame;                     // GPU coordinates: relative to the camera's position
   std::vector<std::string> warnings;  // scene features the GPU scene leaves out
   AccelKind accel = AccelKind::Bvh;   // what the kernels walk
 };
@@ -70,8 +71,8 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options = {});
 Aabb primitiveBounds(const gpu::GpuPrimitive& primitive);
 
 // Writes the camera fields of `info` (basis, field of view, lens, image size),
-// the position relative to the flat scene's frameOrigin.
-void fillCamera(const Camera& camera, uint32_t width, uint32_t height, gpu::GpuSceneInfo& info,
-                const glm::vec3& frameOrigin = glm::vec3(0.0f));
+// the position in the flat scene's `frame`.
+void fillCamera(const Camera& camera, uint32_t width, uint32_t height, const GpuFrame& frame,
+                gpu::GpuSceneInfo& info);
 
 }  // namespace rt

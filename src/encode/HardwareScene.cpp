@@ -48,7 +48,7 @@ std::vector<glm::vec3> cornersOf(const FlatScene& scene, const FlatMesh& mesh) {
   corners.reserve(size_t(mesh.triangleCount) * 3);
   for (uint32_t i = 0; i < mesh.triangleCount; ++i) {
     const gpu::GpuItem& item = scene.items.at(mesh.firstItem + i);
-    for (const glm::vec4& row : {item.row0, item.row1, item.row2}) corners.push_back(row);
+    for (const glm::vec4& row : {item.row0, item.row1, item.row2}) corners.emplace_back(row);
   }
   return corners;
 }

@@ -18,7 +18,8 @@ class BatchIntersector {
       : kernel_(context, compiler, scene, "intersect_batch.comp", options) {}
 
   // World-space rays; one hit each.
-  std::vector<gpu::GpuHit> intersect(const std::vector<gpu::GpuRay>& rays);
+  std::vector<gpu::GpuHit> intersect(const std::vector<WorldRay>& rays);
+  std::vector<gpu::GpuHit> intersect(const std::vector<gpu::GpuRay>& rays);  // float origins
 
   // Primitives in GPU order: GpuHit::primitiveIndex indexes this.
   const FlatScene& flatScene() const { return kernel_.flatScene(); }

@@ -25,9 +25,8 @@ BatchKernel::BatchKernel(VulkanContext& context, const ShaderCompiler& compiler,
 
 BatchKernel::~BatchKernel() = default;
 
-gpu::GpuRay BatchKernel::toFrame(gpu::GpuRay ray) const {
-  ray.origin -= flat_.frameOrigin;
-  return ray;
+gpu::GpuRay BatchKernel::toFrame(const WorldRay& ray) const {
+  return {flat_.frame.point(ray.origin), 0.0f, ray.direction, ray.tMax};
 }
 
 void BatchKernel::dispatch(const std::vector<gpu::GpuRay>& rays, size_t items, void* results,

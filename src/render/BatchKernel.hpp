@@ -21,6 +21,13 @@ class SceneBuffers;
 class ShaderCompiler;
 class VulkanContext;
 
+// A ray in world coordinates, its origin in the model's double precision.
+struct WorldRay {
+  WorldPoint origin{0.0};
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};
+  float tMax = RT_FAR_VALUE;
+};
+
 class BatchKernel {
  public:
   BatchKernel(VulkanContext& context, const ShaderCompiler& compiler, const Scene& scene,
@@ -39,7 +46,7 @@ class BatchKernel {
   }
 
   // A world-space ray moved into the flat scene's frame.
-  gpu::GpuRay toFrame(gpu::GpuRay ray) const;
+  gpu::GpuRay toFrame(const WorldRay& ray) const;
 
   const FlatScene& flatScene() const { return flat_; }
 

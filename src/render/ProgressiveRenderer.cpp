@@ -198,7 +198,7 @@ void ProgressiveRenderer::reset() {
 }
 
 void ProgressiveRenderer::setCamera(const Camera& camera) {
-  fillCamera(camera, width_, height_, flat_.info, flat_.frameOrigin);
+  fillCamera(camera, width_, height_, flat_.frame, flat_.info);
   sceneBuffers_.updateInfo(flat_.info);
   reset();
 }

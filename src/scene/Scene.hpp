@@ -15,6 +15,14 @@
 
 namespace rt {
 
+// World positions are double precision: a scene 1e-4 across placed 1e9 from
+// the origin keeps its shape in the model, and the GPU encoding
+// (encode/FlatScene) subtracts the camera's position before it rounds to
+// float. Directions, radii and object-space mesh vertices stay float: their
+// precision is relative to their own size.
+using WorldPoint = glm::dvec3;
+using WorldTransform = glm::dmat4;  // affine object-to-world placement
+
 // Blinn-Phong material with Whitted-style mirror and refraction weights.
 struct Material {
   glm::vec3 diffuseColor{0.8f};
@@ -39,22 +47,22 @@ struct Texture {
 };
 
 struct Sphere {
-  glm::vec3 center{0.0f};
+  WorldPoint center{0.0};
   float radius = 1.0f;
 };
 
 struct Triangle {
-  glm::vec3 v0{0.0f}, v1{0.0f}, v2{0.0f};
+  WorldPoint v0{0.0}, v1{0.0}, v2{0.0};
 };
 
 // Planar quad, vertices in cyclic order (family A `plane`).
 struct Quad {
-  glm::vec3 v0{0.0f}, v1{0.0f}, v2{0.0f}, v3{0.0f};
+  WorldPoint v0{0.0}, v1{0.0}, v2{0.0}, v3{0.0};
 };
 
 // Finite capped cylinder (family B): caps at center +- axis * halfHeight.
 struct Cylinder {
-  glm::vec3 center{0.0f};
+  WorldPoint center{0.0};
   glm::vec3 axis{0.0f, 1.0f, 0.0f};  // unit length after loading
   float radius = 1.0f;
   float halfHeight = 1.0f;
@@ -72,8 +80,8 @@ struct TriangleMesh {
 // A shape that places one of Scene::meshes: meshes live apart from shapes so
 // that several shapes can share one mesh (and, on the GPU, its BVH).
 struct MeshInstance {
-  uint32_t mesh = 0;              // index into Scene::meshes
-  glm::mat4 objectToWorld{1.0f};  // placement (affine)
+  uint32_t mesh = 0;  // index into Scene::meshes
+  WorldTransform objectToWorld{1.0};
 };
 
 using Geometry = std::variant<Sphere, Triangle, Quad, Cylinder, MeshInstance>;
@@ -88,7 +96,7 @@ struct Shape {
 };
 
 struct PointLight {
-  glm::vec3 position{0.0f};
+  WorldPoint position{0.0};
   glm::vec3 diffuseIntensity{1.0f};   // family A `id`, family B / 2019 `intensity`
   glm::vec3 specularIntensity{1.0f};  // family A `is`, family B / 2019 `intensity`
 };
@@ -124,7 +132,7 @@ struct Camera {
   uint32_t width = 800;
   uint32_t height = 800;
   float fovYDegrees = 45.0f;  // vertical field of view
-  glm::vec3 position{0.0f};
+  WorldPoint position{0.0};
   glm::vec3 forward{0.0f, 0.0f, -1.0f};  // unit view direction
   glm::vec3 up{0.0f, 1.0f, 0.0f};        // as given; orthogonalised when rays are built
   float exposure = 1.0f;                 // linear scale applied before tone mapping

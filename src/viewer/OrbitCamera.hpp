@@ -13,12 +13,12 @@ class OrbitCamera {
  public:
   // `home` is the scene's camera; the scene's bounding sphere places the
   // pivot and scales pan, zoom and fly speeds.
-  void setHome(const Camera& home, glm::vec3 sceneCenter, float sceneRadius);
+  void setHome(const Camera& home, const WorldPoint& sceneCenter, double sceneRadius);
   void reset();
 
   const Camera& camera() const { return camera_; }
   const Camera& home() const { return home_; }
-  glm::vec3 pivot() const { return pivot_; }
+  const WorldPoint& pivot() const { return pivot_; }
 
   // Degrees around the up axis (positive: the camera moves to its right) and
   // around the camera's right axis (positive: the camera moves down).
@@ -30,19 +30,22 @@ class OrbitCamera {
   void zoom(float steps);
   // Moves camera and pivot by (right, up, forward) * scene radius.
   void fly(glm::vec3 sceneRadii);
-  void lookAt(glm::vec3 position, glm::vec3 target);
+  void lookAt(const WorldPoint& position, const WorldPoint& target);
   void setLens(float apertureRadius, float focusDistance);
 
  private:
   glm::vec3 right() const;
-  void placeAtDistance(float distance);
+  void placeAtDistance(double distance);
+  void move(const glm::dvec3& offset);  // camera and pivot
 
   Camera home_;
   Camera camera_;
   glm::vec3 worldUp_{0.0f, 1.0f, 0.0f};
-  glm::vec3 pivot_{0.0f};
-  glm::vec3 homePivot_{0.0f};
-  float sceneRadius_ = 1.0f;
+  // Positions in the model's double precision: a scene far from the world
+  // origin orbits as smoothly as one at it.
+  WorldPoint pivot_{0.0};
+  WorldPoint homePivot_{0.0};
+  double sceneRadius_ = 1.0;
 };
 
 }  // namespace rt::viewer

@@ -11,9 +11,9 @@
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
 #include "render/BatchIntersector.hpp"
+#include "scene/SceneBounds.hpp"
 #include "util/Error.hpp"
 #include "viewer/DisplayPass.hpp"
-#include "viewer/SceneBounds.hpp"
 #include "viewer/Swapchain.hpp"
 #include "viewer/SwapchainReadback.hpp"
 
@@ -141,7 +141,7 @@ void Viewer::initialiseSettings() {
   settings_.exposure = toneMappingFor(scene_).exposure * options_.exposure;
   settings_.apertureRadius = camera_.camera().apertureRadius;
   settings_.focusDistance = camera_.camera().focusDistance;
-  settings_.lensScale = bounds.radius;
+  settings_.lensScale = static_cast<float>(bounds.radius);
 }
 
 void Viewer::createFrameObjects() {

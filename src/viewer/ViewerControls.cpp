@@ -12,9 +12,9 @@
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
 #include "render/BatchIntersector.hpp"
+#include "scene/SceneBounds.hpp"
 #include "util/Error.hpp"
 #include "viewer/DisplayPass.hpp"
-#include "viewer/SceneBounds.hpp"
 #include "viewer/Swapchain.hpp"
 #include "viewer/ThirdParty.hpp"
 #include "viewer/Viewer.hpp"
@@ -50,9 +50,9 @@ void printLines(FILE* stream, const std::string& prefix, const std::string& text
   std::fflush(stream);
 }
 
-std::string vectorText(glm::vec3 v) {
-  return fmt::format("[{:.4f}, {:.4f}, {:.4f}]", v.x, v.y, v.z);
-}
+// Positions keep their double precision (the shortest text that reads back the
+// same) for pasting into a scene file.
+std::string vectorText(const glm::dvec3& v) { return fmt::format("[{}, {}, {}]", v.x, v.y, v.z); }
 
 }  // namespace
 
@@ -156,7 +156,7 @@ void Viewer::reloadScene() {
     return;
   }
   sceneWaitsForShaders_ = false;
-  settings_.lensScale = bounds.radius;
+  settings_.lensScale = static_cast<float>(bounds.radius);
   settings_.apertureRadius = camera_.camera().apertureRadius;
   settings_.focusDistance = camera_.camera().focusDistance;
   intersector_.reset();  // built again for the new geometry on the next focus click
@@ -294,7 +294,7 @@ void Viewer::focusAt(glm::dvec2 renderPixel) {
   // The primary ray through the pixel, built exactly as shaders/camera.glsl.
   const Camera& camera = camera_.camera();
   gpu::GpuSceneInfo info{};
-  fillCamera(camera, size.x, size.y, info);
+  fillCamera(camera, size.x, size.y, GpuFrame{}, info);
   glm::vec2 ndc = 2.0f * glm::vec2(renderPixel) / glm::vec2(size) - 1.0f;
   glm::vec2 screen = glm::vec2(ndc.x * info.aspect, -ndc.y) * info.tanHalfFovY;
   glm::vec3 direction =
@@ -305,7 +305,7 @@ void Viewer::focusAt(glm::dvec2 renderPixel) {
       intersector_ = std::make_unique<BatchIntersector>(*context_, *compiler_, scene_);
     }
     std::vector<gpu::GpuHit> hits =
-        intersector_->intersect({gpu::GpuRay{camera.position, 0.0f, direction, 1e30f}});
+        intersector_->intersect(std::vector<WorldRay>{{camera.position, direction, 1e30f}});
     if (hits[0].t <= 0.0f) {
       notice("focus: no surface under the cursor");
       return;
@@ -345,7 +345,7 @@ void Viewer::printCamera() const {
   const Camera& camera = camera_.camera();
   std::printf("camera: \"position\": %s, \"lookAt\": %s, \"upVector\": %s, \"fov\": %.3f\n",
               vectorText(camera.position).c_str(), vectorText(camera_.pivot()).c_str(),
-              vectorText(camera.up).c_str(), camera.fovYDegrees);
+              vectorText(glm::dvec3(camera.up)).c_str(), camera.fovYDegrees);
   std::fflush(stdout);
 }
 

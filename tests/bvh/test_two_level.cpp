@@ -42,7 +42,8 @@ Scene meshScene(bool flattened, uint32_t instances = 3) {
     if (flattened || scene.meshes.empty()) scene.meshes.push_back(mesh);
     glm::mat4 transform =
         glm::translate(where[i % where.size()], glm::vec3(0, 0, -0.3f * float(i / 3)));
-    scene.shapes.push_back({MeshInstance{uint32_t(scene.meshes.size() - 1), transform}, 0, ""});
+    scene.shapes.push_back(
+        {MeshInstance{uint32_t(scene.meshes.size() - 1), WorldTransform(transform)}, 0, ""});
   }
   scene.shapes.push_back({Sphere{{0.2f, -0.9f, 0.6f}, 0.5f}, 0, ""});
   scene.shapes.push_back(
@@ -169,7 +170,7 @@ TEST_SUITE("bvh-gpu") {
     meshOnly.materials.push_back({});
     meshOnly.meshes.push_back(bumpySphere({4, 6}));
     meshOnly.shapes.push_back(
-        {MeshInstance{0, glm::scale(glm::mat4(1.0f), glm::vec3(2.0f))}, 0, ""});
+        {MeshInstance{0, glm::scale(WorldTransform(1.0), glm::dvec3(2.0))}, 0, ""});
     features = detectFeatures(meshOnly, flattenScene(meshOnly));
     CHECK(features.triangles);
     CHECK_FALSE(features.looseTriangles);

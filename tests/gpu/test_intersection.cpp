@@ -158,7 +158,7 @@ TEST_SUITE("intersection") {
   TEST_CASE("spheres of different sizes") {
     for (float radius : {0.05f, 1.0f, 1.4f}) {
       CAPTURE(radius);
-      Scene scene = sceneOf({Sphere{radius * glm::vec3(0.1f, -0.2f, 0.3f), radius}});
+      Scene scene = sceneOf({Sphere{WorldPoint(radius * glm::vec3(0.1f, -0.2f, 0.3f)), radius}});
       auto rays = randomRays(20000, 1, 1.5f * radius);
       checkAgreement(compare(scene, rays), rays.size());
     }
@@ -195,10 +195,10 @@ TEST_SUITE("intersection") {
     for (int i = 0; i < 400; ++i) {
       glm::vec3 c(pos(rng), pos(rng), pos(rng));
       if (i % 2 == 0) {
-        shapes.push_back(Sphere{c, size(rng)});
+        shapes.push_back(Sphere{WorldPoint(c), size(rng)});
       } else {
         glm::vec3 e1(size(rng), size(rng), -size(rng)), e2(-size(rng), size(rng), size(rng));
-        shapes.push_back(Triangle{c, c + e1, c + e2});
+        shapes.push_back(Triangle{WorldPoint(c), WorldPoint(c + e1), WorldPoint(c + e2)});
       }
     }
     Scene scene = sceneOf(shapes);

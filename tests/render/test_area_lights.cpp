@@ -122,16 +122,16 @@ double maxRelativeDifference(const ImageF& a, const ImageF& b, float floor) {
 TEST_SUITE("area lights") {
   TEST_CASE("a tiny quad light and a lamp sphere light like the point light at their centre") {
     // The lights sit above the view, so only their light is seen.
-    const glm::vec3 centre{0.3f, 2.5f, 1.5f};
+    const WorldPoint centre{0.3, 2.5, 1.5};
     Scene point = wallScene(48);
     point.pointLights.push_back({centre, glm::vec3(3), glm::vec3(3)});
     const ImageF expected = test::render(point, standardShading(16));
 
     Scene tinyQuad = wallScene(48);
-    const float h = 5e-4f;
+    const double h = 5e-4;
     addAreaLight(tinyQuad,
-                 Quad{centre + glm::vec3(-h, 0, -h), centre + glm::vec3(h, 0, -h),
-                      centre + glm::vec3(h, 0, h), centre + glm::vec3(-h, 0, h)},
+                 Quad{centre + glm::dvec3(-h, 0, -h), centre + glm::dvec3(h, 0, -h),
+                      centre + glm::dvec3(h, 0, h), centre + glm::dvec3(-h, 0, h)},
                  3.0f, 1);
     CHECK(maxRelativeDifference(test::render(tinyQuad, standardShading(16)), expected, 1e-3f) <
           2e-3);

@@ -24,7 +24,7 @@ Scene baseScene(uint32_t width, uint32_t height) {
 void addSphere(Scene& scene, Material material, glm::vec3 center = {0, 0, 0}, float radius = 1) {
   scene.materials.push_back(material);
   Shape shape;
-  shape.geometry = Sphere{center, radius};
+  shape.geometry = Sphere{WorldPoint(center), radius};
   shape.material = uint32_t(scene.materials.size() - 1);
   scene.shapes.push_back(std::move(shape));
 }

@@ -85,7 +85,7 @@ TEST_SUITE("render textures") {
     mesh.faces = {{0, 1, 2}, {0, 2, 3}};
     scene.meshes.push_back(mesh);
     Shape shape;
-    shape.geometry = MeshInstance{0, glm::mat4(1.0f)};
+    shape.geometry = MeshInstance{0, WorldTransform(1.0)};
     scene.shapes.push_back(shape);
     ImageF image = render(scene);
     // Two repeats across: red at 1/8 and at 5/8 of the width.

@@ -67,7 +67,7 @@ inline void addShape(Scene& scene, Geometry geometry, const Material& material) 
 
 inline void addMesh(Scene& scene, TriangleMesh mesh, const Material& material) {
   scene.meshes.push_back(std::move(mesh));
-  addShape(scene, MeshInstance{uint32_t(scene.meshes.size() - 1), glm::mat4(1.0f)}, material);
+  addShape(scene, MeshInstance{uint32_t(scene.meshes.size() - 1), WorldTransform(1.0)}, material);
 }
 
 inline Material matte(glm::vec3 color) {

@@ -31,7 +31,8 @@ class SpawnProbe {
     // kernel finds its origin).
     std::vector<gpu::GpuRay> rays;
     for (const SpawnQuery& query : queries) {
-      rays.push_back(kernel_.toFrame(query.first));
+      const gpu::GpuRay& first = query.first;
+      rays.push_back(kernel_.toFrame({WorldPoint(first.origin), first.direction, first.tMax}));
       rays.push_back({glm::vec3(0.0f), 0.0f, query.leaving, 0.0f});
     }
     static_assert(sizeof(SpawnResult) == 2 * sizeof(gpu::GpuHit));

@@ -57,7 +57,7 @@ TestShape randomShape(Kind kind, Rng& rng) {
   glm::vec3 c(center);
   if (kind == Kind::Sphere) {
     float radius = float(size * rng.uniform(0.05, 1));
-    return {Sphere{c, radius}, radius, true, [=](Rng& r, dvec3& normal) {
+    return {Sphere{dvec3(c), radius}, radius, true, [=](Rng& r, dvec3& normal) {
               normal = r.direction();
               return dvec3(c) + double(radius) * normal;
             }};
@@ -67,8 +67,8 @@ TestShape randomShape(Kind kind, Rng& rng) {
     float radius = float(size * rng.uniform(0.05, 1));
     float halfHeight = float(size * rng.uniform(0.05, 1));
     dvec3 a = glm::normalize(dvec3(axis));
-    TestShape shape{Cylinder{c, axis, radius, halfHeight}, std::min(radius, halfHeight), true,
-                    [=](Rng& r, dvec3& normal) {
+    TestShape shape{Cylinder{dvec3(c), axis, radius, halfHeight}, std::min(radius, halfHeight),
+                    true, [=](Rng& r, dvec3& normal) {
                       dvec3 radial = glm::normalize(glm::cross(a, r.direction()));
                       if (r.uniform(0, 1) < 0.7) {
                         normal = radial;
@@ -89,7 +89,7 @@ TestShape randomShape(Kind kind, Rng& rng) {
   if (kind == Kind::Triangle) {
     glm::vec3 v0(center + rng.inBox(size)), v1(center + rng.inBox(size)),
         v2(center + rng.inBox(size));
-    return {Triangle{v0, v1, v2}, size, false, [=](Rng& r, dvec3& normal) {
+    return {Triangle{dvec3(v0), dvec3(v1), dvec3(v2)}, size, false, [=](Rng& r, dvec3& normal) {
               normal = glm::normalize(glm::cross(dvec3(v1) - dvec3(v0), dvec3(v2) - dvec3(v0)));
               double u = r.uniform(0, 1), v = r.uniform(0, 1);
               if (u + v > 1) u = 1 - u, v = 1 - v;
@@ -99,7 +99,8 @@ TestShape randomShape(Kind kind, Rng& rng) {
   dvec3 u = size * rng.uniform(0.2, 1) * rng.direction();
   dvec3 v = size * rng.uniform(0.2, 1) * glm::normalize(glm::cross(u, rng.direction()));
   glm::vec3 q0(center - u - v), q1(center + u - v), q2(center + u + v), q3(center - u + v);
-  return {Quad{q0, q1, q2, q3}, size, false, [=](Rng& r, dvec3& normal) {
+  return {Quad{dvec3(q0), dvec3(q1), dvec3(q2), dvec3(q3)}, size, false,
+          [=](Rng& r, dvec3& normal) {
             normal = glm::normalize(glm::cross(u, v));
             return center + r.uniform(-1, 1) * u + r.uniform(-1, 1) * v;
           }};

@@ -36,7 +36,7 @@ std::vector<SharedPoint> sharedPoints(const TriangleMesh& mesh) {
   std::map<std::pair<uint32_t, uint32_t>, std::vector<Face>> edgeFaces;
   std::vector<std::vector<Face>> vertexFaces(mesh.positions.size());
   for (const glm::uvec3& f : mesh.faces) {
-    Face face{mesh.positions[f.x], mesh.positions[f.y], mesh.positions[f.z]};
+    Face face{dvec3(mesh.positions[f.x]), dvec3(mesh.positions[f.y]), dvec3(mesh.positions[f.z])};
     for (auto [from, to] : {std::pair{f.x, f.y}, std::pair{f.y, f.z}, std::pair{f.z, f.x}}) {
       edgeFaces[std::minmax(from, to)].push_back(face);
       vertexFaces[from].push_back(face);

@@ -47,6 +47,10 @@ bool near(glm::vec3 a, glm::vec3 b, float tolerance = 1e-4f) {
 }
 
 glm::vec3 place(const glm::mat4& m, glm::vec3 p) { return glm::vec3(m * glm::vec4(p, 1.0f)); }
+glm::vec3 place(const rt::WorldTransform& m, glm::vec3 p) { return place(glm::mat4(m), p); }
+bool near(const glm::dvec3& a, glm::vec3 b, float tolerance = 1e-4f) {
+  return near(glm::vec3(a), b, tolerance);
+}
 
 // ------------------------------------------------------------ scene queries
 
@@ -95,7 +99,7 @@ Box3 worldBounds(const rt::Scene& scene) {
 // The world-space winding normal of face `face` of shape `shape`.
 glm::vec3 windingNormal(const rt::Scene& scene, size_t shape, size_t face = 0) {
   const rt::TriangleMesh& mesh = meshOf(scene, shape);
-  const glm::mat4& m = instanceOf(scene, shape).objectToWorld;
+  const glm::mat4 m(instanceOf(scene, shape).objectToWorld);
   glm::uvec3 f = mesh.faces.at(face);
   glm::vec3 a = place(m, mesh.positions[f.x]);
   glm::vec3 b = place(m, mesh.positions[f.y]);
@@ -143,7 +147,7 @@ std::string unsoundness(const rt::Scene& scene) {
   }
   for (size_t i = 0; i < scene.shapes.size(); ++i) {
     if (scene.shapes[i].material >= scene.materials.size()) return "material index";
-    const glm::mat4& m = instanceOf(scene, i).objectToWorld;
+    const glm::mat4 m(instanceOf(scene, i).objectToWorld);
     if (instanceOf(scene, i).mesh >= scene.meshes.size()) return "mesh index";
     for (int c = 0; c < 4; ++c) {
       if (!finite(glm::vec3(m[c])) || !std::isfinite(m[c][3])) return "matrix";
@@ -158,10 +162,11 @@ std::string unsoundness(const rt::Scene& scene) {
     }
   }
   for (const rt::PointLight& light : scene.pointLights) {
-    if (!finite(light.position) || !finite(light.diffuseIntensity)) return "light";
+    if (!finite(glm::vec3(light.position)) || !finite(light.diffuseIntensity)) return "light";
   }
   const rt::Camera& camera = scene.camera;
-  if (!finite(camera.position) || !finite(camera.forward) || !finite(camera.up)) return "camera";
+  if (!finite(glm::vec3(camera.position)) || !finite(camera.forward) || !finite(camera.up))
+    return "camera";
   if (!(camera.fovYDegrees > 0.0f && camera.fovYDegrees < 180.0f)) return "camera fov";
   if (camera.width < 1 || camera.width > 16384 || camera.height < 1) return "camera size";
   return "";
@@ -455,15 +460,16 @@ TEST_SUITE("scene gltf") {
     CHECK(camera.fovYDegrees == doctest::Approx(45.0));
     CHECK(near(camera.forward, -glm::normalize(glm::vec3(0, 0.5f, 1))));
     glm::vec3 center(0.5f, 0.5f, 0.0f);
-    CHECK(glm::length(glm::cross(center - camera.position, camera.forward)) < 1e-4f);
+    const glm::vec3 position(camera.position);
+    CHECK(glm::length(glm::cross(center - position, camera.forward)) < 1e-4f);
     for (glm::vec3 corner : scene.meshes[0].positions) {
-      float angle = glm::degrees(
-          std::acos(glm::dot(glm::normalize(corner - camera.position), camera.forward)));
+      float angle =
+          glm::degrees(std::acos(glm::dot(glm::normalize(corner - position), camera.forward)));
       CHECK(angle < 22.5f);
     }
     REQUIRE(scene.pointLights.size() == 1);
     CHECK(scene.pointLights[0].diffuseIntensity == glm::vec3(1.0f));
-    glm::vec3 offset = scene.pointLights[0].position - camera.position;
+    glm::vec3 offset(scene.pointLights[0].position - camera.position);
     CHECK(glm::dot(offset, glm::vec3(0, 1, 0)) > 0.0f);  // above the camera
     CHECK(offset.x > 0.0f);                              // and to its right
   }
@@ -598,7 +604,8 @@ TEST_SUITE("scene gltf") {
     glm::mat4 expected(trs);
     for (size_t shape : {1, 2}) {
       for (int c = 0; c < 4; ++c) {
-        CHECK(near(glm::vec4(instanceOf(scene, shape).objectToWorld[c]), glm::vec4(expected[c])));
+        CHECK(near(glm::vec3(glm::mat4(instanceOf(scene, shape).objectToWorld)[c]),
+                   glm::vec3(expected[c])));
       }
     }
     glm::mat4 nested = expected * glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 5));
@@ -624,8 +631,8 @@ TEST_SUITE("scene gltf") {
     // Winding and normals (transformed by the inverse transpose) agree everywhere.
     for (size_t shape = 0; shape < 4; ++shape) {
       CAPTURE(shape);
-      glm::mat3 normalMatrix =
-          glm::transpose(glm::inverse(glm::mat3(instanceOf(scene, shape).objectToWorld)));
+      glm::mat3 normalMatrix = glm::transpose(
+          glm::inverse(glm::mat3(glm::mat4(instanceOf(scene, shape).objectToWorld))));
       glm::vec3 normal = glm::normalize(normalMatrix * meshOf(scene, shape).normals[0]);
       CHECK(near(windingNormal(scene, shape), normal));
       CHECK(near(normal, {0, 0, 1}));
@@ -815,21 +822,21 @@ TEST_SUITE("scene gltf") {
     scene.materials.push_back({});
     scene.textures.push_back({"other.png", {1, 1, {0, 0, 0, 255}}});
     scene.meshes.push_back({});
-    scene.shapes.push_back({rt::MeshInstance{0, glm::mat4(1.0f)}, 0, "first"});
-    rt::appendGltf(scene, file, glm::translate(glm::mat4(1.0f), glm::vec3(10, 0, 0)));
+    scene.shapes.push_back({rt::MeshInstance{0, rt::WorldTransform(1.0)}, 0, "first"});
+    rt::appendGltf(scene, file, glm::translate(rt::WorldTransform(1.0), glm::dvec3(10, 0, 0)));
     REQUIRE(scene.shapes.size() == 2);
     CHECK(instanceOf(scene, 1).mesh == 1);
     CHECK(scene.shapes[1].material == 1);
     CHECK(scene.materials[1].diffuseTexture == 1);
     CHECK(scene.textures.size() == 2);
     CHECK(near(place(instanceOf(scene, 1).objectToWorld, {1, 0, 0}), {11, 0, 0}));
-    CHECK(scene.camera.position == glm::vec3(1, 2, 3));
+    CHECK(scene.camera.position == rt::WorldPoint(1, 2, 3));
     CHECK(scene.conventions == rt::Conventions::CourseworkA);
     CHECK(scene.pointLights.empty());  // no default light when appending
 
     b.doc["meshes"][0]["primitives"][0]["indices"] = 7;
     fs::path broken = writeGltf("append-broken.gltf", b.embedded());
-    CHECK_THROWS_AS(rt::appendGltf(scene, broken, glm::mat4(1.0f)), rt::Error);
+    CHECK_THROWS_AS(rt::appendGltf(scene, broken, rt::WorldTransform(1.0)), rt::Error);
     CHECK(scene.shapes.size() == 2);
     CHECK(scene.materials.size() == 2);
     CHECK(scene.meshes.size() == 2);
@@ -1199,7 +1206,7 @@ TEST_SUITE("scene gltf samples" * rt::test::needsShared()) {
     for (size_t shape = 0; shape < scene.shapes.size(); ++shape) {
       const rt::TriangleMesh& mesh = meshOf(scene, shape);
       if (mesh.normals.empty()) continue;
-      glm::mat4 m = instanceOf(scene, shape).objectToWorld;
+      glm::mat4 m(instanceOf(scene, shape).objectToWorld);
       if (glm::determinant(glm::mat3(m)) < 0.0f) ++mirrored;
       glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
       size_t agree = 0;

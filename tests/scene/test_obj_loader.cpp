@@ -21,7 +21,7 @@ using rt::test::TempDir;
 const fs::path kCrate = fs::path(RT_SOURCE_SHADER_DIR) / ".." / "assets" / "models" / "crate.obj";
 
 rt::Scene parseObj(const std::string& obj, const std::string& mtl = "") {
-  return rt::parseObjPart(obj, mtl, "mem.obj", glm::mat4(1.0f));
+  return rt::parseObjPart(obj, mtl, "mem.obj", rt::WorldTransform(1.0));
 }
 
 std::string errorOf(const std::string& obj) {
@@ -51,7 +51,7 @@ const rt::Material& materialOf(const rt::Scene& scene, const std::string& label)
 
 TEST_SUITE("obj loader") {
   TEST_CASE("quads, a pentagon and negative indices become triangles, one mesh per material") {
-    const rt::Scene scene = rt::loadObjPart(kCrate, glm::mat4(1.0f));
+    const rt::Scene scene = rt::loadObjPart(kCrate, rt::WorldTransform(1.0));
     CHECK(scene.warnings.empty());
     // 5 body quads + the lid quad (negative indices) + the pentagon badge.
     CHECK(triangleCount(scene) == 5 * 2 + 2 + 3);
@@ -71,7 +71,7 @@ TEST_SUITE("obj loader") {
   }
 
   TEST_CASE("MTL materials: Kd, Ks, Ns and map_Kd on the Blinn-Phong material") {
-    const rt::Scene scene = rt::loadObjPart(kCrate, glm::mat4(1.0f));
+    const rt::Scene scene = rt::loadObjPart(kCrate, rt::WorldTransform(1.0));
     const rt::Material& red = materialOf(scene, "material 'red'");
     CHECK(red.diffuseColor.x == doctest::Approx(0.8f));
     CHECK(red.diffuseColor.y == doctest::Approx(0.1f));
@@ -114,7 +114,7 @@ TEST_SUITE("obj loader") {
               "mtllib gone.mtl\nmtllib here.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
               "usemtl painted\nf 1 2 3\n");
     dir.write("here.mtl", "newmtl painted\nKd 1 1 1\nmap_Kd textures\\paint.png\n");
-    const rt::Scene scene = rt::loadObjPart(dir.path() / "model.obj", glm::mat4(1.0f));
+    const rt::Scene scene = rt::loadObjPart(dir.path() / "model.obj", rt::WorldTransform(1.0));
     REQUIRE(scene.warnings.size() == 2);
     CAPTURE(scene.warnings[1]);
     CHECK(scene.warnings[0].find("material library gone.mtl") != std::string::npos);
@@ -151,7 +151,7 @@ TEST_SUITE("obj loader") {
     CHECK(scene.camera.width == 800);
     CHECK(scene.camera.height == 600);
     // The camera looks at the crate's centre from above +z.
-    CHECK(glm::dot(glm::normalize(-scene.camera.position), scene.camera.forward) ==
+    CHECK(glm::dot(glm::normalize(-glm::vec3(scene.camera.position)), scene.camera.forward) ==
           doctest::Approx(1.0f).epsilon(0.01).scale(0));
     CHECK(scene.camera.position.z > 1.0f);
   }

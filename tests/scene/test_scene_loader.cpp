@@ -40,6 +40,7 @@ bool contains(const std::string& text, const std::string& part) {
 }
 
 bool near(glm::vec3 a, glm::vec3 b) { return glm::length(a - b) < 1e-5f; }
+bool near(const glm::dvec3& a, glm::vec3 b) { return glm::length(a - glm::dvec3(b)) < 1e-5; }
 
 // A small valid family-A scene; each bad-input test breaks one thing in it.
 Json minimalScene() {
@@ -127,7 +128,7 @@ TEST_SUITE("scene loader: official files") {
     // Both spheres lie in front of the default camera.
     for (const rt::Shape& shape : scene.shapes) {
       const auto& s = std::get<rt::Sphere>(shape.geometry);
-      CHECK(glm::dot(s.center - scene.camera.position, scene.camera.forward) > s.radius);
+      CHECK(glm::dot(glm::vec3(s.center - scene.camera.position), scene.camera.forward) > s.radius);
     }
   }
 
@@ -970,7 +971,7 @@ const rt::MeshInstance& instanceOf(const rt::Scene& scene, size_t shape) {
 }
 
 glm::vec3 placed(const rt::MeshInstance& instance, glm::vec3 point) {
-  return glm::vec3(instance.objectToWorld * glm::vec4(point, 1.0f));
+  return glm::vec3(instance.objectToWorld * glm::dvec4(glm::dvec3(point), 1.0));
 }
 
 // A student scene with its (unpublished) textures dropped, read as if from its own folder.
@@ -1277,7 +1278,7 @@ TEST_SUITE("scene loader: PLY meshes") {
       CHECK(monkey.meshes[0].faces.size() == 968);
       CHECK(monkey.meshes[0].normals.size() == 2874);
       CHECK(monkey.meshes[0].uvs.size() == 2874);
-      CHECK(instanceOf(monkey, 0).objectToWorld == glm::mat4(1.0f));
+      CHECK(instanceOf(monkey, 0).objectToWorld == rt::WorldTransform(1.0));
     }
     // PFNK's scenes also use textures that were never published.
     const fs::path pfnk = student / "PFNK__RayTracer/examples/exampleMesh.json";

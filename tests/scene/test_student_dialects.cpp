@@ -75,8 +75,8 @@ TEST_SUITE("student dialects") {
                      {"v3", {1, 1, 3}}};
     const rt::Scene loaded = parse(scene);
     const auto& quad = std::get<rt::Quad>(loaded.shapes.at(0).geometry);
-    CHECK(quad.v2 == glm::vec3(1, 1, 3));
-    CHECK(quad.v3 == glm::vec3(-1, 1, 3));
+    CHECK(quad.v2 == rt::WorldPoint(1, 1, 3));
+    CHECK(quad.v3 == rt::WorldPoint(-1, 1, 3));
     CHECK(hasWarning(loaded, "quad corners given row by row"));
   }
 
@@ -160,7 +160,7 @@ TEST_SUITE("student dialects") {
     const rt::Scene loaded = parse(scene);
     REQUIRE(loaded.areaLights.size() == 2);
     const auto& edges = std::get<rt::Quad>(loaded.shapes.at(loaded.areaLights[0].shape).geometry);
-    CHECK(edges.v2 == glm::vec3(1, 4, 2));
+    CHECK(edges.v2 == rt::WorldPoint(1, 4, 2));
     const auto& facing = std::get<rt::Quad>(loaded.shapes.at(loaded.areaLights[1].shape).geometry);
     CHECK(glm::length(facing.v1 - facing.v0) * glm::length(facing.v3 - facing.v0) ==
           doctest::Approx(6.0f));
@@ -280,10 +280,10 @@ TEST_SUITE("student dialects") {
     CHECK(loaded.meshes.at(0).faces.size() == 2);  // a quad as two triangles
     CHECK(loaded.meshes.at(1).faces.size() == 1);
     const auto& rectangle = std::get<rt::Quad>(loaded.shapes[2].geometry);
-    CHECK(rectangle.v1 == glm::vec3(-1, 0, 3));
-    CHECK(rectangle.v2 == glm::vec3(1, 0, 3));
+    CHECK(rectangle.v1 == rt::WorldPoint(-1, 0, 3));
+    CHECK(rectangle.v2 == rt::WorldPoint(1, 0, 3));
     const auto& xy = std::get<rt::Quad>(loaded.shapes[3].geometry);
-    CHECK(xy.v2 == glm::vec3(2, 1, 4));
+    CHECK(xy.v2 == rt::WorldPoint(2, 1, 4));
   }
 
   TEST_CASE("more dialects: lookat as a point, intensity on is/id, a checker texture object") {

@@ -181,7 +181,7 @@ Scene frontStage(uint32_t width, uint32_t height, glm::vec3 light, float intensi
   scene.camera.forward = {0, 0, -1};
   scene.camera.fovYDegrees = 40;
   scene.backgroundColor = {0.1f, 0.2f, 0.3f};
-  scene.pointLights.push_back({light, glm::vec3(intensity), glm::vec3(intensity)});
+  scene.pointLights.push_back({WorldPoint(light), glm::vec3(intensity), glm::vec3(intensity)});
   return scene;
 }
 

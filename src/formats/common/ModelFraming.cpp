@@ -11,33 +11,30 @@ constexpr uint32_t kFramingHeight = 600;
 constexpr float kFramingFovDegrees = 45.0f;
 }  // namespace
 
-float ModelBounds::radius() const {
-  return empty() ? 1.0f : static_cast<float>(std::max(0.5 * glm::length(hi - lo), 1e-3));
-}
-
-Camera framingCamera(const ModelBounds& bounds) {
+Camera framingCamera(const WorldBounds& bounds) {
   Camera camera;
   camera.width = kFramingWidth;
   camera.height = kFramingHeight;
   camera.fovYDegrees = kFramingFovDegrees;
   glm::vec3 toCamera = glm::normalize(glm::vec3(0.0f, 0.5f, 1.0f));
-  float distance = 1.05f * bounds.radius() / std::sin(glm::radians(kFramingFovDegrees) / 2.0f);
-  camera.position = bounds.center() + toCamera * distance;
+  double distance =
+      1.05 * bounds.radius() / std::sin(glm::radians(double(kFramingFovDegrees)) / 2.0);
+  camera.position = bounds.center() + glm::dvec3(toCamera) * distance;
   camera.forward = -toCamera;
   camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
   return camera;
 }
 
-PointLight framingLight(const Camera& camera, const ModelBounds& bounds) {
+PointLight framingLight(const Camera& camera, const WorldBounds& bounds) {
   glm::vec3 forward = glm::normalize(camera.forward);
   glm::vec3 right = glm::cross(forward, camera.up);
   if (!(glm::length(right) > 1e-6f)) right = glm::cross(forward, glm::vec3(1.0f, 0.0f, 0.0f));
   if (!(glm::length(right) > 1e-6f)) right = glm::cross(forward, glm::vec3(0.0f, 0.0f, 1.0f));
   right = glm::normalize(right);
   glm::vec3 up = glm::cross(right, forward);
-  float distance = glm::length(bounds.center() - camera.position);
-  if (!(distance > 0.0f)) distance = 1.0f;
-  glm::vec3 position = camera.position + distance * (0.5f * up + 0.5f * right);
+  double distance = glm::length(bounds.center() - camera.position);
+  if (!(distance > 0.0)) distance = 1.0;
+  WorldPoint position = camera.position + distance * glm::dvec3(0.5f * up + 0.5f * right);
   return {position, glm::vec3(1.0f), glm::vec3(1.0f)};
 }
 

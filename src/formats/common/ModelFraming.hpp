@@ -4,35 +4,20 @@
 #pragma once
 
 #include <glm/glm.hpp>
-#include <limits>
 
 #include "scene/Scene.hpp"
+#include "scene/SceneBounds.hpp"
 
 namespace rt {
 
-// A world-space box, in double precision: the corners of a placed box may
-// not fit a float.
-struct ModelBounds {
-  glm::dvec3 lo{std::numeric_limits<double>::max()};
-  glm::dvec3 hi{std::numeric_limits<double>::lowest()};
-
-  bool empty() const { return lo.x > hi.x; }
-  void grow(glm::dvec3 p) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  glm::vec3 center() const { return empty() ? glm::vec3(0.0f) : glm::vec3(0.5 * (lo + hi)); }
-  float radius() const;
-};
-
 // Fov 45, 800x600, looking at the bounding sphere's centre from above the +z
 // side (direction (0, 0.5, 1)), at the distance where the sphere fits.
-Camera framingCamera(const ModelBounds& bounds);
+Camera framingCamera(const WorldBounds& bounds);
 
 // White, intensity 1, above and to the right of the camera (at half the
 // camera's distance to the scene centre along each axis), so that surfaces
 // facing the camera are lit and shapes show some shading.
-PointLight framingLight(const Camera& camera, const ModelBounds& bounds);
+PointLight framingLight(const Camera& camera, const WorldBounds& bounds);
 
 // The grey every model scene is drawn on.
 constexpr float kModelBackgroundGrey = 0.5f;

@@ -34,7 +34,7 @@ constexpr double kMaxCoordinate = 1e18;
 // Shape labels are for messages; a node name of megabytes is not copied per instance.
 constexpr size_t kMaxLabelLength = 80;
 
-using Bounds = ModelBounds;
+using Bounds = WorldBounds;
 // glTF cameras: this height, the width from their aspect ratio.
 constexpr uint32_t kCameraHeight = 600;
 constexpr uint32_t kDefaultCameraWidth = 800;
@@ -45,7 +45,7 @@ bool inRange(glm::dvec3 p) {
 }
 
 struct PendingLight {
-  glm::vec3 position{0.0f};
+  WorldPoint position{0.0};
   glm::vec3 direction{0.0f, 0.0f, -1.0f};  // where a directional light's light travels
   glm::vec3 radiance{1.0f};                // colour * intensity (candela, or lux)
   bool directional = false;
@@ -161,7 +161,7 @@ class Importer {
       Shape shape;
       shape.label = (node.name.empty() ? where : node.name).substr(0, kMaxLabelLength);
       context_.charge(sizeof(Shape) + shape.label.size(), where);
-      shape.geometry = MeshInstance{*meshIndex, objectToWorld};
+      shape.geometry = MeshInstance{*meshIndex, world};
       shape.material = materials_.material(mesh.primitives[p].material, materialWhere);
       scene_.shapes.push_back(std::move(shape));
       growBounds(*meshIndex, world, where);
@@ -233,7 +233,7 @@ class Importer {
       camera.width = static_cast<uint32_t>(std::clamp(width, 16.0, double(kMaxImageSide)));
     }
     camera.fovYDegrees = static_cast<float>(glm::degrees(lens.yfov));
-    camera.position = glm::vec3(world[3]);
+    camera.position = WorldPoint(world[3]);
     camera.forward = glm::vec3(glm::normalize(forward));
     camera.up = glm::vec3(glm::normalize(up));
     camera_ = camera;
@@ -274,7 +274,7 @@ class Importer {
     pending.radiance = lightColor(light, lightWhere) * static_cast<float>(light.intensity);
     glm::dvec3 position = transformPoint(world, glm::dvec3(0.0));
     if (!inRange(position)) failOutOfRange(item("nodes", nodeIndex));
-    pending.position = glm::vec3(position);
+    pending.position = position;
     if (light.type == "spot") {
       context_.ignored("spot light cones (spot lights shine in all directions)", lightWhere);
     } else if (light.type == "directional") {
@@ -300,9 +300,10 @@ class Importer {
     }
     for (const PendingLight& light : lights_) {
       glm::vec3 intensity = brightest > 0.0f ? light.radiance / brightest : light.radiance;
-      glm::vec3 position = light.position;
+      WorldPoint position = light.position;
       if (light.directional) {
-        position = bounds_.center() - light.direction * (kDirectionalLightRadii * bounds_.radius());
+        position = bounds_.center() -
+                   glm::dvec3(light.direction) * (kDirectionalLightRadii * bounds_.radius());
       }
       scene_.pointLights.push_back({position, intensity, intensity});
     }
@@ -354,9 +355,9 @@ Scene loadGltfScene(const fs::path& file) {
   return std::move(imported.scene);
 }
 
-void appendGltf(Scene& scene, const fs::path& file, const glm::mat4& placement) {
+void appendGltf(Scene& scene, const fs::path& file, const WorldTransform& placement) {
   // Imported apart and merged at the end: a failing file leaves `scene` as it was.
-  Imported imported = importFile(file, glm::dmat4(placement));
+  Imported imported = importFile(file, placement);
   appendScenePart(scene, std::move(imported.scene));
 }
 

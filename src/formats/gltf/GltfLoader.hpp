@@ -48,6 +48,6 @@ Scene loadGltfScene(const std::filesystem::path& file);
 // by `placement`; warnings are appended. Camera, family and background of
 // `scene` are left alone; a file that fails leaves `scene` unchanged. Used
 // for glTF models inside JSON scenes.
-void appendGltf(Scene& scene, const std::filesystem::path& file, const glm::mat4& placement);
+void appendGltf(Scene& scene, const std::filesystem::path& file, const WorldTransform& placement);
 
 }  // namespace rt

@@ -111,6 +111,17 @@ glm::vec3 JsonNode::vec3() const {
   return {items[0].floatValue(), items[1].floatValue(), items[2].floatValue()};
 }
 
+glm::dvec3 JsonNode::point() const {
+  if (!raw().is_array() || raw().size() != 3) failType("an array of 3 numbers");
+  const std::vector<JsonNode> items = array();
+  glm::dvec3 out;
+  for (int i = 0; i < 3; ++i) {
+    items[i].floatValue();  // the range check: relative to the camera it becomes a float
+    out[i] = items[i].number();
+  }
+  return out;
+}
+
 glm::vec3 JsonNode::nonNegativeVec3() const {
   const glm::vec3 value = vec3();
   const std::vector<JsonNode> items = array();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/ext/vector_double3.hpp>
 #include <glm/vec3.hpp>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
@@ -53,6 +54,7 @@ class JsonNode {
   std::string string() const;
   std::string nonEmptyString() const;
   glm::vec3 vec3() const;             // exactly three finite numbers
+  glm::dvec3 point() const;           // a position: vec3()'s checks, kept in double precision
   glm::vec3 nonNegativeVec3() const;  // colours and intensities
   std::vector<JsonNode> array() const;
   JsonObject object() const;

@@ -41,7 +41,7 @@ constexpr float kParallelTolerance = 1e-4f;
 
 // The 2019 family-A file has no position/lookat/up. Its spheres sit at
 // z = 0.4 and 0.7 in front of the origin, so look down +z with y up.
-constexpr glm::vec3 kDefaultPosition{0.0f, 0.0f, 0.0f};
+constexpr glm::dvec3 kDefaultPosition{0.0, 0.0, 0.0};
 constexpr glm::vec3 kDefaultForward{0.0f, 0.0f, 1.0f};
 constexpr glm::vec3 kDefaultUp{0.0f, 1.0f, 0.0f};
 
@@ -288,24 +288,27 @@ glm::vec3 unitVector(const JsonNode& node) {
 
 // Family A `lookat` is a view direction, family B `lookAt` a target point
 // (both verified against the official renders; see README).
-glm::vec3 readForward(JsonObject& camera, glm::vec3 position) {
+glm::vec3 readForward(JsonObject& camera, const WorldPoint& position) {
   const std::optional<JsonNode> direction = camera.optional("lookat");
   const std::optional<JsonNode> target = camera.optionalOneOf({"lookAt", "look_at", "target"});
   if (direction && target) {
     target->fail(
         "conflicts with 'camera.lookat': lookat is a view direction, lookAt a target point");
   }
-  if (direction && direction->vec3() == glm::vec3(0.0f) && position != glm::vec3(0.0f)) {
+  if (direction && direction->vec3() == glm::vec3(0.0f) && position != WorldPoint(0.0)) {
     // Some family-A students wrote `lookat` as the point looked at (the origin).
     direction->warn("a zero view direction: read as the point looked at");
-    glm::vec3 offset = -position;
+    glm::vec3 offset(glm::normalize(-position));
     normalizeInPlace(offset);
     return offset;
   }
   if (direction) return unitVector(*direction);
   if (!target) return kDefaultForward;
-  glm::vec3 offset = target->vec3() - position;
-  if (!normalizeInPlace(offset)) {
+  // In double precision: a camera 1e-3 from its target 1e6 from the origin
+  // keeps its view direction.
+  const glm::dvec3 towards = target->point() - position;
+  glm::vec3 offset(towards / glm::length(towards));
+  if (!(glm::length(towards) > 0.0) || !normalizeInPlace(offset)) {
     target->fail("target point must differ from the camera position by a finite offset");
   }
   return offset;
@@ -484,7 +487,7 @@ Camera readCamera(JsonObject& camera) {
       optionalOrDefault(camera, {"fov", "field_of_view", "fieldOfView"}, "45 degrees");
   out.fovYDegrees = fov ? readFov(*fov) : kDefaultFovDegrees;
   const std::optional<JsonNode> position = camera.optional("position");
-  out.position = position ? position->vec3() : kDefaultPosition;
+  out.position = position ? position->point() : kDefaultPosition;
   out.forward = readForward(camera, out.position);
   out.up = readUp(camera, out.forward);
   if (const std::optional<JsonNode> exposure = camera.optional("exposure")) {
@@ -516,16 +519,16 @@ constexpr std::array<std::array<const char*, 4>, 4> kCornerKeys = {{
 
 // The corners of the first spelling whose first key is present: `lowest`
 // required, up to `highest`; nullopt when no spelling is used.
-std::optional<std::vector<glm::vec3>> readNamedCorners(JsonObject& object, size_t lowest,
-                                                       size_t highest) {
+std::optional<std::vector<WorldPoint>> readNamedCorners(JsonObject& object, size_t lowest,
+                                                        size_t highest) {
   for (const auto& keys : kCornerKeys) {
     if (!object.has(keys[0])) continue;
-    std::vector<glm::vec3> corners;
+    std::vector<WorldPoint> corners;
     for (size_t i = 0; i < highest; ++i) {
       if (i < lowest) {
-        corners.push_back(object.required(keys[i]).vec3());
+        corners.push_back(object.required(keys[i]).point());
       } else if (const std::optional<JsonNode> node = object.optional(keys[i])) {
-        corners.push_back(node->vec3());
+        corners.push_back(node->point());
       }
     }
     return corners;
@@ -537,9 +540,9 @@ std::optional<std::vector<glm::vec3>> readNamedCorners(JsonObject& object, size_
 // around it: then v1 and v3 lie on the same side of the diagonal v0-v2, and
 // the quad would be a bow tie. Read such corners as v0 v1 v3 v2.
 Quad cyclicQuad(const Quad& q, const JsonObject& shape) {
-  const glm::vec3 n1 = glm::cross(q.v1 - q.v0, q.v2 - q.v0);
-  const glm::vec3 n2 = glm::cross(q.v2 - q.v0, q.v3 - q.v0);
-  if (!(glm::dot(n1, n2) < 0.0f)) return q;
+  const glm::dvec3 n1 = glm::cross(q.v1 - q.v0, q.v2 - q.v0);
+  const glm::dvec3 n2 = glm::cross(q.v2 - q.v0, q.v3 - q.v0);
+  if (!(glm::dot(n1, n2) < 0.0)) return q;
   shape.diagnostics().warn(shape.path(),
                            "quad corners given row by row, not around the quad: read in the "
                            "order 0 1 3 2");
@@ -598,7 +601,7 @@ LightIntensity readIntensity(JsonObject& light) {
 
 PointLight readPointLight(JsonObject& light) {
   PointLight out;
-  out.position = light.required("position").vec3();
+  out.position = light.required("position").point();
   const LightIntensity intensity = readIntensity(light);
   out.diffuseIntensity = intensity.diffuse;
   out.specularIntensity = intensity.specular;
@@ -627,20 +630,24 @@ void readLightSampler(JsonObject& light, std::optional<SamplerKind>& lightSample
   lightSampler = kind;
 }
 
+// The quad with corner `corner` and edges `u`, `v`.
+Quad parallelogram(const WorldPoint& corner, const glm::dvec3& u, const glm::dvec3& v) {
+  return {corner, corner + u, corner + u + v, corner + v};
+}
+
 // A rectangle centred on `position` facing `normal`, `width` (or `w`) by
 // `height` (or `h`) (1 when not given), its width along the horizontal
 // (the world x-z plane) where it can be.
-Quad facingRectangle(JsonObject& light, glm::vec3 position, glm::vec3 normal) {
+Quad facingRectangle(JsonObject& light, const WorldPoint& position, glm::vec3 normal) {
   const std::optional<JsonNode> width = light.optionalOneOf({"width", "w"});
   const std::optional<JsonNode> height = light.optionalOneOf({"height", "h"});
   const float w = width ? width->positiveFloat() : 1.0f;
   const float h = height ? height->positiveFloat() : 1.0f;
   glm::vec3 across = glm::cross(glm::vec3(0.0f, 1.0f, 0.0f), normal);
   if (!normalizeInPlace(across)) across = glm::vec3(1.0f, 0.0f, 0.0f);
-  const glm::vec3 u = across * w;
-  const glm::vec3 v = glm::normalize(glm::cross(normal, across)) * h;
-  const glm::vec3 corner = position - 0.5f * (u + v);
-  return {corner, corner + u, corner + u + v, corner + v};
+  const glm::dvec3 u(across * w);
+  const glm::dvec3 v(glm::normalize(glm::cross(normal, across)) * h);
+  return parallelogram(position - 0.5 * (u + v), u, v);
 }
 
 // The emitting surface of an area light written with its own geometry:
@@ -656,30 +663,26 @@ Geometry readAreaLightGeometry(JsonObject& light) {
     return Triangle{(*c)[0], (*c)[1], (*c)[2]};
   }
   if (light.has("e0") || light.has("e1")) {  // a corner and its two edges
-    const glm::vec3 p = light.required("p").vec3();
-    const glm::vec3 e0 = light.required("e0").vec3();
-    const glm::vec3 e1 = light.required("e1").vec3();
-    return Quad{p, p + e0, p + e0 + e1, p + e1};
+    return parallelogram(light.required("p").point(), light.required("e0").point(),
+                         light.required("e1").point());
   }
-  const glm::vec3 position = light.required("position").vec3();
+  const WorldPoint position = light.required("position").point();
   if (const std::optional<JsonNode> normal = light.optional("normal")) {
     return facingRectangle(light, position, unitVector(*normal));
   }
   if (light.has("u_axis")) {  // david14higgins: the half edges
-    const glm::vec3 u = 2.0f * light.required("u_axis").vec3();
-    const glm::vec3 v = 2.0f * light.required("v_axis").vec3();
-    const glm::vec3 corner = position - 0.5f * (u + v);
-    return Quad{corner, corner + u, corner + u + v, corner + v};
+    const glm::dvec3 u = 2.0 * light.required("u_axis").point();
+    const glm::dvec3 v = 2.0 * light.required("v_axis").point();
+    return parallelogram(position - 0.5 * (u + v), u, v);
   }
   if (light.has("u") || light.has("v")) {
-    glm::vec3 u = light.required("u").vec3();
-    glm::vec3 v = light.required("v").vec3();
+    glm::dvec3 u = light.required("u").point();
+    glm::dvec3 v = light.required("v").point();
     const std::optional<JsonNode> width = light.optional("width");
     const std::optional<JsonNode> height = light.optional("height");
-    if (width) u = unitVector(light.required("u")) * width->positiveFloat();
-    if (height) v = unitVector(light.required("v")) * height->positiveFloat();
-    const glm::vec3 corner = position - 0.5f * (u + v);
-    return Quad{corner, corner + u, corner + u + v, corner + v};
+    if (width) u = glm::dvec3(unitVector(light.required("u")) * width->positiveFloat());
+    if (height) v = glm::dvec3(unitVector(light.required("v")) * height->positiveFloat());
+    return parallelogram(position - 0.5 * (u + v), u, v);
   }
   if (const std::optional<JsonNode> radius = light.optionalOneOf({"radius", "areaRadius"})) {
     return Sphere{position, radius->positiveFloat()};
@@ -695,8 +698,8 @@ Geometry readAreaLightGeometry(JsonObject& light) {
 // Of any shape; meshes are looked up in `meshes`.
 float surfaceArea(const Geometry& geometry, const std::vector<TriangleMesh>& meshes) {
   constexpr float kPi = 3.14159265f;
-  const auto triangleArea = [](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
-    return 0.5f * glm::length(glm::cross(b - a, c - a));
+  const auto triangleArea = [](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    return static_cast<float>(0.5 * glm::length(glm::cross(b - a, c - a)));
   };
   return std::visit(
       [&](const auto& g) -> float {
@@ -714,7 +717,7 @@ float surfaceArea(const Geometry& geometry, const std::vector<TriangleMesh>& mes
           float area = 0.0f;
           for (const glm::uvec3& f : mesh.faces) {
             const auto placed = [&](uint32_t i) {
-              return glm::vec3(g.objectToWorld * glm::vec4(mesh.positions[i], 1.0f));
+              return glm::dvec3(g.objectToWorld * glm::dvec4(glm::dvec3(mesh.positions[i]), 1.0));
             };
             area += triangleArea(placed(f.x), placed(f.y), placed(f.z));
           }
@@ -997,16 +1000,16 @@ uint32_t addShapeMaterial(JsonObject& shape, const ShapeContext& context, Scene&
 // ------------------------------------------------------------------- shapes
 
 Sphere readSphere(JsonObject& shape) {
-  return {shape.required("center").vec3(), shape.required("radius").positiveFloat()};
+  return {shape.required("center").point(), shape.required("radius").positiveFloat()};
 }
 
 // Corners as a `vertices` array (TsFreddie's files) instead of v0, v1, ...
-std::optional<std::vector<glm::vec3>> readCornerArray(JsonObject& shape, size_t lowest,
-                                                      size_t highest) {
+std::optional<std::vector<WorldPoint>> readCornerArray(JsonObject& shape, size_t lowest,
+                                                       size_t highest) {
   const std::optional<JsonNode> node = shape.optionalOneOf({"vertices", "points"});
   if (!node) return std::nullopt;
-  std::vector<glm::vec3> corners;
-  for (const JsonNode& corner : node->array()) corners.push_back(corner.vec3());
+  std::vector<WorldPoint> corners;
+  for (const JsonNode& corner : node->array()) corners.push_back(corner.point());
   if (corners.size() < lowest || corners.size() > highest) {
     node->fail("expected " + std::to_string(lowest) +
                (lowest == highest ? "" : " or " + std::to_string(highest)) + " vertices, got " +
@@ -1019,17 +1022,17 @@ std::optional<std::vector<glm::vec3>> readCornerArray(JsonObject& shape, size_t 
 // "rectangle": corner1, corner2, equal in one coordinate).
 Quad readCornerRectangle(JsonObject& shape) {
   const JsonNode second = shape.required("corner2");
-  const glm::vec3 a = shape.required("corner1").vec3();
-  const glm::vec3 b = second.vec3();
+  const WorldPoint a = shape.required("corner1").point();
+  const WorldPoint b = second.point();
   int flat = -1;
   for (int axis = 0; axis < 3; ++axis) {
     if (a[axis] == b[axis]) flat = axis;
   }
   if (flat < 0) second.fail("must equal corner1 in one coordinate (an axis-aligned rectangle)");
   const int u = (flat + 1) % 3;
-  glm::vec3 c1 = a;
+  WorldPoint c1 = a;
   c1[u] = b[u];
-  glm::vec3 c3 = b;
+  WorldPoint c3 = b;
   c3[u] = a[u];
   return {a, c1, b, c3};
 }
@@ -1038,16 +1041,16 @@ Quad readCornerRectangle(JsonObject& shape) {
 // TsFreddie writes planes) span a parallelogram.
 Quad readQuad(JsonObject& shape) {
   if (shape.has("corner1")) return readCornerRectangle(shape);
-  std::optional<std::vector<glm::vec3>> corners = readCornerArray(shape, 3, 4);
+  std::optional<std::vector<WorldPoint>> corners = readCornerArray(shape, 3, 4);
   if (!corners) corners = readNamedCorners(shape, 4, 4);
   if (!corners) shape.diagnostics().fail(shape.childPath("v0"), "missing required key");
-  const std::vector<glm::vec3>& c = *corners;
+  const std::vector<WorldPoint>& c = *corners;
   if (c.size() == 4) return cyclicQuad({c[0], c[1], c[2], c[3]}, shape);
   return {c[0], c[1], c[1] + c[2] - c[0], c[2]};
 }
 
 Triangle readTriangle(JsonObject& shape) {
-  std::optional<std::vector<glm::vec3>> corners = readCornerArray(shape, 3, 3);
+  std::optional<std::vector<WorldPoint>> corners = readCornerArray(shape, 3, 3);
   if (!corners) corners = readNamedCorners(shape, 3, 3);
   if (!corners) shape.diagnostics().fail(shape.childPath("v0"), "missing required key");
   return {(*corners)[0], (*corners)[1], (*corners)[2]};
@@ -1055,7 +1058,7 @@ Triangle readTriangle(JsonObject& shape) {
 
 // Family B `height` is the half-length: the caps are at center +- axis * height.
 Cylinder readCylinder(JsonObject& shape) {
-  return {shape.required("center").vec3(), unitVector(shape.required("axis")),
+  return {shape.required("center").point(), unitVector(shape.required("axis")),
           shape.required("radius").positiveFloat(), shape.required("height").positiveFloat()};
 }
 
@@ -1117,31 +1120,51 @@ void readFaces(JsonObject& shape, TriangleMesh& mesh) {
   if (mesh.faces.empty()) faces->fail("must list at least one face");
 }
 
-// Vergilc's numbered keys: "vertex": N with v0..v(N-1), "face": M with f0..f(M-1).
-void readNumberedMesh(JsonObject& shape, TriangleMesh& mesh) {
-  constexpr int64_t kMostNumbered = 1 << 16;
-  const int64_t vertices = shape.required("vertex").integer(1, kMostNumbered);
-  for (int64_t i = 0; i < vertices; ++i) {
-    mesh.positions.push_back(shape.required("v" + std::to_string(i)).vec3());
-  }
-  const int64_t faces = shape.required("face").integer(1, kMostNumbered);
-  for (int64_t i = 0; i < faces; ++i) appendFace(shape.required("f" + std::to_string(i)), mesh);
+// Inline vertices are world positions. The mesh keeps them relative to its
+// first vertex (floats are fine near the mesh) and its instance carries
+// that vertex in double precision, so a mesh far from the origin keeps its shape.
+struct InlineMesh {
+  TriangleMesh mesh;
+  WorldPoint origin{0.0};
+};
+
+void setWorldPositions(const std::vector<WorldPoint>& points, InlineMesh& out) {
+  out.origin = points.front();
+  for (const WorldPoint& p : points) out.mesh.positions.emplace_back(p - out.origin);
 }
 
-TriangleMesh readInlineMesh(JsonObject& shape) {
+// Vergilc's numbered keys: "vertex": N with v0..v(N-1), "face": M with f0..f(M-1).
+void readNumberedMesh(JsonObject& shape, InlineMesh& out) {
+  constexpr int64_t kMostNumbered = 1 << 16;
+  const int64_t vertices = shape.required("vertex").integer(1, kMostNumbered);
+  std::vector<WorldPoint> points;
+  for (int64_t i = 0; i < vertices; ++i) {
+    points.push_back(shape.required("v" + std::to_string(i)).point());
+  }
+  setWorldPositions(points, out);
+  const int64_t faces = shape.required("face").integer(1, kMostNumbered);
+  for (int64_t i = 0; i < faces; ++i) {
+    appendFace(shape.required("f" + std::to_string(i)), out.mesh);
+  }
+}
+
+InlineMesh readInlineMesh(JsonObject& shape) {
   for (const char* key : {"center", "pos", "scale", "sizeScale"}) {
     shape.ignoreWithWarning(key,
                             std::string("mesh placement '") + key +
                                 "' is only applied to PLY meshes; ignored for inline vertices");
   }
-  TriangleMesh mesh;
+  InlineMesh placed;
+  TriangleMesh& mesh = placed.mesh;
   if (shape.has("vertex") && shape.has("v0")) {  // Vergilc: vertex N, v0..; face M, f0..
-    readNumberedMesh(shape, mesh);
+    readNumberedMesh(shape, placed);
   } else {
     const std::optional<JsonNode> vertices = shape.optionalOneOf({"vertices", "points"});
     if (!vertices) shape.diagnostics().fail(shape.childPath("vertices"), "missing required key");
-    for (const JsonNode& vertex : vertices->array()) mesh.positions.push_back(vertex.vec3());
-    if (mesh.positions.empty()) vertices->fail("must list at least one vertex");
+    std::vector<WorldPoint> points;
+    for (const JsonNode& vertex : vertices->array()) points.push_back(vertex.point());
+    if (points.empty()) vertices->fail("must list at least one vertex");
+    setWorldPositions(points, placed);
     readFaces(shape, mesh);
   }
   if (const std::optional<JsonNode> uvs = shape.optionalOneOf({"uv", "uvs"})) {
@@ -1156,21 +1179,21 @@ TriangleMesh readInlineMesh(JsonObject& shape) {
                 std::to_string(mesh.positions.size()) + " vertices");
     }
   }
-  return mesh;
+  return placed;
 }
 
 // Students' placement of a PLY mesh: `center`/`pos` moves the model's own
 // origin there, `scale`/`sizeScale` scales it uniformly about that origin.
-glm::mat4 readPlacement(JsonObject& shape) {
-  glm::vec3 translation(0.0f);
-  float scale = 1.0f;
+WorldTransform readPlacement(JsonObject& shape) {
+  WorldPoint translation(0.0);
+  double scale = 1.0;
   if (const std::optional<JsonNode> node = shape.optionalOneOf({"center", "pos"})) {
-    translation = node->vec3();
+    translation = node->point();
   }
   if (const std::optional<JsonNode> node = shape.optionalOneOf({"scale", "sizeScale"})) {
     scale = node->positiveFloat();
   }
-  return glm::scale(glm::translate(glm::mat4(1.0f), translation), glm::vec3(scale));
+  return glm::scale(glm::translate(WorldTransform(1.0), translation), glm::dvec3(scale));
 }
 
 // Reads each PLY file once, however many shapes place it. PLY errors keep
@@ -1194,7 +1217,7 @@ uint32_t addPlyMesh(const JsonNode& fileNode, const fs::path& file, ShapeContext
 // materials unless the JSON shape gives one for all of them.
 void addModelShapes(const JsonNode& fileNode, const fs::path& file, JsonObject& shape,
                     ShapeContext& context, Scene& scene) {
-  const glm::mat4 placement = readPlacement(shape);
+  const WorldTransform placement = readPlacement(shape);
   const size_t firstShape = scene.shapes.size();
   try {
     if (isObjFile(file)) {
@@ -1265,7 +1288,7 @@ Quad readAxisRectangle(const std::string& axes, JsonObject& shape) {
               b1 = shape.required(nb + "1").floatValue();
   const float k = shape.required(nc).floatValue();
   const auto corner = [&](float u, float v) {
-    glm::vec3 p(0.0f);
+    WorldPoint p(0.0);
     p[a] = u;
     p[b] = v;
     p[c] = k;
@@ -1315,8 +1338,10 @@ Geometry readGeometry(const JsonNode& typeNode, const std::string& type, JsonObj
                                                           " shape needs its file (file, path, "
                                                           "mPath, plyPath or filename)");
   }
-  scene.meshes.push_back(readInlineMesh(shape));
-  return MeshInstance{static_cast<uint32_t>(scene.meshes.size() - 1), glm::mat4(1.0f)};
+  InlineMesh placed = readInlineMesh(shape);
+  scene.meshes.push_back(std::move(placed.mesh));
+  return MeshInstance{static_cast<uint32_t>(scene.meshes.size() - 1),
+                      glm::translate(WorldTransform(1.0), placed.origin)};
 }
 
 // A shape that glows (nizqleo's path-traced scenes: "emittence": [r, g, b],
@@ -1433,20 +1458,20 @@ LightList readSceneObject(JsonObject& object, ShapeContext& context, Scene& scen
 }
 
 // A point inside each shape, for the default view.
-glm::vec3 shapeCenter(const Shape& shape, const Scene& scene) {
+WorldPoint shapeCenter(const Shape& shape, const Scene& scene) {
   return std::visit(
-      [&](const auto& g) -> glm::vec3 {
+      [&](const auto& g) -> WorldPoint {
         using T = std::decay_t<decltype(g)>;
         if constexpr (std::is_same_v<T, Sphere> || std::is_same_v<T, Cylinder>) return g.center;
-        if constexpr (std::is_same_v<T, Triangle>) return (g.v0 + g.v1 + g.v2) / 3.0f;
-        if constexpr (std::is_same_v<T, Quad>) return (g.v0 + g.v1 + g.v2 + g.v3) / 4.0f;
+        if constexpr (std::is_same_v<T, Triangle>) return (g.v0 + g.v1 + g.v2) / 3.0;
+        if constexpr (std::is_same_v<T, Quad>) return (g.v0 + g.v1 + g.v2 + g.v3) / 4.0;
         if constexpr (std::is_same_v<T, MeshInstance>) {
           const TriangleMesh& mesh = scene.meshes.at(g.mesh);
-          glm::vec3 sum(0.0f);
-          for (const glm::vec3& p : mesh.positions) sum += p;
-          const glm::vec3 mean =
-              sum / static_cast<float>(std::max<size_t>(1, mesh.positions.size()));
-          return glm::vec3(g.objectToWorld * glm::vec4(mean, 1.0f));
+          glm::dvec3 sum(0.0);
+          for (const glm::vec3& p : mesh.positions) sum += glm::dvec3(p);
+          const glm::dvec3 mean =
+              sum / static_cast<double>(std::max<size_t>(1, mesh.positions.size()));
+          return WorldPoint(g.objectToWorld * glm::dvec4(mean, 1.0));
         }
       },
       shape.geometry);
@@ -1456,14 +1481,14 @@ glm::vec3 shapeCenter(const Shape& shape, const Scene& scene) {
 // spheres lie at +z, TsFreddie's at -z): towards the side the shapes are
 // on, planes left out (floors and walls reach past the camera).
 void chooseDefaultView(Scene& scene) {
-  float side = 0.0f;
-  float planeSide = 0.0f;
+  double side = 0.0;
+  double planeSide = 0.0;
   for (const Shape& shape : scene.shapes) {
-    const float z = shapeCenter(shape, scene).z - scene.camera.position.z;
+    const double z = shapeCenter(shape, scene).z - scene.camera.position.z;
     (std::holds_alternative<Quad>(shape.geometry) ? planeSide : side) += z;
   }
-  if (side == 0.0f) side = planeSide;
-  if (side < 0.0f) scene.camera.forward = -kDefaultForward;
+  if (side == 0.0) side = planeSide;
+  if (side < 0.0) scene.camera.forward = -kDefaultForward;
 }
 
 fs::path absoluteFolderOf(const fs::path& file) {

@@ -105,7 +105,7 @@ float finiteOr(float value, float fallback) { return std::isfinite(value) ? valu
 
 class ObjImporter {
  public:
-  ObjImporter(const fs::path& file, const glm::mat4& placement)
+  ObjImporter(const fs::path& file, const WorldTransform& placement)
       : file_(file),
         folder_(file.parent_path()),
         placement_(placement),
@@ -302,7 +302,7 @@ class ObjImporter {
 
   fs::path file_;
   fs::path folder_;
-  glm::mat4 placement_;
+  WorldTransform placement_;
   Diagnostics diagnostics_;
   Scene scene_;
   uint32_t defaultMaterial_ = 0;
@@ -333,7 +333,7 @@ std::string readMaterialLibraries(std::string_view obj, const fs::path& file,
 }  // namespace
 
 Scene parseObjPart(std::string_view obj, std::string_view mtl, const fs::path& file,
-                   const glm::mat4& placement) {
+                   const WorldTransform& placement) {
   return withPrintableErrors([&] {
     Scene scene = ObjImporter(file, placement).run(obj, mtl);
     makePrintable(scene.warnings);
@@ -341,7 +341,7 @@ Scene parseObjPart(std::string_view obj, std::string_view mtl, const fs::path& f
   });
 }
 
-Scene loadObjPart(const fs::path& file, const glm::mat4& placement) {
+Scene loadObjPart(const fs::path& file, const WorldTransform& placement) {
   const std::string obj = readFileOrThrow(file);
   std::vector<std::string> warnings;
   const std::string mtl = readMaterialLibraries(obj, file, warnings);
@@ -353,10 +353,10 @@ Scene loadObjPart(const fs::path& file, const glm::mat4& placement) {
 
 Scene loadObjScene(const fs::path& file) {
   Scene scene;
-  appendScenePart(scene, loadObjPart(file, glm::mat4(1.0f)));
+  appendScenePart(scene, loadObjPart(file, WorldTransform(1.0)));
   scene.sourcePath = file;
   scene.backgroundColor = glm::vec3(kModelBackgroundGrey);
-  ModelBounds bounds;
+  WorldBounds bounds;
   for (const TriangleMesh& mesh : scene.meshes) {
     for (const glm::vec3& p : mesh.positions) bounds.grow(glm::dvec3(p));
   }

@@ -22,12 +22,12 @@ namespace rt {
 
 // The file's meshes as shapes placed by `placement`, with their materials,
 // textures and warnings; nothing else of `Scene` is set.
-Scene loadObjPart(const std::filesystem::path& file, const glm::mat4& placement);
+Scene loadObjPart(const std::filesystem::path& file, const WorldTransform& placement);
 
 // The same from memory: `mtl` is the text of its material library ("" for
 // none); textures are looked for beside `file`.
 Scene parseObjPart(std::string_view obj, std::string_view mtl, const std::filesystem::path& file,
-                   const glm::mat4& placement);
+                   const WorldTransform& placement);
 
 // An OBJ file on its own, framed like a glTF file without a camera (see
 // formats/common/ModelFraming.hpp): textbook conventions, grey background.
