@@ -134,6 +134,7 @@ void DisplayPass::reloadShader() {
   VkPipeline fresh = createPipeline();  // throws, leaving pipeline_ as it was
   retired_.push_back(pipeline_);
   pipeline_ = fresh;
+  allRowsStale_ = true;
 }
 
 void DisplayPass::releaseRetired() {
@@ -200,6 +201,7 @@ void DisplayPass::destroyTargets() {
 }
 
 void DisplayPass::setSource(const Buffer& accumulation, uint32_t width, uint32_t height) {
+  allRowsStale_ = true;
   if (size_ != glm::uvec2(width, height)) {
     destroyTargets();
     createTargets(width, height);
@@ -220,7 +222,13 @@ void DisplayPass::setSource(const Buffer& accumulation, uint32_t width, uint32_t
 }
 
 void DisplayPass::recordToneMap(VkCommandBuffer commands, const ToneMapping& mapping,
-                                uint32_t firstRow, uint32_t rows) const {
+                                uint32_t firstRow, uint32_t rows) {
+  if (allRowsStale_ || mapping.exposure != mappedExposure_) {
+    firstRow = 0;
+    rows = size_.y;
+    allRowsStale_ = false;
+    mappedExposure_ = mapping.exposure;
+  }
   rows = std::min(rows, size_.y - std::min(firstRow, size_.y));
   if (rows == 0) return;
   // The previous frame's copy read the pixels; this pass updates them.

@@ -52,10 +52,12 @@ class DisplayPass {
 
   // Records the tone-mapping dispatch for rows [firstRow, firstRow + rows)
   // (after the render dispatches) and the copy of those pixels into the
-  // display image. Rows that got no new samples need no update.
+  // display image. Rows that got no new samples need no update, unless the
+  // tone mapping itself changed (a new exposure, a reloaded shader, a new
+  // source): then every row is mapped again.
   // `mapping` gives the exposure and the quantization (its curve is the clamp).
   void recordToneMap(VkCommandBuffer commands, const ToneMapping& mapping, uint32_t firstRow,
-                     uint32_t rows) const;
+                     uint32_t rows);
   // Records the blit into a swapchain image, which ends in
   // COLOR_ATTACHMENT_OPTIMAL for the overlay pass.
   void recordBlit(VkCommandBuffer commands, VkImage target, VkExtent2D targetExtent) const;
@@ -79,6 +81,8 @@ class DisplayPass {
   VkImage image_ = VK_NULL_HANDLE;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   glm::uvec2 size_{0};
+  bool allRowsStale_ = true;  // every row is mapped on the next recordToneMap
+  float mappedExposure_ = 0.0f;
 };
 
 }  // namespace rt::viewer

@@ -32,22 +32,26 @@ void OrbitCamera::setHome(const Camera& home, const WorldPoint& sceneCenter, dou
   depth = std::max(depth, 0.25 * sceneRadius_);
   homePivot_ = home_.position + forward * depth;
   reset();
+  changed_ = false;
 }
 
 void OrbitCamera::reset() {
   camera_ = home_;
   pivot_ = homePivot_;
+  changed_ = true;
 }
 
 glm::vec3 OrbitCamera::right() const { return cameraBasis(camera_).right; }
 
 void OrbitCamera::placeAtDistance(double distance) {
   camera_.position = pivot_ - glm::dvec3(camera_.forward) * distance;
+  changed_ = true;
 }
 
 void OrbitCamera::move(const glm::dvec3& offset) {
   camera_.position += offset;
   pivot_ += offset;
+  changed_ = true;
 }
 
 void OrbitCamera::orbit(float yawDegrees, float pitchDegrees) {
@@ -64,6 +68,7 @@ void OrbitCamera::orbit(float yawDegrees, float pitchDegrees) {
   }
   camera_.position = pivot_ + offset;
   camera_.forward = glm::vec3(glm::normalize(-offset));
+  changed_ = true;
 }
 
 void OrbitCamera::pan(glm::vec2 pixels, float imageHeight) {
@@ -94,12 +99,16 @@ void OrbitCamera::lookAt(const WorldPoint& position, const WorldPoint& target) {
   camera_.position = position;
   camera_.forward = forward;
   pivot_ = target;
+  changed_ = true;
 }
 
 void OrbitCamera::setLens(float apertureRadius, float focusDistance) {
+  const Camera before = camera_;
   camera_.apertureRadius = std::max(apertureRadius, 0.0f);
   // Any positive distance: scenes may be 1e-4 across.
   if (focusDistance > 0.0f) camera_.focusDistance = focusDistance;
+  changed_ = changed_ || camera_.apertureRadius != before.apertureRadius ||
+             (camera_.apertureRadius > 0.0f && camera_.focusDistance != before.focusDistance);
   // A lens needs the thin-lens camera; a zero aperture is a pinhole either way.
   if (camera_.apertureRadius > 0.0f) camera_.type = CameraType::ThinLens;
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <utility>
 
 #include "scene/Scene.hpp"
 
@@ -12,9 +13,12 @@ namespace rt::viewer {
 class OrbitCamera {
  public:
   // `home` is the scene's camera; the scene's bounding sphere places the
-  // pivot and scales pan, zoom and fly speeds.
+  // pivot and scales pan, zoom and fly speeds. The camera goes home (and,
+  // being new, does not count as changed).
   void setHome(const Camera& home, const WorldPoint& sceneCenter, double sceneRadius);
   void reset();
+  // Whether the camera changed in a way the image shows since the last call.
+  bool takeChanged() { return std::exchange(changed_, false); }
 
   const Camera& camera() const { return camera_; }
   const Camera& home() const { return home_; }
@@ -31,6 +35,8 @@ class OrbitCamera {
   // Moves camera and pivot by (right, up, forward) * scene radius.
   void fly(glm::vec3 sceneRadii);
   void lookAt(const WorldPoint& position, const WorldPoint& target);
+  // Through a pinhole every focus distance looks the same: only a change
+  // of the lens radius, or of the focus of an open lens, counts as changed.
   void setLens(float apertureRadius, float focusDistance);
 
  private:
@@ -46,6 +52,7 @@ class OrbitCamera {
   WorldPoint pivot_{0.0};
   WorldPoint homePivot_{0.0};
   double sceneRadius_ = 1.0;
+  bool changed_ = false;
 };
 
 }  // namespace rt::viewer

@@ -60,7 +60,8 @@ void editRenderSettings(OverlaySettings& settings, OverlayActions& actions) {
 
 void editLens(OverlaySettings& settings, OverlayActions& actions) {
   ImGui::Separator();
-  float scale = std::max(settings.lensScale, 1e-3f);
+  // The scene's radius, however small: scenes may be 1e-4 across.
+  float scale = settings.lensScale > 0.0f ? settings.lensScale : 1.0f;
   bool radius = ImGui::SliderFloat("lens radius", &settings.apertureRadius, 0.0f, 0.2f * scale,
                                    "%.4f", ImGuiSliderFlags_Logarithmic);
   bool focus = ImGui::SliderFloat("focus distance", &settings.focusDistance, 1e-3f * scale,
@@ -162,8 +163,7 @@ void Overlay::fitToDisplay() {
       ImVec2(0.0f, 0.0f), ImVec2(display.x * kLargestWidthShare, display.y * kLargestHeightShare));
 }
 
-OverlayActions Overlay::build(const OverlayStats& stats, OverlaySettings& settings,
-                              const OverlayMessages& messages) {
+OverlayActions Overlay::build(const OverlayStats& stats) {
   ImGui_ImplVulkan_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
@@ -175,13 +175,13 @@ OverlayActions Overlay::build(const OverlayStats& stats, OverlaySettings& settin
     ImGui::Begin("raytracer", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
     ImGui::PushItemWidth(ImGui::GetFontSize() * 10.0f);
     showStatistics(stats);
-    editRenderSettings(settings, actions);
-    editLens(settings, actions);
+    editRenderSettings(settings_, actions);
+    editLens(settings_, actions);
     ImGui::Separator();
     actions.save = ImGui::Button("save image (Ctrl+S)");
     ImGui::SameLine();
     actions.resetCamera = ImGui::Button("reset camera (R)");
-    showMessages(messages);
+    showMessages(messages_);
     ImGui::TextDisabled("drag: orbit, right/middle drag: pan, wheel: zoom,");
     ImGui::TextDisabled("WASD/QE: fly (Shift: faster), H: hide, P: print camera");
     ImGui::PopItemWidth();

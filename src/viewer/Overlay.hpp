@@ -77,9 +77,14 @@ class Overlay {
   bool wantsMouse() const;
   bool wantsKeyboard() const;
 
-  // Builds this frame's UI (nothing when hidden) and returns the user's edits.
-  OverlayActions build(const OverlayStats& stats, OverlaySettings& settings,
-                       const OverlayMessages& messages);
+  // The values the user edits and the messages shown.
+  OverlaySettings& settings() { return settings_; }
+  const OverlaySettings& settings() const { return settings_; }
+  OverlayMessages& messages() { return messages_; }
+
+  // Builds this frame's UI (nothing when hidden) and returns the user's edits
+  // (applied to settings()).
+  OverlayActions build(const OverlayStats& stats);
   // Records the draw commands; inside the swapchain render pass.
   void record(VkCommandBuffer commands);
 
@@ -94,6 +99,8 @@ class Overlay {
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   bool visible_ = true;
   bool compact_ = false;  // the window was small at the last frame: the panel collapsed
+  OverlaySettings settings_;
+  OverlayMessages messages_;
 };
 
 }  // namespace rt::viewer

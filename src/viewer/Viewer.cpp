@@ -14,6 +14,7 @@
 #include "scene/SceneBounds.hpp"
 #include "util/Error.hpp"
 #include "viewer/DisplayPass.hpp"
+#include "viewer/FrameSync.hpp"
 #include "viewer/Swapchain.hpp"
 #include "viewer/SwapchainReadback.hpp"
 
@@ -21,11 +22,6 @@ namespace rt::viewer {
 namespace {
 
 constexpr uint32_t kDefaultSamples = 16;  // as `raytracer SCENE OUT`
-constexpr uint64_t kFenceTimeoutNs = 600ull * 1000 * 1000 * 1000;
-// A new window size is rendered once it held this long (drags resize often).
-constexpr std::chrono::milliseconds kResizeSettle(250);
-// Without --verbose, a progress line at most this often.
-constexpr std::chrono::seconds kLogInterval(1);
 // An idle viewer checks for file changes this often, and redraws (for the
 // overlay's statistics) at least this often.
 constexpr std::chrono::milliseconds kIdleWait(25);
@@ -64,15 +60,6 @@ VkExtent2D toExtent(glm::uvec2 size) { return {size.x, size.y}; }
 
 }  // namespace
 
-void RateMeter::add(double samples, Clock::time_point now) {
-  samples_ += samples;
-  double seconds = std::chrono::duration<double>(now - start_).count();
-  if (seconds < 1.0) return;
-  rate_ = samples_ / seconds;
-  samples_ = 0.0;
-  start_ = now;
-}
-
 Scene Viewer::loadViewedScene() const {
   Scene scene = loadSceneFile(options_.scenePath);
   if (options_.conventions) setConventions(scene, *options_.conventions, "--conventions");
@@ -81,7 +68,7 @@ Scene Viewer::loadViewedScene() const {
 
 ToneMapping Viewer::displayMapping() const {
   ToneMapping mapping = toneMappingFor(scene_);
-  mapping.exposure = settings_.exposure;
+  mapping.exposure = settings().exposure;
   return mapping;
 }
 
@@ -106,13 +93,14 @@ Viewer::Viewer(const ViewerOptions& options)
   overlay_ = std::make_unique<Overlay>(*window_, *context_, *swapchain_);
   overlay_->setVisible(options_.overlay);
   readback_ = std::make_unique<SwapchainReadback>(*context_);
-  createFrameObjects();
+  frameSync_ = std::make_unique<FrameSync>(*context_);
   initialiseSettings();
 
   glm::uvec2 size{swapchain_->extent().width, swapchain_->extent().height};
   useRenderer(makeRenderer(size));  // errors end the viewer before it starts
-  renderSizeWanted_ = size;
-  if (options_.watch) startWatching();
+  resize_.start(size);
+  if (options_.watch)
+    reload_ = std::make_unique<HotReload>(compiler_->shaderDir(), options_.scenePath);
   std::printf("viewer: %ux%u on %s, scene %s, shaders %s\n", size.x, size.y,
               context_->description().summary().c_str(), options_.scenePath.string().c_str(),
               compiler_->shaderDir().string().c_str());
@@ -120,83 +108,48 @@ Viewer::Viewer(const ViewerOptions& options)
 
 Viewer::~Viewer() {
   if (context_) vkDeviceWaitIdle(context_->device());
-  destroyFrameObjects();
 }
 
 void Viewer::initialiseSettings() {
+  OverlaySettings& values = settings();
   BoundingSphere bounds = boundingSphere(scene_);
   camera_.setHome(scene_.camera, bounds.center, bounds.radius);
   uint32_t fromScene = scene_.settings.samplesPerPixel;
-  settings_.samplesTarget = static_cast<int>(
+  values.samplesTarget = static_cast<int>(
       options_.samplesTarget ? *options_.samplesTarget : (fromScene ? fromScene : kDefaultSamples));
-  settings_.bounces = static_cast<int>(scene_.settings.maxBounces);
-  settings_.indirectClamp = scene_.settings.indirectClamp;
-  settings_.adaptive = options_.adaptive || scene_.settings.adaptive;
+  values.bounces = static_cast<int>(scene_.settings.maxBounces);
+  values.indirectClamp = scene_.settings.indirectClamp;
+  values.adaptive = options_.adaptive || scene_.settings.adaptive;
   // As the render command: adaptive renders default to Sobol.
-  SamplerKind fallback = settings_.adaptive && !scene_.settings.samplerGiven
-                             ? SamplerKind::Sobol
-                             : scene_.settings.sampler;
+  SamplerKind fallback = values.adaptive && !scene_.settings.samplerGiven ? SamplerKind::Sobol
+                                                                          : scene_.settings.sampler;
   SamplerKind sampler = options_.sampler.value_or(fallback);
-  settings_.sampler = static_cast<int>(sampler);
-  settings_.exposure = toneMappingFor(scene_).exposure * options_.exposure;
-  settings_.apertureRadius = camera_.camera().apertureRadius;
-  settings_.focusDistance = camera_.camera().focusDistance;
-  settings_.lensScale = static_cast<float>(bounds.radius);
-}
-
-void Viewer::createFrameObjects() {
-  VkDevice device = context_->device();
-  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  poolInfo.queueFamilyIndex = context_->queueFamily();
-  vkCheck(vkCreateCommandPool(device, &poolInfo, nullptr, &commandPool_), "vkCreateCommandPool");
-  VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  allocInfo.commandPool = commandPool_;
-  allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  allocInfo.commandBufferCount = 1;
-  vkCheck(vkAllocateCommandBuffers(device, &allocInfo, &commands_), "vkAllocateCommandBuffers");
-  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  vkCheck(vkCreateFence(device, &fenceInfo, nullptr, &frameFence_), "vkCreateFence");
-  VkSemaphoreCreateInfo semaphoreInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-  vkCheck(vkCreateSemaphore(device, &semaphoreInfo, nullptr, &imageAcquired_), "vkCreateSemaphore");
-}
-
-void Viewer::destroyFrameObjects() {
-  if (!context_) return;
-  VkDevice device = context_->device();
-  if (imageAcquired_) vkDestroySemaphore(device, imageAcquired_, nullptr);
-  if (frameFence_) vkDestroyFence(device, frameFence_, nullptr);
-  if (commandPool_) vkDestroyCommandPool(device, commandPool_, nullptr);
-  imageAcquired_ = VK_NULL_HANDLE;
-  frameFence_ = VK_NULL_HANDLE;
-  commandPool_ = VK_NULL_HANDLE;
-}
-
-void Viewer::startWatching() {
-  watcher_ = std::make_unique<FileWatcher>();
-  watcher_->watchFolder(compiler_->shaderDir());
-  std::filesystem::path sceneFolder = options_.scenePath.parent_path();
-  watcher_->watchFolder(sceneFolder.empty() ? std::filesystem::path(".") : sceneFolder);
+  values.sampler = static_cast<int>(sampler);
+  values.exposure = toneMappingFor(scene_).exposure * options_.exposure;
+  values.apertureRadius = camera_.camera().apertureRadius;
+  values.focusDistance = camera_.camera().focusDistance;
+  values.lensScale = static_cast<float>(bounds.radius);
 }
 
 SamplerKind Viewer::samplerSetting() const {
-  return static_cast<SamplerKind>(std::clamp(settings_.sampler, 0, 2));
+  return static_cast<SamplerKind>(std::clamp(settings().sampler, 0, 2));
 }
 
 std::unique_ptr<ProgressiveRenderer> Viewer::makeRenderer(glm::uvec2 size) const {
+  const OverlaySettings& values = settings();
   Scene scene = scene_;
-  scene.settings.maxBounces = static_cast<uint32_t>(settings_.bounces);
-  scene.settings.indirectClamp = std::max(settings_.indirectClamp, 0.0f);
+  scene.settings.maxBounces = static_cast<uint32_t>(values.bounces);
+  scene.settings.indirectClamp = std::max(values.indirectClamp, 0.0f);
   scene.camera = camera_.camera();
   ProgressiveOptions options;
   options.width = size.x;
   options.height = size.y;
-  options.samplesTotal = static_cast<uint32_t>(settings_.samplesTarget);
+  options.samplesTotal = static_cast<uint32_t>(values.samplesTarget);
   options.seed = options_.seed;
   options.sampler = samplerSetting();
   options.shading = options_.shading;
-  options.adaptive = settings_.adaptive;
-  options.independentHalves = settings_.adaptive;  // the rounds' noise estimate
+  options.adaptive = values.adaptive;
+  options.independentHalves = values.adaptive;  // the rounds' noise estimate
   return std::make_unique<ProgressiveRenderer>(*context_, *compiler_, scene, options);
 }
 
@@ -208,7 +161,7 @@ void Viewer::useRenderer(std::unique_ptr<ProgressiveRenderer> renderer) {
 }
 
 bool Viewer::rebuildRenderer(glm::uvec2 size) {
-  frameBusy_ = true;
+  preparing_.busy = true;
   try {
     useRenderer(makeRenderer(size));
     return true;
@@ -223,16 +176,15 @@ bool Viewer::rebuildRenderer(glm::uvec2 size) {
 }
 
 void Viewer::restartAccumulation() {
-  accumulation_.restart(*renderer_, static_cast<uint32_t>(settings_.samplesTarget),
-                        settings_.adaptive);
+  accumulation_.restart(*renderer_, static_cast<uint32_t>(settings().samplesTarget),
+                        settings().adaptive);
 }
 
 void Viewer::applyCameraChange() {
-  if (!cameraChanged_) return;
-  cameraChanged_ = false;
+  if (!camera_.takeChanged()) return;
   const Camera& camera = camera_.camera();
-  settings_.apertureRadius = camera.apertureRadius;
-  settings_.focusDistance = camera.focusDistance;
+  settings().apertureRadius = camera.apertureRadius;
+  settings().focusDistance = camera.focusDistance;
   // The thin-lens code is compiled in only when the scene needs it.
   // Should that rebuild fail, the camera still moves (without the lens).
   bool needsLens = camera.type == CameraType::ThinLens && camera.apertureRadius > 0.0f;
@@ -246,11 +198,11 @@ void Viewer::applyCameraChange() {
 
 void Viewer::applyResize() {
   glm::uvec2 current{renderer_->width(), renderer_->height()};
-  if (renderSizeWanted_ == current || rebuildFailed_) return;
+  glm::uvec2 wanted = resize_.wanted();
+  if (wanted == current || rebuildFailed_) return;
   // Scripted runs have no one dragging the window border: no need to wait.
-  bool settled = Clock::now() - resizeSeenAt_ >= kResizeSettle || scripted();
-  if (settled && rebuildRenderer(renderSizeWanted_)) {
-    std::printf("resize: rendering at %ux%u\n", renderSizeWanted_.x, renderSizeWanted_.y);
+  if ((resize_.settled() || scripted()) && rebuildRenderer(wanted)) {
+    std::printf("resize: rendering at %ux%u\n", wanted.x, wanted.y);
   }
 }
 
@@ -260,11 +212,7 @@ void Viewer::recreateSwapchain() {
   swapchain_->recreate(toExtent(size));
   overlay_->onSwapchainRecreated(*swapchain_);
   swapchainStale_ = false;
-  glm::uvec2 extent{swapchain_->extent().width, swapchain_->extent().height};
-  if (extent != renderSizeWanted_) {
-    renderSizeWanted_ = extent;
-    resizeSeenAt_ = Clock::now();
-  }
+  resize_.windowSized({swapchain_->extent().width, swapchain_->extent().height});
 }
 
 int Viewer::run() {
@@ -294,7 +242,7 @@ int Viewer::run() {
 bool Viewer::scripted() const { return options_.frames > 0 || !path_.finished(); }
 
 bool Viewer::idle() const {
-  return !scripted() && !accumulation_.accumulating() && !reloadSavedAt_ && !quit_;
+  return !scripted() && !accumulation_.accumulating() && !preparing_.reloadSavedAt && !quit_;
 }
 
 bool Viewer::prepareFrame() {
@@ -306,51 +254,44 @@ bool Viewer::prepareFrame() {
     window_->pollEvents();
   }
   quit_ = quit_ || window_->shouldClose() || gSignalled != 0 ||
-          (options_.frames > 0 && framesPresented_ + 1 >= options_.frames);
+          (options_.frames > 0 && clock_.framesPresented() + 1 >= options_.frames);
   handleFileChanges();
   bool active = window_->takeActivity();
-  if (idle() && !active && Clock::now() - lastPresentAt_ < kIdleRedraw) return false;
+  if (idle() && !active && Clock::now() - clock_.lastPresentAt() < kIdleRedraw) return false;
 
   if (const PathStep* step = path_.next()) applyPathStep(*step);
   handleInput(window_->takeInput(overlay_->wantsMouse(), overlay_->wantsKeyboard()));
-  applyOverlayActions(overlay_->build(overlayStats(), settings_, messages_));
+  applyOverlayActions(overlay_->build(overlayStats()));
   applyCameraChange();
   applyResize();
-  if (quit_ && !options_.screenshot.empty()) screenshots_.push_back(options_.screenshot);
+  if (quit_ && !options_.screenshot.empty()) preparing_.screenshots.push_back(options_.screenshot);
   return true;
 }
 
 void Viewer::waitForFrame() {
-  if (!frameInFlight_) return;
-  vkCheck(vkWaitForFences(context_->device(), 1, &frameFence_, VK_TRUE, kFenceTimeoutNs),
-          "vkWaitForFences");
-  frameInFlight_ = false;
+  if (!frameSync_->wait()) return;
   Clock::time_point now = Clock::now();
-  double seconds = std::chrono::duration<double>(now - lastFrameDone_).count();
-  lastFrameDone_ = now;
-  frameMilliseconds_ = seconds * 1e3;
+  double seconds = clock_.frameDone(submitted_.pixelSamples, now);
   // Only plain rendering frames say how much work fits into one.
-  if (submittedFrameRendered_ && !submittedFrameBusy_) accumulation_.frameTook(seconds);
-  rate_.add(double(submittedPixelSamples_), now);
+  if (submitted_.rendered && !submitted_.busy) accumulation_.frameTook(seconds);
 
-  if (submittedReloadSavedAt_) {
+  if (submitted_.reloadSavedAt) {
     // The first frame drawn with reloaded shaders is finished and presented.
     std::printf("reload: presented %.0f ms after the save\n",
-                millisecondsBetween(*submittedReloadSavedAt_, now));
-    submittedReloadSavedAt_.reset();
+                millisecondsBetween(*submitted_.reloadSavedAt, now));
   }
   // Nothing is in flight now: the replaced kernels can go.
   renderer_->releaseRetiredKernels();
   display_->releaseRetired();
-  if (!submittedScreenshots_.empty()) {
+  if (!submitted_.screenshots.empty()) {
     try {
-      readback_->write(submittedScreenshots_);
-      for (const auto& path : submittedScreenshots_) std::printf("screenshot: %s\n", path.c_str());
+      readback_->write(submitted_.screenshots);
+      for (const auto& path : submitted_.screenshots) std::printf("screenshot: %s\n", path.c_str());
     } catch (const std::exception& e) {
       std::fprintf(stderr, "error: %s\n", e.what());
     }
-    submittedScreenshots_.clear();
   }
+  submitted_ = {};
 }
 
 bool Viewer::drawFrame() {
@@ -360,40 +301,19 @@ bool Viewer::drawFrame() {
   if (swapchainStale_ || size.x == 0 || size.y == 0) return false;
 
   uint32_t imageIndex = 0;
-  VkResult acquired = vkAcquireNextImageKHR(context_->device(), swapchain_->handle(), UINT64_MAX,
-                                            imageAcquired_, VK_NULL_HANDLE, &imageIndex);
+  VkResult acquired =
+      vkAcquireNextImageKHR(context_->device(), swapchain_->handle(), UINT64_MAX,
+                            frameSync_->imageAcquired(), VK_NULL_HANDLE, &imageIndex);
   if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
     swapchainStale_ = true;
     return false;
   }
   if (acquired != VK_SUBOPTIMAL_KHR) vkCheck(acquired, "vkAcquireNextImageKHR");
 
-  vkCheck(vkResetCommandBuffer(commands_, 0), "vkResetCommandBuffer");
-  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  vkCheck(vkBeginCommandBuffer(commands_, &begin), "vkBeginCommandBuffer");
-  recordFrame(commands_, imageIndex);
-  vkCheck(vkEndCommandBuffer(commands_), "vkEndCommandBuffer");
-
-  // The first use of the swapchain image is the blit's layout transition.
-  VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  recordFrame(frameSync_->begin(), imageIndex);
   VkSemaphore renderFinished = swapchain_->renderFinished(imageIndex);
-  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-  submit.waitSemaphoreCount = 1;
-  submit.pWaitSemaphores = &imageAcquired_;
-  submit.pWaitDstStageMask = &waitStage;
-  submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &commands_;
-  submit.signalSemaphoreCount = 1;
-  submit.pSignalSemaphores = &renderFinished;
-  vkCheck(vkResetFences(context_->device(), 1, &frameFence_), "vkResetFences");
-  vkCheck(vkQueueSubmit(context_->queue(), 1, &submit, frameFence_), "vkQueueSubmit");
-  frameInFlight_ = true;
-  submittedFrameBusy_ = frameBusy_;
-  frameBusy_ = false;
-  submittedScreenshots_ = std::move(screenshots_);
-  screenshots_.clear();
-  submittedReloadSavedAt_ = std::exchange(reloadSavedAt_, std::nullopt);
+  frameSync_->submit(renderFinished);
+  submitted_ = std::exchange(preparing_, {});
 
   VkSwapchainKHR swapchain = swapchain_->handle();
   VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
@@ -409,19 +329,12 @@ bool Viewer::drawFrame() {
   } else {
     vkCheck(presented, "vkQueuePresentKHR");
   }
-  ++framesPresented_;
-  lastPresentAt_ = Clock::now();
+  clock_.presented();
   return true;
 }
 
 void Viewer::recordFrame(VkCommandBuffer commands, uint32_t imageIndex) {
   RowRange rendered = recordRenderBands(commands);
-  // Only rows that got samples change, unless the tone mapping itself did.
-  if (displayStale_ || settings_.exposure != displayedExposure_) {
-    rendered = {0, renderer_->height()};
-    displayStale_ = false;
-    displayedExposure_ = settings_.exposure;
-  }
   display_->recordToneMap(commands, displayMapping(), rendered.first, rendered.count);
   VkImage image = swapchain_->image(imageIndex);
   VkExtent2D extent = swapchain_->extent();
@@ -435,38 +348,36 @@ void Viewer::recordFrame(VkCommandBuffer commands, uint32_t imageIndex) {
   overlay_->record(commands);
   vkCmdEndRenderPass(commands);
 
-  if (!screenshots_.empty()) {
+  if (!preparing_.screenshots.empty()) {
     if (swapchain_->readable()) {
       readback_->record(commands, image, extent, swapchain_->format());
     } else {
       std::fprintf(stderr, "error: this window's images cannot be read back; no screenshot\n");
-      screenshots_.clear();
+      preparing_.screenshots.clear();
     }
   }
 }
 
 Viewer::RowRange Viewer::recordRenderBands(VkCommandBuffer commands) {
   Accumulation::FrameSamples frame = accumulation_.record(commands, displayMapping());
-  if (frame.readBack) frameBusy_ = true;
-  submittedPixelSamples_ = frame.pixelSamples;
-  submittedFrameRendered_ = frame.rows > 0;
+  if (frame.readBack) preparing_.busy = true;
+  preparing_.pixelSamples = frame.pixelSamples;
+  preparing_.rendered = frame.rows > 0;
   return {frame.firstRow, frame.rows};
 }
 
 void Viewer::logFrame() {
-  Clock::time_point now = Clock::now();
-  uint32_t target = static_cast<uint32_t>(settings_.samplesTarget);
-  bool due = options_.verbose || now - lastLogAt_ >= kLogInterval;
-  if (due && (submittedFrameRendered_ || options_.verbose)) {
-    std::printf("frame %llu spp=%s/%u ms=%.1f msps=%.3f work=%llu\n",
-                static_cast<unsigned long long>(framesPresented_),
-                accumulation_.samplesText().c_str(), target, frameMilliseconds_,
-                rate_.perSecond() * 1e-6, static_cast<unsigned long long>(submittedPixelSamples_));
-    lastLogAt_ = now;
+  uint32_t target = static_cast<uint32_t>(settings().samplesTarget);
+  auto frames = static_cast<unsigned long long>(clock_.framesPresented());
+  if ((submitted_.rendered || options_.verbose) && clock_.takeLogDue(options_.verbose)) {
+    std::printf("frame %llu spp=%s/%u ms=%.1f msps=%.3f work=%llu\n", frames,
+                accumulation_.samplesText().c_str(), target, clock_.frameMilliseconds(),
+                clock_.samplesPerSecond() * 1e-6,
+                static_cast<unsigned long long>(submitted_.pixelSamples));
   }
   if (std::optional<double> seconds = accumulation_.takeDoneSeconds()) {
     std::printf("done: spp=%s in %.2f s (frame %llu)\n", accumulation_.samplesText().c_str(),
-                *seconds, static_cast<unsigned long long>(framesPresented_));
+                *seconds, frames);
   }
   std::fflush(stdout);
 }
@@ -476,9 +387,9 @@ OverlayStats Viewer::overlayStats() const {
   stats.samplesDone = accumulation_.samplesPerPixel();
   stats.adaptive = accumulation_.adaptive();
   stats.rmseEstimate = accumulation_.rmseEstimate();
-  stats.samplesTarget = static_cast<uint32_t>(settings_.samplesTarget);
-  stats.samplesPerSecond = rate_.perSecond();
-  stats.frameMilliseconds = frameMilliseconds_;
+  stats.samplesTarget = static_cast<uint32_t>(settings().samplesTarget);
+  stats.samplesPerSecond = clock_.samplesPerSecond();
+  stats.frameMilliseconds = clock_.frameMilliseconds();
   stats.renderSize = {renderer_->width(), renderer_->height()};
   stats.device = context_->description().name;
   stats.features = renderer_->features().summary();

@@ -26,9 +26,11 @@
 #include "scene/Scene.hpp"
 #include "viewer/Accumulation.hpp"
 #include "viewer/CameraPath.hpp"
-#include "viewer/FileWatcher.hpp"
+#include "viewer/FrameClock.hpp"
+#include "viewer/HotReload.hpp"
 #include "viewer/OrbitCamera.hpp"
 #include "viewer/Overlay.hpp"
+#include "viewer/PendingResize.hpp"
 #include "viewer/ViewerOptions.hpp"
 #include "viewer/Window.hpp"
 
@@ -41,20 +43,19 @@ class VulkanContext;
 namespace rt::viewer {
 
 class DisplayPass;
+class FrameSync;
 class Swapchain;
 class SwapchainReadback;
 
-// Samples per second over the last second or so.
-class RateMeter {
- public:
-  using Clock = std::chrono::steady_clock;
-  void add(double samples, Clock::time_point now);
-  double perSecond() const { return rate_; }
-
- private:
-  Clock::time_point start_ = Clock::now();
-  double samples_ = 0.0;
-  double rate_ = 0.0;
+// What a frame carries from its preparation until the GPU finished it.
+struct FrameRecord {
+  bool busy = false;      // heavy host work (a rebuild, a read-back): its time says nothing
+  bool rendered = false;  // it added samples
+  uint64_t pixelSamples = 0;
+  std::vector<std::filesystem::path> screenshots;
+  // When the file behind a successful reload was saved, for the first frame
+  // drawn with the new shaders or scene.
+  std::optional<std::chrono::steady_clock::time_point> reloadSavedAt;
 };
 
 class Viewer {
@@ -70,10 +71,9 @@ class Viewer {
   using Clock = std::chrono::steady_clock;
 
   // Setup.
-  void createFrameObjects();
-  void destroyFrameObjects();
-  void startWatching();
   void initialiseSettings();
+  OverlaySettings& settings() { return overlay_->settings(); }
+  const OverlaySettings& settings() const { return overlay_->settings(); }
 
   // The renderer (all only between frames).
   std::unique_ptr<ProgressiveRenderer> makeRenderer(glm::uvec2 size) const;  // throws
@@ -131,49 +131,20 @@ class Viewer {
   std::unique_ptr<ProgressiveRenderer> renderer_;
   std::unique_ptr<BatchIntersector> intersector_;  // built on the first focus click
   std::unique_ptr<SwapchainReadback> readback_;
-  std::unique_ptr<FileWatcher> watcher_;
-
-  // Per-frame Vulkan objects: one frame in flight.
-  VkCommandPool commandPool_ = VK_NULL_HANDLE;
-  VkCommandBuffer commands_ = VK_NULL_HANDLE;
-  VkFence frameFence_ = VK_NULL_HANDLE;
-  VkSemaphore imageAcquired_ = VK_NULL_HANDLE;
-  bool frameInFlight_ = false;
+  std::unique_ptr<FrameSync> frameSync_;  // the one frame in flight
+  std::unique_ptr<HotReload> reload_;     // with --watch
   bool swapchainStale_ = false;
 
   Accumulation accumulation_;
   OrbitCamera camera_;
   CameraPathPlayer path_;
-  OverlaySettings settings_;
-  OverlayMessages messages_;
-  Debouncer shaderChanges_{std::chrono::milliseconds(50)};
-  Debouncer sceneChanges_{std::chrono::milliseconds(50)};
-  bool cameraChanged_ = false;
-  bool displayStale_ = true;  // tone map every row next frame
-  float displayedExposure_ = 0.0f;
-  bool rebuildFailed_ = false;         // do not retry a rebuild until the shaders change
-  bool sceneWaitsForShaders_ = false;  // an edited scene to load once shaders build
-  glm::uvec2 renderSizeWanted_{0};
-  Clock::time_point resizeSeenAt_{};
+  PendingResize resize_;
+  bool rebuildFailed_ = false;  // do not retry a rebuild until the shaders change
 
-  // Frame bookkeeping.
-  uint64_t framesPresented_ = 0;
-  Clock::time_point lastFrameDone_ = Clock::now();
+  FrameClock clock_;
+  FrameRecord preparing_;  // the frame being prepared
+  FrameRecord submitted_;  // the frame in flight
   Clock::time_point lastInputAt_ = Clock::now();
-  Clock::time_point lastLogAt_{};
-  Clock::time_point lastPresentAt_{};
-  double frameMilliseconds_ = 0.0;
-  bool frameBusy_ = false;           // the frame being prepared did heavy host work
-  bool submittedFrameBusy_ = false;  // ... the frame in flight
-  bool submittedFrameRendered_ = false;
-  uint64_t submittedPixelSamples_ = 0;
-  RateMeter rate_;
-  std::vector<std::filesystem::path> screenshots_;  // of the frame being prepared
-  std::vector<std::filesystem::path> submittedScreenshots_;
-  // When the file behind a successful reload was saved, until the first
-  // frame drawn with the new shaders or scene is presented.
-  std::optional<Clock::time_point> reloadSavedAt_;
-  std::optional<Clock::time_point> submittedReloadSavedAt_;
   bool quit_ = false;
 };
 

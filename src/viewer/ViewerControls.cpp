@@ -28,11 +28,6 @@ constexpr float kFlyRadiiPerSecond = 0.5f;
 constexpr float kFlyFastFactor = 4.0f;
 constexpr double kMaxFlyStepSeconds = 0.1;  // a slow frame must not jump far
 
-bool isShaderSource(const std::filesystem::path& file) {
-  std::string extension = file.extension().string();
-  return extension == ".glsl" || extension == ".comp" || extension == ".h";
-}
-
 bool sameCamera(const Camera& a, const Camera& b) {
   return a.type == b.type && a.width == b.width && a.height == b.height &&
          a.fovYDegrees == b.fovYDegrees && a.position == b.position && a.forward == b.forward &&
@@ -57,33 +52,25 @@ std::string vectorText(const glm::dvec3& v) { return fmt::format("[{}, {}, {}]",
 }  // namespace
 
 void Viewer::notice(const std::string& text) {
-  messages_.notice = text;
+  overlay_->messages().notice = text;
   std::printf("%s\n", text.c_str());
   std::fflush(stdout);
 }
 
 void Viewer::reportShaderError(const std::string& what) {
-  messages_.shaderError = what;
+  overlay_->messages().shaderError = what;
   printLines(stderr, "reload: error ", what);
 }
 
 void Viewer::handleFileChanges() {
-  if (!watcher_) return;
-  Clock::time_point now = Clock::now();
-  std::filesystem::path sceneFile = options_.scenePath.filename();
-  for (const std::filesystem::path& file : watcher_->poll()) {
-    if (file.filename() == sceneFile && !isShaderSource(file)) {
-      sceneChanges_.notify(now);
-    } else if (isShaderSource(file) && file.parent_path() == compiler_->shaderDir()) {
-      shaderChanges_.notify(now);
-    }
-  }
-  if (shaderChanges_.ready(now)) reloadShaders();
-  if (sceneChanges_.ready(now)) reloadScene();
+  if (!reload_) return;
+  HotReload::Due due = reload_->poll(Clock::now());
+  if (due.shaders) reloadShaders();
+  if (due.scene) reloadScene();
 }
 
 void Viewer::reloadShaders() {
-  frameBusy_ = true;
+  preparing_.busy = true;
   Clock::time_point start = Clock::now();
   std::string errors;
   bool traceReloaded = false;
@@ -95,7 +82,6 @@ void Viewer::reloadShaders() {
   }
   try {
     display_->reloadShader();
-    displayStale_ = true;
   } catch (const std::exception& e) {
     errors += (errors.empty() ? "" : "\n") + std::string(e.what());
   }
@@ -104,19 +90,19 @@ void Viewer::reloadShaders() {
     // New shading: what was accumulated so far no longer matches.
     renderer_->reset();
     restartAccumulation();
-    reloadSavedAt_ = shaderChanges_.firstChange();
+    preparing_.reloadSavedAt = reload_->shadersSavedAt();
   }
   if (!errors.empty()) {
     reportShaderError(errors);
     return;
   }
-  messages_.shaderError.clear();
-  messages_.shaders = fmt::format("reloaded in {:.0f} ms", milliseconds);
+  overlay_->messages().shaderError.clear();
+  overlay_->messages().shaders = fmt::format("reloaded in {:.0f} ms", milliseconds);
   rebuildFailed_ = false;  // a pending resize may try again
   std::printf("reload: ok %.0f ms\n", milliseconds);
   std::fflush(stdout);
   // A scene edit that could not be built with the broken shaders.
-  if (sceneWaitsForShaders_) reloadScene();
+  if (reload_->sceneWaitsForShaders) reloadScene();
 }
 
 void Viewer::reloadScene() {
@@ -124,44 +110,46 @@ void Viewer::reloadScene() {
   try {
     fresh = loadViewedScene();
   } catch (const std::exception& e) {
-    messages_.sceneError = e.what();
+    overlay_->messages().sceneError = e.what();
     std::fprintf(stderr, "scene: error %s\n", e.what());
     std::fflush(stderr);
-    sceneWaitsForShaders_ = false;  // this version is broken itself
+    if (reload_) reload_->sceneWaitsForShaders = false;  // this version is broken itself
     return;
   }
   Scene previous = std::move(scene_);
   OrbitCamera previousCamera = camera_;
-  OverlaySettings previousSettings = settings_;
+  OverlaySettings& values = settings();
+  OverlaySettings previousSettings = values;
   // Keep the user's view unless the file's camera itself was edited.
   BoundingSphere bounds = boundingSphere(fresh);
   if (!sameCamera(previous.camera, fresh.camera)) {
     camera_.setHome(fresh.camera, bounds.center, bounds.radius);
-    settings_.exposure = toneMappingFor(fresh).exposure * options_.exposure;
+    values.exposure = toneMappingFor(fresh).exposure * options_.exposure;
   }
   if (fresh.settings.maxBounces != previous.settings.maxBounces) {
-    settings_.bounces = static_cast<int>(fresh.settings.maxBounces);
+    values.bounces = static_cast<int>(fresh.settings.maxBounces);
   }
   if (fresh.settings.indirectClamp != previous.settings.indirectClamp) {
-    settings_.indirectClamp = fresh.settings.indirectClamp;
+    values.indirectClamp = fresh.settings.indirectClamp;
   }
   scene_ = std::move(fresh);
   if (!rebuildRenderer({renderer_->width(), renderer_->height()})) {
     scene_ = std::move(previous);
     camera_ = previousCamera;
-    settings_ = previousSettings;
-    messages_.sceneError = "the scene loaded but the renderer could not be built (see shaders)";
-    std::fprintf(stderr, "scene: error %s\n", messages_.sceneError.c_str());
-    sceneWaitsForShaders_ = true;
+    values = previousSettings;
+    overlay_->messages().sceneError =
+        "the scene loaded but the renderer could not be built (see shaders)";
+    std::fprintf(stderr, "scene: error %s\n", overlay_->messages().sceneError.c_str());
+    if (reload_) reload_->sceneWaitsForShaders = true;
     return;
   }
-  sceneWaitsForShaders_ = false;
-  settings_.lensScale = static_cast<float>(bounds.radius);
-  settings_.apertureRadius = camera_.camera().apertureRadius;
-  settings_.focusDistance = camera_.camera().focusDistance;
+  if (reload_) reload_->sceneWaitsForShaders = false;
+  values.lensScale = static_cast<float>(bounds.radius);
+  values.apertureRadius = camera_.camera().apertureRadius;
+  values.focusDistance = camera_.camera().focusDistance;
   intersector_.reset();  // built again for the new geometry on the next focus click
-  messages_.sceneError.clear();
-  reloadSavedAt_ = sceneChanges_.firstChange();
+  overlay_->messages().sceneError.clear();
+  if (reload_) preparing_.reloadSavedAt = reload_->sceneSavedAt();
   for (const std::string& warning : scene_.warnings) {
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
   }
@@ -175,15 +163,12 @@ void Viewer::handleInput(const InputEvents& input) {
     // Drag right: the scene turns right, so the camera moves left.
     camera_.orbit(-static_cast<float>(input.orbitDrag.x) * kOrbitDegreesPerPixel,
                   -static_cast<float>(input.orbitDrag.y) * kOrbitDegreesPerPixel);
-    cameraChanged_ = true;
   }
   if (input.panDrag != glm::dvec2(0.0)) {
     camera_.pan(glm::vec2(input.panDrag), height);
-    cameraChanged_ = true;
   }
   if (input.scroll != 0.0) {
     camera_.zoom(static_cast<float>(input.scroll));
-    cameraChanged_ = true;
   }
   for (const Click& click : input.clicks) {
     if (click.button == GLFW_MOUSE_BUTTON_LEFT && (click.mods & GLFW_MOD_CONTROL)) {
@@ -198,10 +183,7 @@ void Viewer::handleInput(const InputEvents& input) {
 
 void Viewer::handleKey(const KeyPress& key) {
   switch (key.key) {
-    case GLFW_KEY_R:
-      camera_.reset();
-      cameraChanged_ = true;
-      break;
+    case GLFW_KEY_R: camera_.reset(); break;
     case GLFW_KEY_S:
       // Plain S flies backwards (WASD); Ctrl+S saves.
       if (key.mods & GLFW_MOD_CONTROL) saveImage({});
@@ -225,7 +207,6 @@ void Viewer::flyWithHeldKeys() {
   bool fast = window_->keyHeld(GLFW_KEY_LEFT_SHIFT) || window_->keyHeld(GLFW_KEY_RIGHT_SHIFT);
   float speed = kFlyRadiiPerSecond * (fast ? kFlyFastFactor : 1.0f);
   camera_.fly(direction * speed * static_cast<float>(seconds));
-  cameraChanged_ = true;
 }
 
 void Viewer::applyPathStep(const PathStep& step) {
@@ -244,11 +225,10 @@ void Viewer::applyPathStep(const PathStep& step) {
       window_->resize(static_cast<uint32_t>(std::max(v[0], 1.0f)),
                       static_cast<uint32_t>(std::max(v[1], 1.0f)));
       return;
-    case Kind::Screenshot: screenshots_.push_back(step.file); return;
+    case Kind::Screenshot: preparing_.screenshots.push_back(step.file); return;
     case Kind::Save: saveImage(step.file); return;
     case Kind::Wait: return;
   }
-  cameraChanged_ = true;
 }
 
 void Viewer::applyOverlayActions(const OverlayActions& actions) {
@@ -260,19 +240,17 @@ void Viewer::applyOverlayActions(const OverlayActions& actions) {
     // The jittered sampler stratifies for the target count: a new target is
     // a new sample pattern. Random samples stay valid; just go on. Adaptive
     // rounds plan for their budget: a new one starts again.
-    if (samplerSetting() == SamplerKind::Jittered || settings_.adaptive) {
+    if (samplerSetting() == SamplerKind::Jittered || settings().adaptive) {
       rebuildRenderer(size);
     } else {
-      accumulation_.setTarget(static_cast<uint32_t>(settings_.samplesTarget));
+      accumulation_.setTarget(static_cast<uint32_t>(settings().samplesTarget));
     }
   }
   if (actions.lensChanged) {
-    camera_.setLens(settings_.apertureRadius, settings_.focusDistance);
-    cameraChanged_ = true;
+    camera_.setLens(settings().apertureRadius, settings().focusDistance);
   }
   if (actions.resetCamera) {
     camera_.reset();
-    cameraChanged_ = true;
   }
   if (actions.save) saveImage({});
 }
@@ -301,7 +279,7 @@ void Viewer::focusAt(glm::dvec2 renderPixel) {
       glm::normalize(info.cameraForward + screen.x * info.cameraRight + screen.y * info.cameraUp);
   try {
     if (!intersector_) {
-      frameBusy_ = true;
+      preparing_.busy = true;
       intersector_ = std::make_unique<BatchIntersector>(*context_, *compiler_, scene_);
     }
     std::vector<gpu::GpuHit> hits =
@@ -313,9 +291,9 @@ void Viewer::focusAt(glm::dvec2 renderPixel) {
     // The focal plane is perpendicular to the view axis.
     float distance = hits[0].t * glm::dot(direction, info.cameraForward);
     camera_.setLens(camera.apertureRadius, distance);
-    // Through a pinhole every distance looks the same: no need to restart.
-    cameraChanged_ = cameraChanged_ || camera.apertureRadius > 0.0f;
-    settings_.focusDistance = distance;
+    // Through a pinhole every distance looks the same: setLens does not
+    // count that as a change, and the accumulation goes on.
+    settings().focusDistance = distance;
     notice(fmt::format("focus: distance={:.4f}{}", distance,
                        camera.apertureRadius > 0.0f ? "" : " (set a lens radius to see it)"));
   } catch (const std::exception& e) {
@@ -324,7 +302,7 @@ void Viewer::focusAt(glm::dvec2 renderPixel) {
 }
 
 void Viewer::saveImage(std::filesystem::path path) {
-  frameBusy_ = true;
+  preparing_.busy = true;
   if (path.empty()) {
     // <scene>-<N>.png in the save folder, never overwriting an earlier save.
     std::string stem = options_.scenePath.stem().string();
