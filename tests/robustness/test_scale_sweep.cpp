@@ -229,29 +229,38 @@ Scene defaultSceneAt(double scale, glm::dvec3 offset) {
   return scene;
 }
 
+// Renders `sceneAt(scale, offset)` at each scale and decimal offset: each
+// image must be within 60 dB of the unit scene's, or the scene refused as
+// precisionProblem says, with a message. Returns a table of the results.
+std::string sweepDecimal(std::initializer_list<double> scales,
+                         const std::function<Scene(double, glm::dvec3)>& sceneAt) {
+  const Image8 unit = toImage8(render(sceneAt(1.0, {})));
+  std::string table;
+  for (double scale : scales) {
+    for (glm::dvec3 offset : kDecimalOffsets) {
+      CAPTURE(scale);
+      CAPTURE(offset);
+      Scene scene = sceneAt(scale, offset);
+      std::string row = fmt::format("  scale {:g} offset {:g}: ", scale, offset.x);
+      if (const std::optional<std::string> problem = precisionProblem(scene)) {
+        table += row + "refused (" + *problem + ")\n";
+        CHECK_THROWS_WITH_AS(render(scene), doctest::Contains(": the shapes are"), Error);
+        continue;
+      }
+      Image8 image = toImage8(render(scene));
+      double decibels = image.rgb == unit.rgb ? INFINITY : psnr(image, unit);
+      table += row + fmt::format("{:.1f} dB\n", decibels);
+      CHECK(decibels > 60.0);
+    }
+  }
+  return table;
+}
+
 }  // namespace
 
 TEST_SUITE("robustness-sweep") {
   TEST_CASE("scenes/default.json written at scales 1e-4 to 1e6 and up to 1e9 away renders alike") {
-    Image8 unit = toImage8(render(defaultSceneAt(1.0, {})));
-    std::string table;
-    for (double scale : {1e-4, 1e-2, 1e2, 1e6}) {
-      for (glm::dvec3 offset : kDecimalOffsets) {
-        CAPTURE(scale);
-        CAPTURE(offset);
-        Scene scene = defaultSceneAt(scale, offset);
-        if (precisionProblem(scene)) {
-          table += fmt::format("  scale {:g} offset {:g}: refused\n", scale, offset.x);
-          CHECK_THROWS_WITH_AS(render(scene), doctest::Contains("placed-default.json: the shapes"),
-                               Error);
-          continue;
-        }
-        Image8 image = toImage8(render(scene));
-        double decibels = image.rgb == unit.rgb ? INFINITY : psnr(image, unit);
-        table += fmt::format("  scale {:g} offset {:g}: {:.1f} dB\n", scale, offset.x, decibels);
-        CHECK(decibels > 60.0);
-      }
-    }
+    std::string table = sweepDecimal({1e-4, 1e-2, 1e2, 1e6}, defaultSceneAt);
     MESSAGE("default.json, 8-bit PSNR against itself unmoved:\n", table);
   }
 
@@ -285,25 +294,9 @@ TEST_SUITE("robustness-sweep") {
 
   TEST_CASE(
       "decimal scales 1e-4 to 1e6 and offsets up to 1e9 stay within 60 dB of the unit scene") {
-    Image8 unit = toImage8(render(sweepScene(scaledAndMoved(1, {}))));
-    std::string table;
-    for (double scale : {1e-4, 1e-2, 1.0, 1e2, 1e4, 1e6}) {
-      for (glm::dvec3 offset : kDecimalOffsets) {
-        CAPTURE(scale);
-        CAPTURE(offset);
-        Scene scene = sweepScene(scaledAndMoved(scale, offset));
-        if (const std::optional<std::string> problem = precisionProblem(scene)) {
-          table +=
-              fmt::format("  scale {:g} offset {:g}: refused ({})\n", scale, offset.x, *problem);
-          CHECK_THROWS_AS(render(scene), Error);
-          continue;
-        }
-        Image8 image = toImage8(render(scene));
-        double decibels = image.rgb == unit.rgb ? INFINITY : psnr(image, unit);
-        table += fmt::format("  scale {:g} offset {:g}: {:.1f} dB\n", scale, offset.x, decibels);
-        CHECK(decibels > 60.0);
-      }
-    }
+    std::string table = sweepDecimal(
+        {1e-4, 1e-2, 1.0, 1e2, 1e4, 1e6},
+        [](double scale, glm::dvec3 offset) { return sweepScene(scaledAndMoved(scale, offset)); });
     MESSAGE("8-bit PSNR against the unit scene:\n", table);
   }
 
