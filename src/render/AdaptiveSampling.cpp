@@ -181,26 +181,9 @@ uint64_t AdaptivePlan::pixelSamples() const {
   return total;
 }
 
-uint32_t AdaptivePlan::minSamples() const {
-  uint32_t least = std::numeric_limits<uint32_t>::max();
-  for (size_t i = 0; i < samples_.size(); ++i) {
-    if (pixels_[i] > 0) least = std::min(least, samples_[i]);
-  }
-  return least == std::numeric_limits<uint32_t>::max() ? 0 : least;
-}
-
-uint32_t AdaptivePlan::maxSamples() const {
-  uint32_t most = 0;
-  for (size_t i = 0; i < samples_.size(); ++i) {
-    if (pixels_[i] > 0) most = std::max(most, samples_[i]);
-  }
-  return most;
-}
-
 AdaptiveRounds::AdaptiveRounds(uint32_t width, uint32_t height, const PixelRegion& region,
                                const Goal& goal)
     : plan_(width, height, region),
-      region_(region),
       goal_(goal),
       round_(plan_.uniformRound(std::min(goal.meanSamples, kAdaptiveFirstPass))) {
   finished_ = goal.meanSamples == 0 || plan_.regionPixels() == 0;
@@ -208,7 +191,8 @@ AdaptiveRounds::AdaptiveRounds(uint32_t width, uint32_t height, const PixelRegio
 
 uint32_t AdaptiveRounds::bandEnd(uint32_t y, double work) const {
   const uint32_t tile = AdaptivePlan::kTileSize;
-  const uint32_t bottom = region_.y + region_.height;
+  const PixelRegion& region = plan_.region();
+  const uint32_t bottom = region.y + region.height;
   double sum = 0;
   uint32_t end = y;
   while (end < bottom && (end == y || sum < work)) {
@@ -221,12 +205,13 @@ uint32_t AdaptiveRounds::bandEnd(uint32_t y, double work) const {
 
 double AdaptiveRounds::rowWork(uint32_t y, uint32_t end) const {
   const uint32_t tile = AdaptivePlan::kTileSize;
+  const PixelRegion& region = plan_.region();
   double work = 0;
   for (uint32_t row = y; row < end;) {
     uint32_t next = std::min((row / tile + 1) * tile, end);
-    for (uint32_t tx = region_.x / tile; tx * tile < region_.x + region_.width; ++tx) {
-      uint32_t x0 = std::max(tx * tile, region_.x);
-      uint32_t x1 = std::min((tx + 1) * tile, region_.x + region_.width);
+    for (uint32_t tx = region.x / tile; tx * tile < region.x + region.width; ++tx) {
+      uint32_t x0 = std::max(tx * tile, region.x);
+      uint32_t x1 = std::min((tx + 1) * tile, region.x + region.width);
       work +=
           double(round_[size_t(row / tile) * plan_.tilesPerRow() + tx]) * (x1 - x0) * (next - row);
     }
@@ -237,7 +222,6 @@ double AdaptiveRounds::rowWork(uint32_t y, uint32_t end) const {
 
 void AdaptiveRounds::finishRound(const SampleSums& sums, const ToneMapping& mapping) {
   plan_.addRound(round_);
-  ++rounds_;
   NoiseMeasurement noise = plan_.measureNoise(sums, mapping);
   estimate_ = noise.rmse;
   AllocationGoal next;
@@ -247,7 +231,8 @@ void AdaptiveRounds::finishRound(const SampleSums& sums, const ToneMapping& mapp
   next.maxSamples = goal_.maxSamples;
   round_ = reachedTarget() ? std::vector<uint32_t>(round_.size(), 0)
                            : allocateSamples(noise.tiles, next);
-  const double work = rowWork(region_.y, region_.y + region_.height);
+  const PixelRegion& region = plan_.region();
+  const double work = rowWork(region.y, region.y + region.height);
   finished_ = work < kMinRoundShare * double(plan_.pixelSamples());
 }
 

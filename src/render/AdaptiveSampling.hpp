@@ -92,8 +92,7 @@ class AdaptivePlan {
 
   uint64_t pixelSamples() const;  // samples rendered over the region so far
   uint64_t regionPixels() const { return regionPixels_; }
-  uint32_t minSamples() const;
-  uint32_t maxSamples() const;
+  const PixelRegion& region() const { return region_; }
 
  private:
   size_t tileOf(uint32_t x, uint32_t y) const;
@@ -123,7 +122,8 @@ class AdaptiveRounds {
 
   AdaptiveRounds(uint32_t width, uint32_t height, const PixelRegion& region, const Goal& goal);
 
-  // No samples left to add: the target is reached or the budget spent.
+  // No samples left to add: the target is reached, the budget spent, or the
+  // next round would add too little to be worth a round (kMinRoundShare).
   bool finished() const { return finished_; }
   // The current round's (first sample, count) per tile, for the kernel.
   std::vector<glm::uvec2> kernelRanges() const { return plan_.kernelRanges(round_); }
@@ -139,15 +139,12 @@ class AdaptiveRounds {
   std::optional<double> rmseEstimate() const { return estimate_; }
   bool reachedTarget() const;
   double meanSamples() const;  // per pixel of the region, rendered so far
-  uint32_t rounds() const { return rounds_; }
 
  private:
   AdaptivePlan plan_;
-  PixelRegion region_;
   Goal goal_;
   std::vector<uint32_t> round_;  // samples per pixel this round adds, per tile
   std::optional<double> estimate_;
-  uint32_t rounds_ = 0;
   bool finished_ = false;
 };
 

@@ -210,17 +210,22 @@ class AdaptiveLoop : SampleLoop {
         rounds_(job.width(), job.height(), job.region(),
                 {options.samplesPerPixel, options.targetRmse, kMaxSamplesPerPixel}) {}
 
-  void run() {
+  // The sums the last round was measured on: every sample of the render
+  // unless it stopped part way through a round (then nullopt).
+  std::optional<SampleSums> run() {
+    std::optional<SampleSums> sums;
     while (!rounds_.finished()) {
       if (!renderRound()) {
         stats_.stoppedEarly = true;
-        break;
+        return std::nullopt;
       }
-      rounds_.finishRound(job_.sampleSums(), mapping_);
+      sums = job_.sampleSums();
+      rounds_.finishRound(*sums, mapping_);
       stats_.rmseEstimate = rounds_.rmseEstimate();
       stats_.reachedTarget = rounds_.reachedTarget();
       report(rounds_.meanSamples(), options_.samplesPerPixel, stats_.rmseEstimate);
     }
+    return sums;
   }
 
  private:
@@ -245,10 +250,11 @@ class AdaptiveLoop : SampleLoop {
   AdaptiveRounds rounds_;
 };
 
-// Sample counts over the region from the accumulation, and the per-pixel
-// error image when asked for.
+// Sample counts over the region from the accumulation (`known`: sums
+// already read back after the last sample), and the per-pixel error image
+// when asked for.
 void finishStats(ProgressiveRenderer& job, const RenderOptions& options, const ToneMapping& mapping,
-                 RenderStats& stats) {
+                 std::optional<SampleSums> known, RenderStats& stats) {
   const bool uniform = !options.adaptive && !stats.stoppedEarly;
   if (uniform && !options.keepErrorImage) {
     // Every pixel got every pass: no need to read the counts back.
@@ -257,7 +263,7 @@ void finishStats(ProgressiveRenderer& job, const RenderOptions& options, const T
     stats.maxSamples = stats.samplesDone;
     return;
   }
-  SampleSums sums = job.sampleSums();
+  SampleSums sums = known ? std::move(*known) : job.sampleSums();
   const PixelRegion& region = job.region();
   double total = 0;
   float fewest = std::numeric_limits<float>::max(), most = 0;
@@ -316,14 +322,15 @@ ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
   auto renderStart = Clock::now();
   double cpuStart = processCpuSeconds();
   const ToneMapping mapping = options.displayMapping.value_or(toneMappingFor(scene));
+  std::optional<SampleSums> finalSums;
   if (options.adaptive) {
-    AdaptiveLoop(context_, job, clamped, mapping, onProgress, s).run();
+    finalSums = AdaptiveLoop(context_, job, clamped, mapping, onProgress, s).run();
   } else {
     RenderLoop(context_, job, clamped, mapping, onProgress, s).run();
   }
   s.renderSeconds = secondsSince(renderStart);
   s.renderCpuSeconds = processCpuSeconds() - cpuStart;
-  finishStats(job, options, mapping, s);
+  finishStats(job, options, mapping, std::move(finalSums), s);
   return job.resolve();
 }
 

@@ -90,14 +90,17 @@ void linkReferencesOf(const fs::path& document, const fs::path& placeDir,
   }
 }
 
-bool finite(const glm::vec3& v) {
+// Float directions and colours, double world positions and placements.
+template <typename T>
+bool finite(const glm::vec<3, T>& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-bool finite(const glm::mat4& m) {
+template <typename T>
+bool finite(const glm::mat<4, 4, T>& m) {
   for (int column = 0; column < 4; ++column) {
-    const glm::vec4 c = glm::column(m, column);
-    if (!finite(glm::vec3(c)) || !std::isfinite(c.w)) return false;
+    const glm::vec<4, T> c = glm::column(m, column);
+    if (!finite(glm::vec<3, T>(c)) || !std::isfinite(c.w)) return false;
   }
   return true;
 }

@@ -20,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view mtl = split == std::string_view::npos
                                    ? std::string_view{}
                                    : bytes.substr(split + kMtlSeparator.size());
-  rt::fuzz::checkLoad([&] { return rt::parseObjPart(obj, mtl, kName, glm::mat4(1.0f)); },
+  rt::fuzz::checkLoad([&] { return rt::parseObjPart(obj, mtl, kName, rt::WorldTransform(1.0)); },
                       rt::fuzz::checkScene, kName);
   return 0;
 }

@@ -26,13 +26,7 @@ namespace {
 // others (12 x 9 tiles).
 RenderOptions smallRender(SamplerKind sampler, uint32_t samples, uint32_t seed = 1,
                           uint32_t width = 96) {
-  RenderOptions options;
-  options.width = width;
-  options.height = width * 3 / 4;
-  options.sampler = sampler;
-  options.samplesPerPixel = samples;
-  options.seed = seed;
-  return options;
+  return test::studyRender(sampler, samples, seed, width);
 }
 
 RenderOptions adaptiveRender(uint32_t samples, uint32_t seed = 1, uint32_t width = 96) {
@@ -42,17 +36,8 @@ RenderOptions adaptiveRender(uint32_t samples, uint32_t seed = 1, uint32_t width
   return options;
 }
 
-// A study scene with 2048 Sobol samples (another seed): its own error is
-// far below the measured renders'.
 const ImageF& studyTruth(const std::string& name, uint32_t width = 96) {
-  static std::map<std::pair<std::string, uint32_t>, ImageF> truths;
-  auto found = truths.find({name, width});
-  if (found == truths.end()) {
-    RenderOptions options = smallRender(SamplerKind::Sobol, 2048, 999, width);
-    found = truths.emplace(std::pair{name, width}, test::render(test::projectScene(name), options))
-                .first;
-  }
-  return found->second;
+  return test::studyTruth(name, width, 2048);
 }
 
 // Mean over channels of the squared display error of pixel i.

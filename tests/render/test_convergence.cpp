@@ -24,25 +24,11 @@ namespace {
 
 RenderOptions smallRender(SamplerKind sampler, uint32_t samples, uint32_t seed = 1,
                           uint32_t width = 48) {
-  RenderOptions options;
-  options.width = width;
-  options.height = width * 3 / 4;
-  options.sampler = sampler;
-  options.samplesPerPixel = samples;
-  options.seed = seed;
-  return options;
+  return test::studyRender(sampler, samples, seed, width);
 }
 
-// A study scene at width x (3/4 width), 1024 Sobol samples (another seed).
 const ImageF& studyTruth(const std::string& name, uint32_t width = 48) {
-  static std::map<std::pair<std::string, uint32_t>, ImageF> truths;
-  auto found = truths.find({name, width});
-  if (found == truths.end()) {
-    RenderOptions options = smallRender(SamplerKind::Sobol, 1024, 999, width);
-    found = truths.emplace(std::pair{name, width}, test::render(test::projectScene(name), options))
-                .first;
-  }
-  return found->second;
+  return test::studyTruth(name, width, 1024);
 }
 
 const ImageF& thinLensTruth() { return studyTruth("study-thinlens.json"); }

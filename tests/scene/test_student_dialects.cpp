@@ -302,3 +302,103 @@ TEST_SUITE("student dialects") {
     CHECK(loaded.textures.at(size_t(m.diffuseTexture)).image.width == 32);  // 4 squares of 8
   }
 }
+
+namespace {
+
+// Where an instance puts a vertex of its mesh.
+rt::WorldPoint placedVertex(const rt::Scene& scene, size_t shape, size_t vertex) {
+  const auto& instance = std::get<rt::MeshInstance>(scene.shapes.at(shape).geometry);
+  const glm::dvec3 local(scene.meshes.at(instance.mesh).positions.at(vertex));
+  return rt::WorldPoint(instance.objectToWorld * glm::dvec4(local, 1.0));
+}
+
+bool near(const rt::WorldPoint& a, const rt::WorldPoint& b) { return glm::length(a - b) < 1e-9; }
+
+}  // namespace
+
+TEST_SUITE("student dialects") {
+  TEST_CASE("a spherelight is an area light: a sphere of its radius at its position") {
+    Json scene = baseScene();
+    scene["scene"]["lightsources"] = Json::parse(
+        R"([{"type": "spherelight", "position": [0, 3, 3], "intensity": [1, 1, 1], "radius": 0.25}])");
+    const rt::Scene loaded = parse(scene);
+    REQUIRE(loaded.areaLights.size() == 1);
+    const auto& sphere =
+        std::get<rt::Sphere>(loaded.shapes.at(loaded.areaLights[0].shape).geometry);
+    CHECK(sphere.center == rt::WorldPoint(0, 3, 3));
+    CHECK(sphere.radius == 0.25f);
+  }
+
+  TEST_CASE("refractiveindex 0 where nothing refracts reads as 1; where it refracts it is an error") {
+    Json scene = baseScene();
+    shape0(scene)["material"]["isrefractive"] = false;
+    shape0(scene)["material"]["refractiveindex"] = 0.0;
+    const rt::Scene loaded = parse(scene);
+    CHECK(loaded.materials.at(0).ior == 1.0f);
+    CHECK(hasWarning(loaded, "an index of 0 on a surface that does not refract"));
+    shape0(scene)["material"]["isrefractive"] = true;
+    CHECK_THROWS_WITH_AS(parse(scene), doctest::Contains("refractiveindex: must be positive"),
+                         rt::Error);
+  }
+
+  TEST_CASE("a mesh given as a list of triangles with corners of their own") {
+    Json scene = baseScene();
+    shape0(scene) = Json::parse(R"({"type": "mesh", "triangles": [
+        {"v0": [-1, -1, 3], "v1": [1, -1, 3], "v2": [1, 1, 3]},
+        {"v0": [-1, -1, 3], "v1": [1, 1, 3], "v2": [-1, 1, 3]}]})");
+    const rt::Scene loaded = parse(scene);
+    REQUIRE(loaded.meshes.size() == 1);
+    CHECK(loaded.meshes[0].faces.size() == 2);
+    CHECK(loaded.meshes[0].positions.size() == 6);
+    CHECK(near(placedVertex(loaded, 0, 5), {-1, 1, 3}));
+    shape0(scene)["triangles"] = Json::array();
+    CHECK_THROWS_WITH_AS(parse(scene), doctest::Contains("must list at least one triangle"),
+                         rt::Error);
+  }
+
+  TEST_CASE("a box by min and max, turned about the world origin as its author's renderer does") {
+    Json scene = baseScene();
+    shape0(scene) = Json::parse(
+        R"({"type": "box", "min": [2, 0, 1], "max": [1, 3, 0], "rotation": [0, 90, 0]})");
+    const rt::Scene loaded = parse(scene);
+    REQUIRE(loaded.meshes.size() == 1);
+    CHECK(loaded.meshes[0].positions.size() == 8);
+    CHECK(loaded.meshes[0].faces.size() == 12);
+    // Corner 0 is (min.x, min.y, min.z) = (2, 0, 1); 90 degrees about y
+    // takes (x, z) to (z, -x).
+    CHECK(near(placedVertex(loaded, 0, 0), {1, 0, -2}));
+    shape0(scene).erase("rotation");
+    CHECK(near(placedVertex(parse(scene), 0, 7), {1, 3, 0}));
+  }
+
+  TEST_CASE("materials by kind: diffuse, metal, dielectric and emissive") {
+    Json scene = baseScene();
+    Json& shapes = scene["scene"]["shapes"];
+    shapes = Json::array();
+    for (const char* material :
+         {R"({"type": "diffuse", "albedo": [0.7, 0.2, 0.1]})",
+          R"({"type": "metal", "albedo": [0.9, 0.6, 0.3]})", R"({"type": "dielectric", "ior": 1.5})",
+          R"({"type": "emissive", "colour": [1, 0.5, 0.25], "intensity": 4})"}) {
+      shapes.push_back({{"type", "sphere"},
+                        {"center", {double(shapes.size()) * 3, 0, 5}},
+                        {"radius", 1},
+                        {"material", Json::parse(material)}});
+    }
+    const rt::Scene loaded = parse(scene);
+    REQUIRE(loaded.materials.size() == 4);
+    CHECK(loaded.materials[0].diffuseColor == glm::vec3(0.7f, 0.2f, 0.1f));
+    CHECK(loaded.materials[0].ks == 0.0f);
+    CHECK(loaded.materials[1].reflectivity == doctest::Approx(0.6).scale(0));
+    CHECK(loaded.materials[1].kd == 0.0f);
+    CHECK(hasWarning(loaded, "a metal's tint is not drawn"));
+    CHECK(loaded.materials[2].transmission == 1.0f);
+    CHECK(loaded.materials[2].ior == 1.5f);
+    REQUIRE(loaded.areaLights.size() == 1);
+    CHECK(loaded.areaLights[0].shape == 3);
+    CHECK(loaded.areaLights[0].profile == rt::EmissionProfile::Lambertian);
+    // Radiance colour * intensity over a sphere of area 4 pi: 2 A L (README "Area lights").
+    const float area = 4.0f * 3.14159265f;
+    CHECK(loaded.areaLights[0].diffuseIntensity.x == doctest::Approx(2 * area * 4).scale(0));
+    CHECK(loaded.areaLights[0].diffuseIntensity.z == doctest::Approx(2 * area * 1).scale(0));
+  }
+}

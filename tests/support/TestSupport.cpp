@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
+#include <tuple>
 #include <glm/geometric.hpp>
 #include <memory>
 #include <random>
@@ -126,6 +128,27 @@ ImageF render(const Scene& scene, const RenderOptions& options, RenderStats* sta
 
 Scene projectScene(const std::string& name) {
   return loadJsonScene(std::filesystem::path(RT_SOURCE_SHADER_DIR) / ".." / "scenes" / name);
+}
+
+RenderOptions studyRender(SamplerKind sampler, uint32_t samples, uint32_t seed, uint32_t width) {
+  RenderOptions options;
+  options.width = width;
+  options.height = width * 3 / 4;
+  options.sampler = sampler;
+  options.samplesPerPixel = samples;
+  options.seed = seed;
+  return options;
+}
+
+const ImageF& studyTruth(const std::string& name, uint32_t width, uint32_t samples) {
+  static std::map<std::tuple<std::string, uint32_t, uint32_t>, ImageF> truths;
+  auto key = std::tuple{name, width, samples};
+  auto found = truths.find(key);
+  if (found == truths.end()) {
+    RenderOptions options = studyRender(SamplerKind::Sobol, samples, 999, width);
+    found = truths.emplace(key, render(projectScene(name), options)).first;
+  }
+  return found->second;
 }
 
 double psnr(const Image8& a, const Image8& b) {

@@ -76,6 +76,13 @@ ImageF render(const Scene& scene, const RenderOptions& options, RenderStats* sta
 // A scene file of the project's scenes/ folder, loaded.
 Scene projectScene(const std::string& name);
 
+// A small render of a study scene: width x (3/4 width).
+RenderOptions studyRender(SamplerKind sampler, uint32_t samples, uint32_t seed, uint32_t width);
+// The project scene `name` rendered so at `width` with `samples` Sobol
+// samples of a seed no test renders with (999): a reference whose own error
+// is far below the measured renders'. Rendered once per run.
+const ImageF& studyTruth(const std::string& name, uint32_t width, uint32_t samples);
+
 // Peak signal-to-noise ratio of two same-sized 8-bit images, in dB.
 double psnr(const Image8& a, const Image8& b);
 

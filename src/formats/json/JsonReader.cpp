@@ -153,6 +153,11 @@ std::string JsonObject::childPath(std::string_view key) const {
 
 bool JsonObject::has(std::string_view key) const { return node_.raw().contains(key); }
 
+const Json* JsonObject::peek(std::string_view key) const {
+  const auto found = node_.raw().find(key);
+  return found == node_.raw().end() ? nullptr : &*found;
+}
+
 namespace {
 
 // A value short enough to show in `raytracer check`: a scalar or a short

@@ -78,6 +78,7 @@ class JsonObject {
   [[noreturn]] void fail(std::string_view what) const { node_.fail(what); }
 
   bool has(std::string_view key) const;  // does not mark the key as read
+  const Json* peek(std::string_view key) const;  // the value, not marked read; nullptr if absent
   std::optional<JsonNode> optional(std::string_view key);
   JsonNode required(std::string_view key);
   // The single alias present among `keys`; an error when the file gives two.

@@ -553,7 +553,8 @@ Quad cyclicQuad(const Quad& q, const JsonObject& shape) {
 
 bool isAreaLightType(const std::string& written) {
   const std::string type = lowercase(written);
-  return type.find("area") != std::string::npos || type == "rectlight" || type == "quadlight";
+  return type.find("area") != std::string::npos || type == "rectlight" || type == "quadlight" ||
+         type == "spherelight";  // Ninteedo: a sphere of `radius` at `position`
 }
 
 struct LightIntensity {
@@ -898,6 +899,11 @@ void readRefraction(JsonObject& material, Material& out) {
   if (isRefractive) out.transmission = isRefractive->boolean() ? 1.0f - out.reflectivity : 0.0f;
   if (const std::optional<JsonNode> ior =
           material.optionalOneOf({"eta", "ior", "refractiveIndex", "refractiveindex"})) {
+    // Basemism writes 0 where nothing refracts: no index is needed there.
+    if (out.transmission == 0.0f && ior->raw().is_number() && ior->number() == 0.0) {
+      ior->warn("an index of 0 on a surface that does not refract: read as 1");
+      return;
+    }
     out.ior = ior->positiveFloat();
   }
 }
@@ -984,17 +990,83 @@ Material readMaterial(JsonObject& material, const fs::path& sceneDir, Scene& sce
   return out;
 }
 
+// A material given by its kind, as path tracers in the style of "Ray
+// Tracing in One Weekend" write it (Kierandon): {"type": "diffuse" |
+// "lambertian", "albedo"}, {"type": "metal", "albedo"}, {"type":
+// "dielectric", "ior"}, {"type": "emissive", "colour", "intensity"}.
+// Mapped onto the Blinn-Phong material; an emissive one also makes its shape
+// an area light of radiance colour * intensity (`emission`).
+Material readKindMaterial(JsonObject& material, const std::string& kind,
+                          std::optional<glm::vec3>& emission) {
+  Material out;
+  out.ks = 0.0f;
+  const std::optional<JsonNode> albedo = material.optionalOneOf({"albedo", "colour", "color"});
+  const glm::vec3 colour = albedo ? albedo->nonNegativeVec3() : glm::vec3(1.0f);
+  if (kind == "diffuse" || kind == "lambertian") {
+    out.diffuseColor = colour;
+  } else if (kind == "metal") {
+    // Mirrors reflect untinted here: the mean of the albedo is reflected.
+    out.kd = 0.0f;
+    out.reflectivity = std::min((colour.x + colour.y + colour.z) / 3.0f, 1.0f);
+    if (albedo && (colour.x != colour.y || colour.y != colour.z)) {
+      albedo->warn("a metal's tint is not drawn: it reflects the mean of its albedo, untinted");
+    }
+    material.ignoreWithWarning("fuzz", "'fuzz' ignored: mirror reflection is sharp");
+  } else if (kind == "dielectric") {
+    out.kd = 0.0f;
+    out.transmission = 1.0f;
+    if (const std::optional<JsonNode> ior = material.optionalOneOf({"ior", "eta", "refractiveindex"})) {
+      out.ior = ior->positiveFloat();
+    }
+  } else {  // emissive
+    out.kd = 0.0f;
+    const std::optional<JsonNode> strength = material.optional("intensity");
+    emission = colour * (strength ? strength->nonNegativeFloat() : 1.0f);
+  }
+  material.ignoreWithWarning("roughness", "'roughness' ignored: mirror reflection is sharp");
+  material.reportUnknownKeys();
+  return out;
+}
+
+// The material kinds readKindMaterial knows, or nullopt.
+std::optional<std::string> materialKind(const JsonObject& material) {
+  const Json* type = material.peek("type");
+  if (type == nullptr || !type->is_string()) return std::nullopt;
+  const std::string kind = lowercase(type->get<std::string>());
+  for (const char* known : {"diffuse", "lambertian", "metal", "dielectric", "emissive"}) {
+    if (kind == known) return kind;
+  }
+  return std::nullopt;
+}
+
 // Shapes without a material are normal in binary mode (only hit/miss is drawn).
-uint32_t addShapeMaterial(JsonObject& shape, const ShapeContext& context, Scene& scene) {
+uint32_t addShapeMaterial(JsonObject& shape, const ShapeContext& context, Scene& scene,
+                          std::optional<glm::vec3>& emission) {
   Material material;
   if (const std::optional<JsonNode> node = shape.optional("material")) {
     JsonObject object = node->object();
-    material = readMaterial(object, context.sceneDir, scene);
+    if (const std::optional<std::string> kind = materialKind(object)) {
+      object.required("type");  // read: it names the kind
+      material = readKindMaterial(object, *kind, emission);
+    } else {
+      material = readMaterial(object, context.sceneDir, scene);
+    }
   } else if (context.mode != RenderMode::Binary) {
     shape.diagnostics().warn(shape.childPath("material"), "missing; the default material is used");
   }
   scene.materials.push_back(std::move(material));
   return static_cast<uint32_t>(scene.materials.size() - 1);
+}
+
+// For shapes that cannot emit (a material given to a whole model file).
+uint32_t addShapeMaterial(JsonObject& shape, const ShapeContext& context, Scene& scene) {
+  std::optional<glm::vec3> emission;
+  const uint32_t material = addShapeMaterial(shape, context, scene, emission);
+  if (emission) {
+    shape.diagnostics().warn(shape.childPath("material"),
+                             "an emissive material on a model file: drawn, but not as a light");
+  }
+  return material;
 }
 
 // ------------------------------------------------------------------- shapes
@@ -1148,6 +1220,56 @@ void readNumberedMesh(JsonObject& shape, InlineMesh& out) {
   }
 }
 
+// jayp97's meshes: "triangles": [{"v0": [..], "v1": [..], "v2": [..]}, ...],
+// each triangle with corners of its own.
+void readTriangleList(const JsonNode& list, InlineMesh& out) {
+  std::vector<WorldPoint> points;
+  for (const JsonNode& item : list.array()) {
+    JsonObject triangle = item.object();
+    for (const char* key : {"v0", "v1", "v2"}) points.push_back(triangle.required(key).point());
+    triangle.reportUnknownKeys();
+  }
+  if (points.empty()) list.fail("must list at least one triangle");
+  setWorldPositions(points, out);
+  for (uint32_t i = 0; i < points.size(); i += 3) out.mesh.faces.emplace_back(i, i + 1, i + 2);
+}
+
+// Kierandon's boxes: the corners of `min` and `max` (in either order),
+// turned by `rotation` degrees about the world axes x, then y, then z
+// through the world origin, as the author's renderer turns them.
+InlineMesh readBox(JsonObject& shape) {
+  const WorldPoint lo = shape.required("min").point();
+  const WorldPoint hi = shape.required("max").point();
+  glm::dvec3 degrees(0.0);
+  if (const std::optional<JsonNode> rotation = shape.optional("rotation")) {
+    degrees = rotation->point();
+  }
+  const glm::dmat4 turn = glm::rotate(glm::dmat4(1.0), glm::radians(degrees.z), {0, 0, 1}) *
+                          glm::rotate(glm::dmat4(1.0), glm::radians(degrees.y), {0, 1, 0}) *
+                          glm::rotate(glm::dmat4(1.0), glm::radians(degrees.x), {1, 0, 0});
+  std::vector<WorldPoint> corners;
+  for (int corner = 0; corner < 8; ++corner) {
+    const WorldPoint p(corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z);
+    corners.emplace_back(turn * glm::dvec4(p, 1.0));
+  }
+  InlineMesh out;
+  setWorldPositions(corners, out);
+  // Two triangles per face, corners numbered by their x, y, z bits.
+  constexpr uint32_t kFaces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                     {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : kFaces) {
+    out.mesh.faces.emplace_back(f[0], f[1], f[2]);
+    out.mesh.faces.emplace_back(f[0], f[2], f[3]);
+  }
+  return out;
+}
+
+MeshInstance addInlineMesh(InlineMesh placed, Scene& scene) {
+  scene.meshes.push_back(std::move(placed.mesh));
+  return MeshInstance{static_cast<uint32_t>(scene.meshes.size() - 1),
+                      glm::translate(WorldTransform(1.0), placed.origin)};
+}
+
 InlineMesh readInlineMesh(JsonObject& shape) {
   for (const char* key : {"center", "pos", "scale", "sizeScale"}) {
     shape.ignoreWithWarning(key,
@@ -1158,6 +1280,8 @@ InlineMesh readInlineMesh(JsonObject& shape) {
   TriangleMesh& mesh = placed.mesh;
   if (shape.has("vertex") && shape.has("v0")) {  // Vergilc: vertex N, v0..; face M, f0..
     readNumberedMesh(shape, placed);
+  } else if (shape.has("triangles") && !shape.has("vertices")) {
+    readTriangleList(shape.required("triangles"), placed);
   } else {
     const std::optional<JsonNode> vertices = shape.optionalOneOf({"vertices", "points"});
     if (!vertices) shape.diagnostics().fail(shape.childPath("vertices"), "missing required key");
@@ -1245,6 +1369,9 @@ std::optional<JsonNode> meshFileKey(JsonObject& shape) {
       {"mPath", "plyPath", "file", "path", "filename", "objPath", "model", "modelpath"});
 }
 
+// Makes the last shape an area light whose surface has `radiance` (below).
+void addEmitter(const glm::vec3& radiance, const JsonNode& where, Scene& scene);
+
 // A mesh shape that names a file: a PLY mesh as one shape, an OBJ or glTF
 // model as its own shapes. A file that is not there is a warning and the
 // shape is left out (`false`).
@@ -1270,8 +1397,10 @@ bool readMeshFileShape(const JsonNode& fileNode, JsonObject& shape, ShapeContext
   Shape out;
   out.geometry = MeshInstance{addPlyMesh(fileNode, *file, context, scene), readPlacement(shape)};
   if (const std::optional<JsonNode> id = shape.optional("id")) out.label = id->string();
-  out.material = addShapeMaterial(shape, context, scene);
+  std::optional<glm::vec3> emission;
+  out.material = addShapeMaterial(shape, context, scene, emission);
   scene.shapes.push_back(std::move(out));
+  if (emission) addEmitter(*emission, shape.required("material"), scene);
   return true;
 }
 
@@ -1304,6 +1433,7 @@ const std::vector<std::vector<std::string_view>> kShapeTypes = {
     {"plane", "planarquad", "planerquad", "planar_quad", "quad", "rectangle", "rect"},
     {"triangle", "traingle", "tri"},
     {"cylinder"},
+    {"box", "cube", "aabb"},
     {"trimesh", "mesh", "ply", "obj", "model", "trianglemesh"},
     {"rectanglexy"},
     {"rectanglexz"},
@@ -1319,7 +1449,7 @@ std::string shapeType(const JsonNode& typeNode) {
     }
   }
   typeNode.fail("unknown shape type '" + typeNode.string() +
-                "' (expected sphere, plane, triangle, cylinder, trimesh, mesh or ply; README "
+                "' (expected sphere, plane, triangle, cylinder, box, trimesh, mesh or ply; README "
                 "'Student scenes' lists the other spellings)");
 }
 
@@ -1329,6 +1459,7 @@ Geometry readGeometry(const JsonNode& typeNode, const std::string& type, JsonObj
   if (type == "plane") return readQuad(shape);
   if (type == "triangle") return readTriangle(shape);
   if (type == "cylinder") return readCylinder(shape);
+  if (type == "box") return addInlineMesh(readBox(shape), scene);
   if (type == "rectanglexy" || type == "rectanglexz" || type == "rectangleyz") {
     return readAxisRectangle(type.substr(9), shape);
   }
@@ -1338,10 +1469,7 @@ Geometry readGeometry(const JsonNode& typeNode, const std::string& type, JsonObj
                                                           " shape needs its file (file, path, "
                                                           "mPath, plyPath or filename)");
   }
-  InlineMesh placed = readInlineMesh(shape);
-  scene.meshes.push_back(std::move(placed.mesh));
-  return MeshInstance{static_cast<uint32_t>(scene.meshes.size() - 1),
-                      glm::translate(WorldTransform(1.0), placed.origin)};
+  return addInlineMesh(readInlineMesh(shape), scene);
 }
 
 // A shape that glows (nizqleo's path-traced scenes: "emittence": [r, g, b],
@@ -1349,21 +1477,23 @@ Geometry readGeometry(const JsonNode& typeNode, const std::string& type, JsonObj
 // whose intensity gives the surface that radiance (a Lambertian light of
 // intensity I over area A has radiance 2 pi I / (4 pi A) = I / (2 A),
 // README "Area lights").
-void readShapeEmission(JsonObject& object, Scene& scene) {
-  const std::optional<JsonNode> emitted =
-      object.optionalOneOf({"emittence", "emittance", "emissive"});
-  if (!emitted) return;
-  const glm::vec3 radiance = intensityOf(*emitted);
+void addEmitter(const glm::vec3& radiance, const JsonNode& where, Scene& scene) {
   if (radiance == glm::vec3(0.0f)) return;
   const auto shape = static_cast<uint32_t>(scene.shapes.size() - 1);
   const float area = surfaceArea(scene.shapes[shape].geometry, scene.meshes);
-  if (!(area > 0.0f)) emitted->fail("the shape has no area to emit from");
+  if (!(area > 0.0f)) where.fail("the shape has no area to emit from");
   AreaLight light;
   light.shape = shape;
   light.diffuseIntensity = light.specularIntensity = 2.0f * area * radiance;
   light.profile = EmissionProfile::Lambertian;
   light.samples = 4;
   scene.areaLights.push_back(light);
+}
+
+void readShapeEmission(JsonObject& object, Scene& scene) {
+  const std::optional<JsonNode> emitted =
+      object.optionalOneOf({"emittence", "emittance", "emissive"});
+  if (emitted) addEmitter(intensityOf(*emitted), *emitted, scene);
 }
 
 void readShape(const JsonNode& node, ShapeContext& context, Scene& scene) {
@@ -1378,9 +1508,11 @@ void readShape(const JsonNode& node, ShapeContext& context, Scene& scene) {
     Shape shape;
     shape.geometry = readGeometry(typeNode, type, object, scene);
     if (const std::optional<JsonNode> id = object.optional("id")) shape.label = id->string();
-    shape.material = addShapeMaterial(object, context, scene);
+    std::optional<glm::vec3> materialEmission;
+    shape.material = addShapeMaterial(object, context, scene, materialEmission);
     scene.shapes.push_back(std::move(shape));
     readShapeEmission(object, scene);
+    if (materialEmission) addEmitter(*materialEmission, object.required("material"), scene);
   }
   for (size_t i = firstShape; i < scene.shapes.size(); ++i) {
     std::string& origin = scene.shapes[i].origin;
