@@ -329,7 +329,8 @@ TEST_SUITE("student dialects") {
     CHECK(sphere.radius == 0.25f);
   }
 
-  TEST_CASE("refractiveindex 0 where nothing refracts reads as 1; where it refracts it is an error") {
+  TEST_CASE(
+      "refractiveindex 0 where nothing refracts reads as 1; where it refracts it is an error") {
     Json scene = baseScene();
     shape0(scene)["material"]["isrefractive"] = false;
     shape0(scene)["material"]["refractiveindex"] = 0.0;
@@ -377,7 +378,8 @@ TEST_SUITE("student dialects") {
     shapes = Json::array();
     for (const char* material :
          {R"({"type": "diffuse", "albedo": [0.7, 0.2, 0.1]})",
-          R"({"type": "metal", "albedo": [0.9, 0.6, 0.3]})", R"({"type": "dielectric", "ior": 1.5})",
+          R"({"type": "metal", "albedo": [0.9, 0.6, 0.3]})",
+          R"({"type": "dielectric", "ior": 1.5})",
           R"({"type": "emissive", "colour": [1, 0.5, 0.25], "intensity": 4})"}) {
       shapes.push_back({{"type", "sphere"},
                         {"center", {double(shapes.size()) * 3, 0, 5}},

@@ -7,11 +7,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <map>
-#include <tuple>
 #include <glm/geometric.hpp>
+#include <map>
 #include <memory>
 #include <random>
+#include <tuple>
 
 #include "formats/json/JsonSceneLoader.hpp"
 

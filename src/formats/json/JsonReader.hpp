@@ -77,7 +77,7 @@ class JsonObject {
   Diagnostics& diagnostics() const { return node_.diagnostics(); }
   [[noreturn]] void fail(std::string_view what) const { node_.fail(what); }
 
-  bool has(std::string_view key) const;  // does not mark the key as read
+  bool has(std::string_view key) const;          // does not mark the key as read
   const Json* peek(std::string_view key) const;  // the value, not marked read; nullptr if absent
   std::optional<JsonNode> optional(std::string_view key);
   JsonNode required(std::string_view key);

@@ -1015,7 +1015,8 @@ Material readKindMaterial(JsonObject& material, const std::string& kind,
   } else if (kind == "dielectric") {
     out.kd = 0.0f;
     out.transmission = 1.0f;
-    if (const std::optional<JsonNode> ior = material.optionalOneOf({"ior", "eta", "refractiveindex"})) {
+    if (const std::optional<JsonNode> ior =
+            material.optionalOneOf({"ior", "eta", "refractiveindex"})) {
       out.ior = ior->positiveFloat();
     }
   } else {  // emissive
@@ -1249,7 +1250,8 @@ InlineMesh readBox(JsonObject& shape) {
                           glm::rotate(glm::dmat4(1.0), glm::radians(degrees.x), {1, 0, 0});
   std::vector<WorldPoint> corners;
   for (int corner = 0; corner < 8; ++corner) {
-    const WorldPoint p(corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z);
+    const WorldPoint p(corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y,
+                       corner & 4 ? hi.z : lo.z);
     corners.emplace_back(turn * glm::dvec4(p, 1.0));
   }
   InlineMesh out;
