@@ -1,14 +1,16 @@
 // The walk over the renderer's own two-level BVH (see GpuBvhNode in
 // gpu_types.h), for closest-hit and any-hit queries (traverse.glsl).
 //
-// Shaped for SIMD drivers that run every branch of a loop body for all
-// lanes (masked), every loop body at least once and every loop until its
-// last lane is done, as lavapipe (Mesa 22.3) does: the cost of a loop is its
-// body times the iterations of the slowest lane, and texel fetches (about
-// 2 ns per lane each) dominate a body. A two-loop walk (Aila and Laine's
-// while-while): an inner loop visits interior nodes only (one node, two
-// fetches, per iteration) until every lane holds a leaf or is done; the
-// outer loop tests the leaf. Both levels of the BVH share the two loops: a
+// Shaped for SIMD drivers that run every loop until its last lane is done,
+// as lavapipe does: the cost of a loop is its body times the iterations of
+// the slowest lane, and texel fetches (about 2 ns per lane each) dominate a
+// body. A two-loop walk (Aila and Laine's while-while): an inner loop visits
+// interior nodes only (one node, two fetches, per iteration) until every
+// lane holds a leaf or is done; the outer loop tests the leaf. The inner
+// loop branches on the two box tests: on Mesa 25 that measured 1.01-1.09x
+// the branchless select-and-store form that Mesa 22.3 (which ran both sides
+// of every branch) wanted (bunny primary, default.json, the common scene and
+// the area-light study; README "Benchmarks"). Both levels of the BVH share the two loops: a
 // leaf says whether it holds mesh triangles or one top-level item, and
 // entering a mesh built in world space only moves to its root. Each leaf
 // carries only the code of the kinds the scene has (RT_FEATURE_*). 1.4x the
@@ -68,7 +70,7 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
   // The watertight test's ray frame, once per ray (and per instance entered).
   ShearedRay frame = shearRay(ray.direction);
   uint hitKind = RT_PRIM_TRIANGLE;
-  uint stack[RT_BVH_STACK_SIZE + 1u];  // one spare slot above the top for branchless pushes
+  uint stack[RT_BVH_STACK_SIZE];
   uint stackSize = 0u;
 #ifdef RT_FEATURE_MESHES
   // The last instance entered: mesh nodes are reached only through it (the
@@ -78,8 +80,6 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
   uint node = 0u;  // a node, a leaf reference, or RT_NONE: done
   while (node != RT_NONE) {
     // Interior nodes until this lane holds a leaf (or has nothing left).
-    // Branchless: the store above the top is always made and kept only by
-    // a push, the top is always read and used only by a pop.
     while (!isLeafRef(node)) {
       uvec4 low = nodeRow(node, 0u);
       uvec4 high = nodeRow(node, 1u);
@@ -91,14 +91,14 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
       vec3 rightMax = vec3(rminZmaxX.y, unpackHalf2x16(high.w));
       float tLeft = boxEntry(leftMin, leftMax, originTimesInv, invDir, tMin, tMax);
       float tRight = boxEntry(rightMin, rightMax, originTimesInv, invDir, tMin, tMax);
-      bool leftFirst = tLeft <= tRight;
-      bool descend = min(tLeft, tRight) != RT_FAR;
-      stack[stackSize] = leftFirst ? low.y : low.x;
-      stackSize += max(tLeft, tRight) != RT_FAR ? 1u : 0u;
-      bool pop = !descend && stackSize > 0u;
-      uint top = stack[max(stackSize, 1u) - 1u];
-      node = descend ? (leftFirst ? low.x : low.y) : (pop ? top : RT_NONE);
-      stackSize -= pop ? 1u : 0u;
+      bool hitLeft = tLeft != RT_FAR, hitRight = tRight != RT_FAR;
+      if (!hitLeft && !hitRight) {
+        node = stackSize > 0u ? stack[--stackSize] : RT_NONE;
+      } else {
+        bool leftFirst = tLeft <= tRight;
+        node = leftFirst ? low.x : low.y;
+        if (hitLeft && hitRight) stack[stackSize++] = leftFirst ? low.y : low.x;
+      }
     }
     if (node == RT_NONE) break;
 
