@@ -404,3 +404,19 @@ TEST_SUITE("student dialects") {
     CHECK(loaded.areaLights[0].diffuseIntensity.z == doctest::Approx(2 * area * 1).scale(0));
   }
 }
+
+TEST_SUITE("student dialects") {
+  TEST_CASE("a triangle with uv0..uv2 keeps its texture coordinates (a one-triangle mesh)") {
+    Json scene = baseScene();
+    shape0(scene) = Json::parse(R"({"type": "triangle", "v0": [-1, -1, 3], "v1": [1, -1, 3],
+        "v2": [1, 1, 3], "uv0": [0, 1], "uv1": [1, 0], "uv2": [1, 1]})");
+    const rt::Scene loaded = parse(scene);
+    REQUIRE(loaded.meshes.size() == 1);
+    CHECK(loaded.meshes[0].uvs == std::vector<glm::vec2>{{0, 1}, {1, 0}, {1, 1}});
+    CHECK(near(placedVertex(loaded, 0, 2), {1, 1, 3}));
+    CHECK_FALSE(hasWarning(loaded, "uv0"));
+    shape0(scene)["uv2"] = {1, 1, 1};
+    CHECK_THROWS_WITH_AS(parse(scene), doctest::Contains("expected 2 texture coordinates, got 3"),
+                         rt::Error);
+  }
+}

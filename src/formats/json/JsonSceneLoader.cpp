@@ -1266,6 +1266,24 @@ InlineMesh readBox(JsonObject& shape) {
   return out;
 }
 
+glm::vec2 readUv(const JsonNode& node) {
+  const std::vector<JsonNode> pair = node.array();
+  if (pair.size() != 2)
+    node.fail("expected 2 texture coordinates, got " + std::to_string(pair.size()));
+  return {pair[0].floatValue(), pair[1].floatValue()};
+}
+
+// A triangle with texture coordinates at its corners (Ninteedo: `uv0`..`uv2`
+// beside `v0`..`v2`): a one-triangle mesh, which carries them.
+InlineMesh readUvTriangle(JsonObject& shape) {
+  const Triangle corners = readTriangle(shape);
+  InlineMesh out;
+  setWorldPositions({corners.v0, corners.v1, corners.v2}, out);
+  out.mesh.faces.emplace_back(0, 1, 2);
+  for (const char* key : {"uv0", "uv1", "uv2"}) out.mesh.uvs.push_back(readUv(shape.required(key)));
+  return out;
+}
+
 MeshInstance addInlineMesh(InlineMesh placed, Scene& scene) {
   scene.meshes.push_back(std::move(placed.mesh));
   return MeshInstance{static_cast<uint32_t>(scene.meshes.size() - 1),
@@ -1294,12 +1312,7 @@ InlineMesh readInlineMesh(JsonObject& shape) {
     readFaces(shape, mesh);
   }
   if (const std::optional<JsonNode> uvs = shape.optionalOneOf({"uv", "uvs"})) {
-    for (const JsonNode& uv : uvs->array()) {
-      const std::vector<JsonNode> pair = uv.array();
-      if (pair.size() != 2)
-        uv.fail("expected 2 texture coordinates, got " + std::to_string(pair.size()));
-      mesh.uvs.emplace_back(pair[0].floatValue(), pair[1].floatValue());
-    }
+    for (const JsonNode& uv : uvs->array()) mesh.uvs.push_back(readUv(uv));
     if (mesh.uvs.size() != mesh.positions.size()) {
       uvs->fail("has " + std::to_string(mesh.uvs.size()) + " entries for " +
                 std::to_string(mesh.positions.size()) + " vertices");
@@ -1459,6 +1472,7 @@ Geometry readGeometry(const JsonNode& typeNode, const std::string& type, JsonObj
                       Scene& scene) {
   if (type == "sphere") return readSphere(shape);
   if (type == "plane") return readQuad(shape);
+  if (type == "triangle" && shape.has("uv0")) return addInlineMesh(readUvTriangle(shape), scene);
   if (type == "triangle") return readTriangle(shape);
   if (type == "cylinder") return readCylinder(shape);
   if (type == "box") return addInlineMesh(readBox(shape), scene);
