@@ -21,7 +21,20 @@ void addBall(WorldBounds& box, const WorldPoint& center, double radius) {
   box.grow(center + glm::dvec3(radius));
 }
 
-void addShape(const Scene& scene, const Geometry& geometry, WorldBounds& box) {
+// The box of `box` placed by `transform`: its eight corners, transformed.
+void addPlacedBox(const WorldBounds& box, const WorldTransform& transform, WorldBounds& out) {
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 p(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y,
+                       corner & 4 ? box.hi.z : box.lo.z);
+    out.grow(WorldPoint(transform * glm::dvec4(p, 1.0)));
+  }
+}
+
+// `meshBoxes` (each mesh's object-space box): mesh instances are bounded by
+// their placed boxes, 8 points each however large the mesh; without them,
+// by every placed vertex (the tight box).
+void addShape(const Scene& scene, const Geometry& geometry,
+              const std::vector<WorldBounds>* meshBoxes, WorldBounds& box) {
   std::visit(
       [&](const auto& g) {
         using T = std::decay_t<decltype(g)>;
@@ -37,6 +50,7 @@ void addShape(const Scene& scene, const Geometry& geometry, WorldBounds& box) {
         }
         if constexpr (std::is_same_v<T, MeshInstance>) {
           if (g.mesh >= scene.meshes.size()) return;
+          if (meshBoxes) return addPlacedBox((*meshBoxes)[g.mesh], g.objectToWorld, box);
           for (const glm::vec3& p : scene.meshes[g.mesh].positions) {
             box.grow(WorldPoint(g.objectToWorld * glm::dvec4(glm::dvec3(p), 1.0)));
           }
@@ -58,7 +72,7 @@ double WorldBounds::radius() const {
 
 WorldBounds shapeBounds(const Scene& scene) {
   WorldBounds box;
-  for (const Shape& shape : scene.shapes) addShape(scene, shape.geometry, box);
+  for (const Shape& shape : scene.shapes) addShape(scene, shape.geometry, nullptr, box);
   return box;
 }
 
@@ -71,7 +85,13 @@ BoundingSphere boundingSphere(const Scene& scene) {
 }
 
 std::optional<std::string> precisionProblem(const Scene& scene) {
-  const WorldBounds box = shapeBounds(scene);
+  // Every render asks: a mesh's vertices are read once, not once per placement.
+  std::vector<WorldBounds> meshBoxes(scene.meshes.size());
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    for (const glm::vec3& p : scene.meshes[i].positions) meshBoxes[i].grow(glm::dvec3(p));
+  }
+  WorldBounds box;
+  for (const Shape& shape : scene.shapes) addShape(scene, shape.geometry, &meshBoxes, box);
   if (box.empty()) return std::nullopt;
   const double extent = glm::length(box.hi - box.lo);
   const double farthest = std::max(largestMagnitude(box.lo), largestMagnitude(box.hi));

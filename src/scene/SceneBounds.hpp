@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "scene/Scene.hpp"
 
@@ -40,7 +41,9 @@ BoundingSphere boundingSphere(const Scene& scene);
 // Why double precision cannot place the scene's geometry as finely as the
 // GPU draws it: a scene so small and so far from the world origin that its
 // coordinates take fewer than 2^19 steps across it (a 1e-3 scene at 1e9).
-// nullopt when it can.
+// nullopt when it can. Mesh instances count by their placed object-space
+// boxes (the tight box when the placement only moves and scales), so the
+// check reads each mesh once however often it is placed.
 std::optional<std::string> precisionProblem(const Scene& scene);
 
 }  // namespace rt
