@@ -636,6 +636,11 @@ Quad parallelogram(const WorldPoint& corner, const glm::dvec3& u, const glm::dve
   return {corner, corner + u, corner + u + v, corner + v};
 }
 
+// The quad with edges `u`, `v` centred on `center`.
+Quad centredParallelogram(const WorldPoint& center, const glm::dvec3& u, const glm::dvec3& v) {
+  return parallelogram(center - 0.5 * (u + v), u, v);
+}
+
 // A rectangle centred on `position` facing `normal`, `width` (or `w`) by
 // `height` (or `h`) (1 when not given), its width along the horizontal
 // (the world x-z plane) where it can be.
@@ -648,7 +653,7 @@ Quad facingRectangle(JsonObject& light, const WorldPoint& position, glm::vec3 no
   if (!normalizeInPlace(across)) across = glm::vec3(1.0f, 0.0f, 0.0f);
   const glm::dvec3 u(across * w);
   const glm::dvec3 v(glm::normalize(glm::cross(normal, across)) * h);
-  return parallelogram(position - 0.5 * (u + v), u, v);
+  return centredParallelogram(position, u, v);
 }
 
 // The emitting surface of an area light written with its own geometry:
@@ -674,7 +679,7 @@ Geometry readAreaLightGeometry(JsonObject& light) {
   if (light.has("u_axis")) {  // david14higgins: the half edges
     const glm::dvec3 u = 2.0 * light.required("u_axis").point();
     const glm::dvec3 v = 2.0 * light.required("v_axis").point();
-    return parallelogram(position - 0.5 * (u + v), u, v);
+    return centredParallelogram(position, u, v);
   }
   if (light.has("u") || light.has("v")) {
     glm::dvec3 u = light.required("u").point();
@@ -683,7 +688,7 @@ Geometry readAreaLightGeometry(JsonObject& light) {
     const std::optional<JsonNode> height = light.optional("height");
     if (width) u = glm::dvec3(unitVector(light.required("u")) * width->positiveFloat());
     if (height) v = glm::dvec3(unitVector(light.required("v")) * height->positiveFloat());
-    return parallelogram(position - 0.5 * (u + v), u, v);
+    return centredParallelogram(position, u, v);
   }
   if (const std::optional<JsonNode> radius = light.optionalOneOf({"radius", "areaRadius"})) {
     return Sphere{position, radius->positiveFloat()};
@@ -1243,7 +1248,7 @@ InlineMesh readBox(JsonObject& shape) {
   const WorldPoint hi = shape.required("max").point();
   glm::dvec3 degrees(0.0);
   if (const std::optional<JsonNode> rotation = shape.optional("rotation")) {
-    degrees = rotation->point();
+    degrees = rotation->point();  // three numbers, kept in double like the corners
   }
   const glm::dmat4 turn = glm::rotate(glm::dmat4(1.0), glm::radians(degrees.z), {0, 0, 1}) *
                           glm::rotate(glm::dmat4(1.0), glm::radians(degrees.y), {0, 1, 0}) *
