@@ -126,9 +126,13 @@ void Viewer::initialiseSettings() {
   SamplerKind sampler = options_.sampler.value_or(fallback);
   values.sampler = static_cast<int>(sampler);
   values.exposure = toneMappingFor(scene_).exposure * options_.exposure;
-  values.apertureRadius = camera_.camera().apertureRadius;
-  values.focusDistance = camera_.camera().focusDistance;
   values.lensScale = static_cast<float>(bounds.radius);
+  showCameraLens();
+}
+
+void Viewer::showCameraLens() {
+  settings().apertureRadius = camera_.camera().apertureRadius;
+  settings().focusDistance = camera_.camera().focusDistance;
 }
 
 SamplerKind Viewer::samplerSetting() const {
@@ -183,8 +187,7 @@ void Viewer::restartAccumulation() {
 void Viewer::applyCameraChange() {
   if (!camera_.takeChanged()) return;
   const Camera& camera = camera_.camera();
-  settings().apertureRadius = camera.apertureRadius;
-  settings().focusDistance = camera.focusDistance;
+  showCameraLens();
   // The thin-lens code is compiled in only when the scene needs it.
   // Should that rebuild fail, the camera still moves (without the lens).
   bool needsLens = camera.type == CameraType::ThinLens && camera.apertureRadius > 0.0f;

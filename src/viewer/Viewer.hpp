@@ -74,6 +74,7 @@ class Viewer {
   void initialiseSettings();
   OverlaySettings& settings() { return overlay_->settings(); }
   const OverlaySettings& settings() const { return overlay_->settings(); }
+  void showCameraLens();  // the camera's lens radius and focus into the overlay's sliders
 
   // The renderer (all only between frames).
   std::unique_ptr<ProgressiveRenderer> makeRenderer(glm::uvec2 size) const;  // throws

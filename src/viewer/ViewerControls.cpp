@@ -145,8 +145,7 @@ void Viewer::reloadScene() {
   }
   if (reload_) reload_->sceneWaitsForShaders = false;
   values.lensScale = static_cast<float>(bounds.radius);
-  values.apertureRadius = camera_.camera().apertureRadius;
-  values.focusDistance = camera_.camera().focusDistance;
+  showCameraLens();
   intersector_.reset();  // built again for the new geometry on the next focus click
   overlay_->messages().sceneError.clear();
   if (reload_) preparing_.reloadSavedAt = reload_->sceneSavedAt();
