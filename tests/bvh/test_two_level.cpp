@@ -143,8 +143,7 @@ TEST_SUITE("bvh-gpu") {
   }
 
   TEST_CASE("--accel hardware renders the BVH's image" * test::needsRayQueries()) {
-    Scene scene =
-        loadJsonScene(std::filesystem::path(RT_SOURCE_SHADER_DIR) / "../scenes/default.json");
+    Scene scene = test::projectScene("default.json");
     Renderer renderer(test::gpu(), test::shaderCompiler());
     RenderOptions options;
     options.width = 160;

@@ -13,18 +13,18 @@
 //   camera-relative floats by 6e-8 of the scene's size: the image stays
 //   within 60 dB (8-bit PSNR) of the unit scene;
 // - only a scene so small and so far away that double precision cannot
-//   place it (scene/ScenePrecision.hpp) is refused, with a message.
+//   place it (precisionProblem, scene/SceneBounds.hpp) is refused, with a
+//   message.
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "encode/FlatScene.hpp"
+#include "formats/common/FileBytes.hpp"
 #include "formats/json/JsonSceneLoader.hpp"
 #include "robustness/RobustnessSupport.hpp"
 #include "scene/SceneBounds.hpp"
@@ -217,11 +217,8 @@ void placeJson(nlohmann::json& node, double scale, glm::dvec3 offset) {
 }
 
 Scene defaultSceneAt(double scale, glm::dvec3 offset) {
-  std::ifstream file(std::filesystem::path(RT_SOURCE_SHADER_DIR) / ".." / "scenes" /
-                     "default.json");
-  std::stringstream text;
-  text << file.rdbuf();
-  nlohmann::json document = nlohmann::json::parse(text.str());
+  nlohmann::json document =
+      nlohmann::json::parse(readFileOrThrow(projectScenePath("default.json")));
   placeJson(document, scale, offset);
   Scene scene = parseJsonScene(document.dump(), "placed-default.json");
   scene.camera.width = 80;

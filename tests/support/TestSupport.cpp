@@ -126,9 +126,11 @@ ImageF render(const Scene& scene, const RenderOptions& options, RenderStats* sta
   return image;
 }
 
-Scene projectScene(const std::string& name) {
-  return loadJsonScene(std::filesystem::path(RT_SOURCE_SHADER_DIR) / ".." / "scenes" / name);
+std::filesystem::path projectScenePath(const std::string& name) {
+  return std::filesystem::path(RT_SOURCE_SHADER_DIR) / ".." / "scenes" / name;
 }
+
+Scene projectScene(const std::string& name) { return loadJsonScene(projectScenePath(name)); }
 
 RenderOptions studyRender(SamplerKind sampler, uint32_t samples, uint32_t seed, uint32_t width) {
   RenderOptions options;

@@ -73,7 +73,8 @@ Material diffuse(glm::vec3 color, float kd = 1.0f, float ks = 0.0f);
 // current test on any validation message the render caused.
 ImageF render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr);
 
-// A scene file of the project's scenes/ folder, loaded.
+// A scene file of the project's scenes/ folder: its path, and loaded.
+std::filesystem::path projectScenePath(const std::string& name);
 Scene projectScene(const std::string& name);
 
 // A small render of a study scene: width x (3/4 width).
