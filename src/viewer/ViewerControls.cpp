@@ -69,6 +69,7 @@ void Viewer::handleFileChanges() {
   if (due.scene) reloadScene();
 }
 
+// Only with --watch (reload_ is set): after a save of a shader.
 void Viewer::reloadShaders() {
   preparing_.busy = true;
   Clock::time_point start = Clock::now();
@@ -105,6 +106,8 @@ void Viewer::reloadShaders() {
   if (reload_->sceneWaitsForShaders) reloadScene();
 }
 
+// Only with --watch: after a save of the scene file, or once shaders that
+// build came after a scene edit that needed them.
 void Viewer::reloadScene() {
   Scene fresh;
   try {
@@ -113,7 +116,7 @@ void Viewer::reloadScene() {
     overlay_->messages().sceneError = e.what();
     std::fprintf(stderr, "scene: error %s\n", e.what());
     std::fflush(stderr);
-    if (reload_) reload_->sceneWaitsForShaders = false;  // this version is broken itself
+    reload_->sceneWaitsForShaders = false;  // this version is broken itself
     return;
   }
   Scene previous = std::move(scene_);
@@ -140,15 +143,15 @@ void Viewer::reloadScene() {
     overlay_->messages().sceneError =
         "the scene loaded but the renderer could not be built (see shaders)";
     std::fprintf(stderr, "scene: error %s\n", overlay_->messages().sceneError.c_str());
-    if (reload_) reload_->sceneWaitsForShaders = true;
+    reload_->sceneWaitsForShaders = true;
     return;
   }
-  if (reload_) reload_->sceneWaitsForShaders = false;
+  reload_->sceneWaitsForShaders = false;
   values.lensScale = static_cast<float>(bounds.radius);
   showCameraLens();
   intersector_.reset();  // built again for the new geometry on the next focus click
   overlay_->messages().sceneError.clear();
-  if (reload_) preparing_.reloadSavedAt = reload_->sceneSavedAt();
+  preparing_.reloadSavedAt = reload_->sceneSavedAt();
   for (const std::string& warning : scene_.warnings) {
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
   }
