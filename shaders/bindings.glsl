@@ -45,8 +45,8 @@ void loadSceneInfo() {
       opaqueUint(b.lightFalloff, z), opaqueFloat(b.lightScale, z), opaqueUint(b.shadingModel, z),
       opaqueUint(b.sphereUvPole, z), opaqueUint(b.textureCount, z),
       opaqueUint(b.areaLightCount, z), opaqueUint(b.distributedBounces, z),
-      opaqueFloat(b.indirectClamp, z), opaqueFloat(b.ambient, z),
-      opaqueUint(b.mirrorsReplaceLocalLight, z), opaqueUint(b.areaLightSamples, z));
+      opaqueFloat(b.ambient, z), opaqueFloat(b.indirectClamp, z),
+      opaqueUint(b.mirrorsReplaceLocalLight, z), opaqueUint(b.areaLightSamples, z), b.pad0, b.pad1);
 }
 // Primitives and BVH nodes are read through texel buffers (RGBA32F, records
 // of whole texels): CPU drivers such as lavapipe gather texels with vector

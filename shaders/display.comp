@@ -1,7 +1,7 @@
 #version 460
 // Viewer display pass: turns the renderer's float32 accumulation buffer into
 // the 8-bit pixels shown in the window, with the same tone mapping as the PNG
-// writer (exposure, clamp to [0, 1], sRGB encoding when asked, rounded or truncated to 1/255),
+// writer (exposure, tone curve (a clamp to [0, 1] by default), sRGB encoding when asked, rounded or truncated to 1/255),
 // so a screenshot of the window equals the offline render.
 // The pixels go to a buffer in RGBA8 memory order, which the host copies into
 // an RGBA8 image: on lavapipe, imageStore to an rgba8 image costs about three
@@ -24,7 +24,13 @@ layout(std430, set = 0, binding = RT_DISPLAY_BINDING_PIXELS) writeonly buffer Pi
 // rt::toneMap's quantize(applyCurve(v * exposure)): NaN and negatives go to 0.
 uint toneMapChannel(float value) {
   float exposed = value * params.exposure;
-  float unit = exposed > 0.0 ? min(exposed, 1.0) : 0.0;
+  if (!(exposed > 0.0)) exposed = 0.0;
+  if (params.toneCurve == RT_TONE_CURVE_REINHARD) {
+    exposed = exposed / (1.0 + exposed);
+  } else if (params.toneCurve == RT_TONE_CURVE_ACES) {
+    exposed = exposed * (2.51 * exposed + 0.03) / (exposed * (2.43 * exposed + 0.59) + 0.14);
+  }
+  float unit = min(exposed, 1.0);
   if (params.srgbEncode != 0u) {
     unit = unit <= 0.0031308 ? 12.92 * unit : 1.055 * pow(unit, 1.0 / 2.4) - 0.055;
   }

@@ -15,14 +15,19 @@ namespace rt::gpu {
 
 #define RT_DISPLAY_WORKGROUP_SIZE 16  // 16 x 16: measured faster than 8 x 8 on lavapipe
 
+// GpuDisplayParams::toneCurve: rt::ToneCurve's values.
+#define RT_TONE_CURVE_CLAMP 0u
+#define RT_TONE_CURVE_REINHARD 1u
+#define RT_TONE_CURVE_ACES 2u
+
 // Push constants of one display dispatch.
 struct GpuDisplayParams {
-  uvec2 size;      // accumulation (and display image) size in pixels
-  float exposure;  // linear scale before the clamp, as rt::toneMappingFor
-  uint firstRow;   // the dispatch covers rows firstRow.. (those that got samples)
-  uint truncate;   // 1: bytes are floor(255 v) (rt::Quantization::Truncate); 0: rounded
-  uint srgbEncode;  // 1: the sRGB transfer function after the clamp (rt::ToneMapping)
-  uint pad1;
+  uvec2 size;       // accumulation (and display image) size in pixels
+  float exposure;   // linear scale before the clamp, as rt::toneMappingFor
+  uint firstRow;    // the dispatch covers rows firstRow.. (those that got samples)
+  uint truncate;    // 1: bytes are floor(255 v) (rt::Quantization::Truncate); 0: rounded
+  uint srgbEncode;  // 1: the sRGB transfer function after the curve (rt::ToneMapping)
+  uint toneCurve;   // RT_TONE_CURVE_*
   uint pad2;
 };
 RT_ASSERT_STD430_SIZE(GpuDisplayParams, 32);

@@ -55,6 +55,9 @@ using uint = uint32_t;
 #define RT_BINDING_TLAS 16
 // Adaptive sampling's per-tile sample ranges (RT_ADAPTIVE_SAMPLING only).
 #define RT_BINDING_SAMPLE_PLAN 17
+// Adaptive sampling's per-tile count of the rays traced since the host last
+// read it: the cost of a tile's samples (RT_ADAPTIVE_SAMPLING only).
+#define RT_BINDING_TILE_RAYS 18
 
 #define RT_WORKGROUP_SIZE_X 8
 #define RT_WORKGROUP_SIZE_Y 8
@@ -316,17 +319,20 @@ struct GpuSceneInfo {
   uint textureCount;
   uint areaLightCount;
   uint distributedBounces;  // Phong mode: sampled diffuse bounces besides the Whitted tree
+  // Ambient light: this times the diffuse colour at every hit (family B's
+  // conventions, a scene's `ambientlight`).
+  vec3 ambient;
   // Largest channel one light contribution may add after a diffuse bounce
   // (`clampindirect`, firefly clamp; RT_FAR_VALUE: off).
   float indirectClamp;
-  // Ambient light: this times the diffuse colour at every hit (family B).
-  float ambient;
   // 1: a hit's own light is clamped to 1, then weighted by
   // 1 - reflectivity - transmission (family B); 0: added to the reflection.
   uint mirrorsReplaceLocalLight;
   uint areaLightSamples;  // shadow rays per hit to all area lights together
+  uint pad0;
+  uint pad1;
 };
-RT_ASSERT_STD430_SIZE(GpuSceneInfo, 160);
+RT_ASSERT_STD430_SIZE(GpuSceneInfo, 176);
 
 // Push constants of one dispatch of the render kernel.
 struct GpuFrameParams {

@@ -45,8 +45,11 @@ vec3 normalToWorld(uint instance, vec3 objectNormal) {
 }
 #endif
 
-#ifdef RT_COUNT_RAYS
-uint raysTraced = 0u;  // rays this invocation traced, for benchmarks
+// Rays this invocation traced: for benchmarks (RT_COUNT_RAYS) and for
+// adaptive sampling, which weighs each tile's samples by their rays.
+#if defined(RT_COUNT_RAYS) || defined(RT_ADAPTIVE_SAMPLING)
+#define RT_TALLY_RAYS
+uint raysTraced = 0u;
 #endif
 
 

@@ -21,6 +21,9 @@ layout(rgba32f, set = 0, binding = RT_BINDING_ACCUMULATION_ODD) uniform restrict
 layout(std430, set = 0, binding = RT_BINDING_SAMPLE_PLAN) restrict readonly buffer SamplePlanBuffer {
   uvec2 samplePlan[];
 };
+layout(std430, set = 0, binding = RT_BINDING_TILE_RAYS) restrict buffer TileRaysBuffer {
+  uint tileRays[];
+};
 #endif
 
 #ifdef RT_COUNT_RAYS
@@ -47,8 +50,8 @@ void main() {
   uint pixelIndex = pixel.y * sceneInfo.width + pixel.x;
 #ifdef RT_ADAPTIVE_SAMPLING
   uint tilesPerRow = (sceneInfo.width + RT_ADAPTIVE_TILE_SIZE - 1u) / RT_ADAPTIVE_TILE_SIZE;
-  uvec2 range = samplePlan[(pixel.y / RT_ADAPTIVE_TILE_SIZE) * tilesPerRow +
-                           pixel.x / RT_ADAPTIVE_TILE_SIZE];
+  uint tile = (pixel.y / RT_ADAPTIVE_TILE_SIZE) * tilesPerRow + pixel.x / RT_ADAPTIVE_TILE_SIZE;
+  uvec2 range = samplePlan[tile];
   if (range.y == 0u) return;
 #else
   uvec2 range = uvec2(frame.sampleBegin, frame.sampleCount);
@@ -82,5 +85,9 @@ void main() {
   imageStore(oddAccumulation, int(pixelIndex), oddSum);
 #ifdef RT_COUNT_RAYS
   atomicAdd(rayCounter[0], raysTraced);
+#endif
+#ifdef RT_ADAPTIVE_SAMPLING
+  // Integer sums: the same whatever order the invocations add in.
+  atomicAdd(tileRays[tile], raysTraced);
 #endif
 }

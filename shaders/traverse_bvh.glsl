@@ -60,7 +60,7 @@ const uint RT_REF_LEAVE_INSTANCE = RT_REF_LEAF | RT_REF_MESH;
 // for a top-level path, the instance marker and a mesh path without a check.
 bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out SurfaceHit hit) {
   clearHit(hit);
-#ifdef RT_COUNT_RAYS
+#ifdef RT_TALLY_RAYS
   ++raysTraced;
 #endif
   if (sceneInfo.bvhNodeCount == 0u) return false;

@@ -20,7 +20,7 @@ layout(set = 0, binding = RT_BINDING_TLAS) uniform accelerationStructureEXT scen
 
 bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out SurfaceHit hit) {
   clearHit(hit);
-#ifdef RT_COUNT_RAYS
+#ifdef RT_TALLY_RAYS
   ++raysTraced;
 #endif
   if (sceneInfo.primitiveCount == 0u) return false;

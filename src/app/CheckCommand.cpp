@@ -91,6 +91,9 @@ void printCamera(const rt::Scene& scene) {
                 double(c.focusDistance));
   }
   if (c.exposure != 1.0f) std::printf("  exposure %g\n", double(c.exposure));
+  if (c.toneCurve != rt::ToneCurve::Clamp) {
+    std::printf("  tone curve %s (after the exposure)\n", rt::toneCurveName(c.toneCurve));
+  }
 }
 
 void printLights(const rt::Scene& scene) {
@@ -141,6 +144,10 @@ int run(const CommandLine& cli) {
       rt::samplerKindName(s.adaptive && !s.samplerGiven ? rt::SamplerKind::Sobol : s.sampler),
       s.adaptive ? ", adaptive sampling" : "");
   std::printf("background: %s\n", vec(scene.backgroundColor).c_str());
+  if (scene.ambientLight) {
+    std::printf("ambient light: %s times each hit's diffuse colour\n",
+                vec(*scene.ambientLight).c_str());
+  }
   printCamera(scene);
   printLights(scene);
   printShapes(scene);

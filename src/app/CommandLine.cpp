@@ -121,6 +121,19 @@ void addConventionsOption(CLI::App& app, std::string& name) {
       ->check(CLI::IsMember({"coursework-a", "coursework-b", "textbook", "physical"}));
 }
 
+void addToneCurveOption(CLI::App& app, std::string& name) {
+  app.add_option("--tone-curve", name,
+                 "Tone curve after the exposure: clamp (the courseworks'), reinhard (x / (1 + x)) "
+                 "or aces (Narkowicz's filmic fit); default: the scene's (tone_mapping, "
+                 "use_tone_mapping), else clamp")
+      ->check(CLI::IsMember({"clamp", "reinhard", "aces"}));
+}
+
+std::optional<ToneCurve> toneCurveOption(const std::string& name) {
+  if (name.empty()) return std::nullopt;
+  return toneCurveNamed(name);
+}
+
 void addStrictOption(CLI::App& app, bool& strict) {
   app.add_flag("--strict", strict,
                "Every warning about the scene file (a missing texture or mesh file, a default "

@@ -54,6 +54,9 @@ AccelKind accelNamed(const std::string& name);
 
 // --conventions NAME (coursework-a, coursework-b, textbook) into `name`.
 void addConventionsOption(CLI::App& app, std::string& name);
+// --tone-curve clamp|reinhard|aces: the scene's tone curve replaced.
+void addToneCurveOption(CLI::App& app, std::string& name);
+std::optional<ToneCurve> toneCurveOption(const std::string& name);  // nullopt when not given
 // --strict into `strict`: every warning about the scene file is an error.
 void addStrictOption(CLI::App& app, bool& strict);
 

@@ -45,6 +45,7 @@ struct CommandLine {
   std::string device;
   std::string shaderDir;
   std::optional<float> exposure;
+  std::string toneCurve;
   std::optional<float> indirectClamp;
   std::optional<float> roulette;
   std::string sampleRange;
@@ -264,6 +265,7 @@ int run(const CommandLine& cli) {
   rt::RenderOptions options = renderOptions(cli, scene);
   applyPathFrame(cli, scene, options);
   applyRegion(cli, scene, options);
+  if (auto curve = rt::cli::toneCurveOption(cli.toneCurve)) scene.camera.toneCurve = *curve;
   options.displayMapping = rt::toneMappingFor(scene);
   if (cli.exposure) options.displayMapping->exposure *= *cli.exposure;
 
@@ -336,6 +338,7 @@ int runRenderCommand(int argc, char** argv) {
                  "Folder with the GLSL shaders (default: built-in path)");
   app.add_option("--exposure", cli.exposure, "Extra exposure factor applied before tone mapping")
       ->check(rt::cli::positiveFiniteNumber());
+  rt::cli::addToneCurveOption(app, cli.toneCurve);
   app.add_option("--clamp-indirect", cli.indirectClamp,
                  "Firefly clamp: the largest channel one light contribution may add after a "
                  "diffuse bounce (path tracer, distributedbounces; biased; 0 = off; overrides "
@@ -370,8 +373,9 @@ int runRenderCommand(int argc, char** argv) {
                "Estimate the displayed image's RMSE while rendering (even and odd samples become "
                "independent halves, which costs jittered and sobol some accuracy)");
   app.add_flag("--adaptive", cli.adaptive,
-               "Adaptive sampling: after 4 samples per pixel, rounds give more samples to the "
-               "noisiest 8x8 tiles; --spp is then the budget of the mean count per pixel, "
+               "Adaptive sampling: after 2 samples per pixel, rounds give more samples to the "
+               "noisiest 8x8 tiles, weighed by the rays their samples trace; --spp is then the "
+               "budget of the mean count per pixel, "
                "--target-rmse the goal (default sampler: sobol; cannot be split with --samples "
                "or --region)");
   app.add_option("--sample-map", cli.sampleMapPath,

@@ -22,6 +22,7 @@ struct CommandLine {
   std::string sampler;
   std::string shading;
   std::string conventions;
+  std::string toneCurve;
   std::string device;
   bool noOverlay = false;
   bool noWatch = false;
@@ -38,6 +39,7 @@ void finishOptions(const CommandLine& cli, rt::viewer::ViewerOptions& options) {
   if (!cli.sampler.empty()) options.sampler = rt::cli::samplerNamed(cli.sampler, {});
   if (auto shading = rt::cli::shadingNamed(cli.shading)) options.shading = shading;
   if (!cli.conventions.empty()) options.conventions = rt::conventionsNamed(cli.conventions);
+  options.toneCurve = rt::cli::toneCurveOption(cli.toneCurve);
   if (!cli.device.empty()) options.deviceIndex = rt::cli::parseDeviceIndex(cli.device);
   options.overlay = !cli.noOverlay;
   options.watch = !cli.noWatch;
@@ -94,6 +96,7 @@ int runViewCommand(int argc, char** argv) {
   app.add_option("--shading", cli.shading, "Shading model (as the render command)")
       ->check(CLI::IsMember({"standard", "coursework"}));
   rt::cli::addConventionsOption(app, cli.conventions);
+  rt::cli::addToneCurveOption(app, cli.toneCurve);
   app.add_option("--exposure", options.exposure, "Extra exposure factor")
       ->check(rt::cli::positiveFiniteNumber());
   app.add_flag("-v,--verbose", options.verbose, "Log every frame (default: about once a second)");

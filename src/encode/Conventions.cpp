@@ -24,7 +24,7 @@ LightingConventions lightingConventionsFor(Conventions conventions,
       lighting.shading = ShadingModel::Coursework;
       break;
     case Conventions::CourseworkB:
-      lighting.ambient = kCourseworkBAmbient;
+      lighting.ambient = glm::vec3(kCourseworkBAmbient);
       lighting.mirrorsReplaceLocalLight = true;
       break;
     case Conventions::Textbook:
@@ -53,13 +53,13 @@ LightingConventions pathTracerConventions() {
 LightingConventions lightingConventionsFor(const Scene& scene,
                                            std::optional<ShadingModel> shading) {
   if (scene.settings.mode == RenderMode::PathTracer) return pathTracerConventions();
-  return lightingConventionsFor(scene.conventions, shading);
+  LightingConventions lighting = lightingConventionsFor(scene.conventions, shading);
+  if (scene.ambientLight) lighting.ambient = *scene.ambientLight;
+  return lighting;
 }
 
 ToneMapping toneMappingFor(const Scene& scene) {
   ToneMapping mapping;
-  mapping.curve = ToneCurve::Clamp;
-  mapping.srgbEncode = false;
   if (scene.conventions == Conventions::CourseworkB) {
     // Family B's `exposure` (0.1 in every official file) is not applied by
     // its renderers (times 0.1 every image would be nearly black), and they
@@ -71,6 +71,7 @@ ToneMapping toneMappingFor(const Scene& scene) {
   }
   // Physical images are written as the peers write theirs: sRGB-encoded.
   mapping.srgbEncode = scene.conventions == Conventions::Physical;
+  mapping.curve = scene.camera.toneCurve;
   return mapping;
 }
 

@@ -24,7 +24,7 @@ struct LightingConventions {
   ShadingModel shading = ShadingModel::Standard;
   // Light every hit receives from nowhere in particular: this times the
   // diffuse colour, added to the direct light (shadows included).
-  float ambient = 0.0f;
+  glm::vec3 ambient{0.0f};
   // A hit's own (ambient + direct) light is clamped to 1 per channel, then
   // weighted by 1 - reflectivity - transmission, so a full mirror shows only
   // what it reflects. Without: the local light is added to the reflection.

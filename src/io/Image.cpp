@@ -25,6 +25,9 @@ float applyCurve(float value, ToneCurve curve) {
   if (!(value > 0.0f)) return 0.0f;  // also maps NaN to black
   switch (curve) {
     case ToneCurve::Reinhard: return value / (1.0f + value);
+    case ToneCurve::Aces:
+      value = value * (2.51f * value + 0.03f) / (value * (2.43f * value + 0.59f) + 0.14f);
+      break;
     case ToneCurve::Clamp: break;
   }
   return std::min(value, 1.0f);
@@ -131,6 +134,25 @@ void writeExr(const std::filesystem::path& path, const ImageF& image, float expo
 }
 
 }  // namespace
+
+std::optional<ToneCurve> toneCurveNamed(const std::string& name) {
+  const std::string lower = lowercase(name);
+  if (lower == "clamp" || lower == "none" || lower == "linear" || lower == "off") {
+    return ToneCurve::Clamp;
+  }
+  if (lower == "reinhard") return ToneCurve::Reinhard;
+  if (lower == "aces" || lower == "aces_filmic" || lower == "acesfilmic") return ToneCurve::Aces;
+  return std::nullopt;
+}
+
+const char* toneCurveName(ToneCurve curve) {
+  switch (curve) {
+    case ToneCurve::Reinhard: return "reinhard";
+    case ToneCurve::Aces: return "aces";
+    case ToneCurve::Clamp: break;
+  }
+  return "clamp";
+}
 
 float displayValue(float linear, const ToneMapping& mapping) {
   float v = applyCurve(linear * mapping.exposure, mapping.curve);

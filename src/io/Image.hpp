@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,16 @@ struct ImageRgba8 {
 };
 
 // How linear radiance becomes display values (see README "Conventions").
-enum class ToneCurve { Clamp, Reinhard };
+// The curve from exposed linear values to display values in [0, 1]: a clamp
+// at 1 (the courseworks), Reinhard's x / (1 + x), or Narkowicz's fit of the
+// ACES filmic curve, x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14), clamped
+// (students' renderers that tone-map use one of the two; README "Tone
+// mapping"). The values are those of RT_TONE_CURVE_* (display_types.h).
+enum class ToneCurve { Clamp = 0, Reinhard = 1, Aces = 2 };
+
+// "clamp" (also "none", "linear", "off"), "reinhard" or "aces" (any case).
+std::optional<ToneCurve> toneCurveNamed(const std::string& name);
+const char* toneCurveName(ToneCurve curve);
 
 // 8-bit value of a display value v in [0, 1]: round(255 v), or floor(255 v)
 // as (unsigned char)(255 * v) in many coursework renderers.

@@ -11,12 +11,15 @@
 //   not stop early because its few samples happened to agree. The noise of
 //   each tile is also raised to a quarter of its noisiest neighbour's, so an
 //   edge of a noisy area is never starved.
-// - Samples in proportion to the noise's standard deviation: that allocation
-//   minimizes the total sample count at a given mean squared error of the
-//   image (Lagrange: minimize sum n_i s.t. sum v_i / n_i = const gives
-//   n_i ~ sqrt(v_i)), the quantity --target-rmse and `converge` measure.
-// - A tile at most doubles its samples per round, so that every decision
-//   is revisited with an estimate from twice as many samples.
+// - Samples in proportion to sqrt(v_i / c_i), v_i the noise variance of one
+//   sample and c_i its cost (rays a sample, counted per tile by the kernel):
+//   that allocation minimizes the render's time at a given mean squared
+//   error of the image (Lagrange: minimize sum n_i c_i s.t. sum v_i / n_i =
+//   const), the trade --target-rmse and `converge` measure. Without the cost
+//   a glass tile, whose samples trace many rays, would get as many samples
+//   as a matte one of the same noise at several times the price.
+// - A tile at most quadruples its samples per round, so that every decision
+//   is revisited with an estimate from more samples.
 // - Decisions depend only on the accumulated samples at the end of each
 //   round, never on timing: the image is a pure function of scene, options
 //   and seed. They do depend on the whole image, so adaptive renders cannot
@@ -36,13 +39,16 @@
 namespace rt {
 
 // Samples per pixel of the uniform first round.
-constexpr uint32_t kAdaptiveFirstPass = 4;
+// Two: one sample in each replicate, the least that measures a tile's noise
+// (pooled over its pixels); flat tiles stop there.
+constexpr uint32_t kAdaptiveFirstPass = 2;
 
 // One tile as the allocation sees it.
 struct TileNoise {
   uint32_t pixels = 0;   // pixels of the rendered region in the tile (0: outside it)
   uint32_t samples = 0;  // samples per pixel so far
   double variance = 0;   // display-space variance of one sample, mean over its pixels
+  double cost = 1;       // what one sample costs: rays it traces, on average over the tile
 };
 
 struct AllocationGoal {
@@ -85,8 +91,9 @@ class AdaptivePlan {
   // Each tile's noise from the accumulated sums (after dilation), and the
   // region's estimated RMSE.
   NoiseMeasurement measureNoise(const SampleSums& sums, const ToneMapping& mapping) const;
-  // Records that `added` samples per pixel were rendered into each tile.
-  void addRound(const std::vector<uint32_t>& added);
+  // Records that `added` samples per pixel were rendered into each tile,
+  // tracing `rays` rays there.
+  void addRound(const std::vector<uint32_t>& added, const std::vector<uint32_t>& rays);
   // Per tile: (first sample index, count) for the render kernel.
   std::vector<glm::uvec2> kernelRanges(const std::vector<uint32_t>& added) const;
 
@@ -104,6 +111,7 @@ class AdaptivePlan {
   PixelRegion region_;
   std::vector<uint32_t> pixels_;   // region pixels per tile
   std::vector<uint32_t> samples_;  // per tile
+  std::vector<uint64_t> rays_;     // per tile: rays its samples traced
   uint64_t regionPixels_ = 0;
 };
 
@@ -133,8 +141,10 @@ class AdaptiveRounds {
   // Pixel-samples this round adds to image rows [y, end).
   double rowWork(uint32_t y, uint32_t end) const;
 
-  // The round was rendered: `sums` holds every sample so far.
-  void finishRound(const SampleSums& sums, const ToneMapping& mapping);
+  // The round was rendered: `sums` holds every sample so far, `tileRays`
+  // the rays the round traced per tile (ProgressiveRenderer::takeTileRays).
+  void finishRound(const SampleSums& sums, const std::vector<uint32_t>& tileRays,
+                   const ToneMapping& mapping);
 
   std::optional<double> rmseEstimate() const { return estimate_; }
   bool reachedTarget() const;

@@ -111,6 +111,10 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
     samplePlan_.emplace(context, VkDeviceSize(tiles) * sizeof(glm::uvec2),
                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     samplePlan_->fillZero();
+    tileRays_.emplace(context, VkDeviceSize(tiles) * sizeof(uint32_t),
+                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    tileRays_->fillZero();
+    tileRaysRead_.assign(tiles, 0);
   }
   kernel_ = buildKernel();
 }
@@ -121,7 +125,10 @@ std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(bool countRays, A
   bindings.push_back({RT_BINDING_ACCUMULATION, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER});
   bindings.push_back({RT_BINDING_ACCUMULATION_ODD, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER});
   if (countRays) bindings.push_back({RT_BINDING_RAY_COUNTER});
-  if (adaptive) bindings.push_back({RT_BINDING_SAMPLE_PLAN});
+  if (adaptive) {
+    bindings.push_back({RT_BINDING_SAMPLE_PLAN});
+    bindings.push_back({RT_BINDING_TILE_RAYS});
+  }
   return bindings;
 }
 
@@ -135,6 +142,7 @@ std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
   kernel->bindTexels(RT_BINDING_ACCUMULATION_ODD, oddAccumulation_, VK_FORMAT_R32G32B32A32_SFLOAT);
   if (rayCounter_) kernel->bind(RT_BINDING_RAY_COUNTER, *rayCounter_);
   if (samplePlan_) kernel->bind(RT_BINDING_SAMPLE_PLAN, *samplePlan_);
+  if (tileRays_) kernel->bind(RT_BINDING_TILE_RAYS, *tileRays_);
   return kernel;
 }
 
@@ -184,6 +192,10 @@ void ProgressiveRenderer::addSamples(uint32_t count) {
 void ProgressiveRenderer::recordReset(VkCommandBuffer commands) {
   vkCmdFillBuffer(commands, accumulation_.handle(), 0, VK_WHOLE_SIZE, 0);
   vkCmdFillBuffer(commands, oddAccumulation_.handle(), 0, VK_WHOLE_SIZE, 0);
+  if (tileRays_) {
+    vkCmdFillBuffer(commands, tileRays_->handle(), 0, VK_WHOLE_SIZE, 0);
+    std::fill(tileRaysRead_.begin(), tileRaysRead_.end(), 0u);
+  }
   VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
   barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
@@ -240,6 +252,18 @@ bool ProgressiveRenderer::halvesIndependent() const {
 std::optional<double> ProgressiveRenderer::estimateRmse(const ToneMapping& mapping) {
   if (!halvesIndependent()) return std::nullopt;
   return estimateDisplayRmse(sampleSums(), mapping, region_);
+}
+
+std::vector<uint32_t> ProgressiveRenderer::takeTileRays() {
+  if (!tileRays_) throw Error("tile rays: not an adaptive render");
+  std::vector<uint32_t> counters(tileRaysRead_.size());
+  tileRays_->download(counters.data(), tileRays_->size());
+  // The counters run on; unsigned differences are exact across a wrap as
+  // long as one round adds fewer than 2^32 rays to a tile.
+  std::vector<uint32_t> rays(counters.size());
+  for (size_t i = 0; i < rays.size(); ++i) rays[i] = counters[i] - tileRaysRead_[i];
+  tileRaysRead_ = std::move(counters);
+  return rays;
 }
 
 uint64_t ProgressiveRenderer::raysTraced() {

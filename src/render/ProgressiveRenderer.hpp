@@ -93,6 +93,9 @@ class ProgressiveRenderer {
   // sampler, whose samples always are).
   std::optional<double> estimateRmse(const ToneMapping& mapping);
   bool halvesIndependent() const;
+  // Adaptive kernels only: per tile, the rays traced since the last call (or
+  // reset). No dispatch may be in flight.
+  std::vector<uint32_t> takeTileRays();
   // Rays traced so far (only with ProgressiveOptions::countRays).
   uint64_t raysTraced();
 
@@ -113,7 +116,9 @@ class ProgressiveRenderer {
   Buffer accumulation_;
   Buffer oddAccumulation_;  // sums of odd sample indices: the error estimate
   std::optional<Buffer> rayCounter_;
-  std::optional<Buffer> samplePlan_;  // adaptive only
+  std::optional<Buffer> samplePlan_;    // adaptive only
+  std::optional<Buffer> tileRays_;      // adaptive only: running counters
+  std::vector<uint32_t> tileRaysRead_;  // the counters at the last takeTileRays()
   std::unique_ptr<ComputeKernel> kernel_;
   std::vector<std::unique_ptr<ComputeKernel>> retired_;
   uint32_t samplesDone_ = 0;

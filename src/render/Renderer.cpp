@@ -220,7 +220,7 @@ class AdaptiveLoop : SampleLoop {
         return std::nullopt;
       }
       sums = job_.sampleSums();
-      rounds_.finishRound(*sums, mapping_);
+      rounds_.finishRound(*sums, job_.takeTileRays(), mapping_);
       stats_.rmseEstimate = rounds_.rmseEstimate();
       stats_.reachedTarget = rounds_.reachedTarget();
       report(rounds_.meanSamples(), options_.samplesPerPixel, stats_.rmseEstimate);

@@ -133,11 +133,12 @@ struct Camera {
   uint32_t height = 800;
   float fovYDegrees = 45.0f;  // vertical field of view
   WorldPoint position{0.0};
-  glm::vec3 forward{0.0f, 0.0f, -1.0f};  // unit view direction
-  glm::vec3 up{0.0f, 1.0f, 0.0f};        // as given; orthogonalised when rays are built
-  float exposure = 1.0f;                 // linear scale applied before tone mapping
-  float apertureRadius = 0.0f;           // thin lens: radius of the lens disc, 0 = pinhole
-  float focusDistance = 1.0f;            // thin lens: distance to the plane in focus
+  glm::vec3 forward{0.0f, 0.0f, -1.0f};    // unit view direction
+  glm::vec3 up{0.0f, 1.0f, 0.0f};          // as given; orthogonalised when rays are built
+  float exposure = 1.0f;                   // linear scale applied before tone mapping
+  ToneCurve toneCurve = ToneCurve::Clamp;  // `tone_mapping`, `use_tone_mapping`
+  float apertureRadius = 0.0f;             // thin lens: radius of the lens disc, 0 = pinhole
+  float focusDistance = 1.0f;              // thin lens: distance to the plane in focus
   ImageRight imageRight = ImageRight::ForwardCrossUp;
 };
 
@@ -205,6 +206,9 @@ struct Scene {
   RenderSettings settings;
   Camera camera;
   glm::vec3 backgroundColor{0.0f};
+  // `ambientlight`: light every hit receives, times its diffuse colour (Phong
+  // mode); replaces the conventions' ambient term. nullopt: the conventions'.
+  std::optional<glm::vec3> ambientLight;
   std::vector<PointLight> pointLights;
   std::vector<AreaLight> areaLights;
   std::vector<Material> materials;

@@ -66,7 +66,7 @@ std::vector<Band> Accumulation::planAdaptiveBands(const ToneMapping& mapping, bo
   if (adaptiveRow_ >= height) {
     // The round's last band was in the frame just finished: with nothing
     // in flight, read the sums back and plan the next round.
-    adaptive_->finishRound(renderer_->sampleSums(), mapping);
+    adaptive_->finishRound(renderer_->sampleSums(), renderer_->takeTileRays(), mapping);
     adaptiveRow_ = 0;
     readBack = true;
   }

@@ -10,6 +10,10 @@
 #include "gpu/VulkanContext.hpp"
 #include "util/Error.hpp"
 
+static_assert(static_cast<uint32_t>(rt::ToneCurve::Clamp) == RT_TONE_CURVE_CLAMP &&
+              static_cast<uint32_t>(rt::ToneCurve::Reinhard) == RT_TONE_CURVE_REINHARD &&
+              static_cast<uint32_t>(rt::ToneCurve::Aces) == RT_TONE_CURVE_ACES);
+
 namespace rt::viewer {
 namespace {
 
@@ -223,11 +227,12 @@ void DisplayPass::setSource(const Buffer& accumulation, uint32_t width, uint32_t
 
 void DisplayPass::recordToneMap(VkCommandBuffer commands, const ToneMapping& mapping,
                                 uint32_t firstRow, uint32_t rows) {
-  if (allRowsStale_ || mapping.exposure != mappedExposure_) {
+  if (allRowsStale_ || mapping.exposure != mappedExposure_ || mapping.curve != mappedCurve_) {
     firstRow = 0;
     rows = size_.y;
     allRowsStale_ = false;
     mappedExposure_ = mapping.exposure;
+    mappedCurve_ = mapping.curve;
   }
   rows = std::min(rows, size_.y - std::min(firstRow, size_.y));
   if (rows == 0) return;
@@ -241,6 +246,7 @@ void DisplayPass::recordToneMap(VkCommandBuffer commands, const ToneMapping& map
   params.firstRow = firstRow;
   params.truncate = mapping.quantization == Quantization::Truncate ? 1u : 0u;
   params.srgbEncode = mapping.srgbEncode ? 1u : 0u;
+  params.toneCurve = static_cast<uint32_t>(mapping.curve);
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0,
                           nullptr);

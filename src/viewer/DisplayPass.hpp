@@ -55,7 +55,7 @@ class DisplayPass {
   // display image. Rows that got no new samples need no update, unless the
   // tone mapping itself changed (a new exposure, a reloaded shader, a new
   // source): then every row is mapped again.
-  // `mapping` gives the exposure and the quantization (its curve is the clamp).
+  // `mapping` gives the exposure, the curve, the sRGB encoding and the quantization.
   void recordToneMap(VkCommandBuffer commands, const ToneMapping& mapping, uint32_t firstRow,
                      uint32_t rows);
   // Records the blit into a swapchain image, which ends in
@@ -81,8 +81,9 @@ class DisplayPass {
   VkImage image_ = VK_NULL_HANDLE;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   glm::uvec2 size_{0};
-  bool allRowsStale_ = true;  // every row is mapped on the next recordToneMap
-  float mappedExposure_ = 0.0f;
+  bool allRowsStale_ = true;     // every row is mapped on the next recordToneMap
+  float mappedExposure_ = 0.0f;  // the mapping the pixels were made with
+  ToneCurve mappedCurve_ = ToneCurve::Clamp;
 };
 
 }  // namespace rt::viewer

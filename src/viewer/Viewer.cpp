@@ -63,6 +63,7 @@ VkExtent2D toExtent(glm::uvec2 size) { return {size.x, size.y}; }
 Scene Viewer::loadViewedScene() const {
   Scene scene = loadSceneFile(options_.scenePath);
   if (options_.conventions) setConventions(scene, *options_.conventions, "--conventions");
+  if (options_.toneCurve) scene.camera.toneCurve = *options_.toneCurve;
   return scene;
 }
 

@@ -31,6 +31,7 @@ struct ViewerOptions {
   bool adaptive = false;  // adaptive sampling (also when the scene asks for it)
   std::optional<ShadingModel> shading;
   std::optional<Conventions> conventions;  // default: what the scene's keys say
+  std::optional<ToneCurve> toneCurve;      // default: the scene's
   float exposure = 1.0f;                   // extra factor on the scene's exposure
   bool verbose = false;                    // a log line every frame (otherwise about once a second)
 };

@@ -101,12 +101,21 @@ TEST_SUITE("image-io") {
     CHECK(readBytes(path).rfind("#?RADIANCE", 0) == 0);
   }
 
-  TEST_CASE("tone mapping: exposure, clamp, Reinhard and sRGB") {
+  TEST_CASE("tone mapping: exposure, clamp, Reinhard, ACES and sRGB") {
     ImageF one{1, 1, {0.5f, 1.0f, 3.0f, 1.0f}};
     ToneMapping mapping;
     CHECK(toneMap(one, mapping).rgb == std::vector<uint8_t>{128, 255, 255});
     mapping.curve = ToneCurve::Reinhard;
     CHECK(toneMap(one, mapping).rgb == std::vector<uint8_t>{85, 128, 191});
+    // x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14): 0.6163, 0.8038, 0.9537.
+    mapping.curve = ToneCurve::Aces;
+    CHECK(toneMap(one, mapping).rgb == std::vector<uint8_t>{157, 205, 243});
+    ImageF bright{1, 1, {100.0f, 0.0f, 0.0f, 1.0f}};
+    CHECK(toneMap(bright, mapping).rgb[0] == 255);  // the fit passes 1 near 12: clamped
+    CHECK(toneCurveNamed("ACES") == ToneCurve::Aces);
+    CHECK(toneCurveNamed("none") == ToneCurve::Clamp);
+    CHECK(toneCurveNamed("Reinhard") == ToneCurve::Reinhard);
+    CHECK_FALSE(toneCurveNamed("filmic").has_value());
     mapping = {};
     mapping.srgbEncode = true;
     CHECK(toneMap(one, mapping).rgb[0] == 188);  // sRGB(0.5) = 0.7354

@@ -68,7 +68,7 @@ uint32_t allocateUntilDone(std::vector<TileNoise>& tiles, const AllocationGoal& 
     std::vector<uint32_t> added = allocateSamples(tiles, left);
     if (std::all_of(added.begin(), added.end(), [](uint32_t n) { return n == 0; })) break;
     for (size_t i = 0; i < tiles.size(); ++i) {
-      CHECK(added[i] <= tiles[i].samples);  // at most doubling per round
+      CHECK(added[i] <= 3 * tiles[i].samples);  // at most quadrupling per round
       budget -= double(added[i]) * tiles[i].pixels;
       tiles[i].samples += added[i];
     }
@@ -102,6 +102,22 @@ TEST_SUITE("adaptive sampling") {
     CHECK(adaptive < 0.75 * uniform);  // ...(mean sigma)^2 / mean(sigma^2) = 0.6 of it here
   }
 
+  TEST_CASE("at equal noise a tile whose samples cost four times as much gets half the samples") {
+    // n ~ sqrt(v / cost) minimizes the time at a given error: the costly
+    // tile's error stays higher, which the cheap tile's extra samples offset.
+    std::vector<TileNoise> tiles = syntheticTiles({0.04, 0.04, 0.0}, 8);
+    tiles[1].cost = 4.0;
+    AllocationGoal goal;
+    goal.targetMse = 1e-4;
+    goal.sampleBudget = 1e12;
+    goal.maxSamples = 1u << 20;
+    allocateUntilDone(tiles, goal);
+    CHECK(double(tiles[0].samples) / tiles[1].samples ==
+          doctest::Approx(2.0).epsilon(0.05).scale(0));
+    CHECK(tiles[2].samples == 8);
+    CHECK(predictedMse(tiles) <= 1e-4);
+  }
+
   TEST_CASE("the budget caps what the rounds add, and a met target adds nothing") {
     std::vector<TileNoise> tiles = syntheticTiles({0.01, 0.02, 0.5, 0.0}, 8);
     AllocationGoal goal;
@@ -120,7 +136,8 @@ TEST_SUITE("adaptive sampling") {
 
   TEST_CASE("a tile beside a noisy one keeps a share of its noise") {
     AdaptivePlan plan(24, 8, {0, 0, 24, 8});  // three tiles in a row
-    plan.addRound(plan.uniformRound(4));
+    // Rays: 3 a sample in tile 0, none counted in tile 1, 1 a sample in tile 2.
+    plan.addRound(plan.uniformRound(4), {64 * 4 * 3, 0, 64 * 4});
     SampleSums sums{24, 8, std::vector<glm::vec4>(24 * 8), std::vector<glm::vec4>(24 * 8)};
     for (uint32_t y = 0; y < 8; ++y) {
       for (uint32_t x = 0; x < 24; ++x) {
@@ -145,6 +162,10 @@ TEST_SUITE("adaptive sampling") {
     CHECK(noise[2].variance == 0.0);
     CHECK(noise[0].samples == 4);
     CHECK(plan.pixelSamples() == 24 * 8 * 4);
+    // A sample's cost is its rays, at least the camera ray.
+    CHECK(noise[0].cost == 3.0);
+    CHECK(noise[1].cost == 1.0);
+    CHECK(noise[2].cost == 1.0);
   }
 
   TEST_CASE("adaptive renders are deterministic, within the budget, and sample the penumbrae") {

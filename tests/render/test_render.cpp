@@ -128,6 +128,22 @@ TEST_SUITE("render") {
     CHECK(added.x > background.x + 0.5f);
   }
 
+  TEST_CASE("a scene's ambient light is its colour times the diffuse colour, shadows or not") {
+    Scene scene = baseScene(32, 32);
+    scene.pointLights.clear();  // ambient light alone
+    addSphere(scene, test::diffuse({1.0f, 0.5f, 0.0f}, 0.9f, 0.5f));
+    RenderOptions options;
+    options.samplesPerPixel = 1;
+    CHECK(pixel(test::render(scene, options), 16, 16) == glm::vec3(0.0f));
+    scene.ambientLight = glm::vec3(0.5f, 0.5f, 1.0f);
+    const glm::vec3 lit = pixel(test::render(scene, options), 16, 16);
+    CHECK(glm::all(glm::lessThan(glm::abs(lit - glm::vec3(0.5f, 0.25f, 0.0f)), glm::vec3(1e-6f))));
+    // It replaces family B's 0.4.
+    setConventions(scene, Conventions::CourseworkB, "test");
+    const glm::vec3 familyB = pixel(test::render(scene, options), 16, 16);
+    CHECK(glm::all(glm::lessThan(glm::abs(familyB - lit), glm::vec3(1e-6f))));
+  }
+
   TEST_CASE("glass with the index of the surrounding air is invisible") {
     Scene scene = baseScene(40, 30);
     addSphere(scene, test::diffuse({1, 1, 0}), {0, 0, -3}, 1.5f);

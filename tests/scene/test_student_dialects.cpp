@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "encode/Conventions.hpp"
 #include "formats/SceneFile.hpp"
 #include "formats/json/JsonSceneLoader.hpp"
 #include "support/TestSupport.hpp"
@@ -418,5 +419,61 @@ TEST_SUITE("student dialects") {
     shape0(scene)["uv2"] = {1, 1, 1};
     CHECK_THROWS_WITH_AS(parse(scene), doctest::Contains("expected 2 texture coordinates, got 3"),
                          rt::Error);
+  }
+}
+
+TEST_SUITE("student dialects") {
+  TEST_CASE("tone curves: tone_mapping in the camera or at the top, use_tone_mapping") {
+    Json scene = baseScene();
+    CHECK(parse(scene).camera.toneCurve == rt::ToneCurve::Clamp);
+    scene["camera"]["tone_mapping"] = "aces";  // constancefr
+    CHECK(parse(scene).camera.toneCurve == rt::ToneCurve::Aces);
+    scene["camera"]["tone_mapping"] = "hable";
+    const rt::Scene unknown = parse(scene);
+    CHECK(unknown.camera.toneCurve == rt::ToneCurve::Clamp);
+    CHECK(hasWarning(unknown, "unknown tone curve 'hable'"));
+    scene["camera"].erase("tone_mapping");
+    scene["use_tone_mapping"] = true;  // Kierandon: Reinhard's curve
+    CHECK(parse(scene).camera.toneCurve == rt::ToneCurve::Reinhard);
+    scene["tonemap"] = "aces";
+    CHECK(parse(scene).camera.toneCurve == rt::ToneCurve::Aces);
+    scene["use_tone_mapping"] = false;
+    CHECK(parse(scene).camera.toneCurve == rt::ToneCurve::Clamp);
+    CHECK(rt::toneMappingFor(parse(baseScene())).curve == rt::ToneCurve::Clamp);
+  }
+
+  TEST_CASE("renderer switches: stratified sampling read, filters warned, comment keys silent") {
+    Json scene = Json::parse(R"({"use_stratified_sampling": false, "use_bvh": true,
+        "use_importance_sampling": true, "importance_sampling_min_samples": 50,
+        "importance_sampling_max_samples": 100, "use_denoiser": false,
+        "use_gaussian_blur": false})");
+    scene.update(baseScene());
+    shape0(scene)["_comment"] = "the red ball";
+    scene["//"] = "a comment";
+    rt::Scene loaded = parse(scene);
+    CHECK(loaded.settings.sampler == rt::SamplerKind::Random);
+    CHECK(loaded.warnings.empty());
+    scene["use_stratified_sampling"] = true;
+    scene["use_denoiser"] = true;
+    loaded = parse(scene);
+    CHECK(loaded.settings.sampler == rt::SamplerKind::Jittered);
+    CHECK(hasWarning(loaded, "use_denoiser: ignored: the image is the render itself"));
+    scene["sampler"] = "sobol";  // a named sampler wins
+    CHECK(parse(scene).settings.sampler == rt::SamplerKind::Sobol);
+  }
+
+  TEST_CASE("ambientlight: read in Phong mode, warned about in the path tracer") {
+    Json scene = baseScene();
+    scene["scene"]["ambientlight"] = {0.5, 0.5, 0.25};  // HlnnnWnng
+    rt::Scene loaded = parse(scene);
+    REQUIRE(loaded.ambientLight.has_value());
+    CHECK(*loaded.ambientLight == glm::vec3(0.5f, 0.5f, 0.25f));
+    CHECK(rt::lightingConventionsFor(loaded).ambient == glm::vec3(0.5f, 0.5f, 0.25f));
+    scene["rendermode"] = "pathtracer";
+    loaded = parse(scene);
+    CHECK_FALSE(loaded.ambientLight.has_value());
+    CHECK(hasWarning(loaded, "the path tracer has no ambient term"));
+    scene["scene"]["ambientlight"] = 0.5;
+    CHECK_THROWS_AS(parse(scene), rt::Error);
   }
 }

@@ -102,6 +102,18 @@ case_offscreen_match() {
   grep -q "^done: spp=$SPP " "$SCRATCH/log" || fail "no 'done: spp=$SPP' line in the log"
   compare "window vs offline" "$SCRATCH/window.png" "$SCRATCH/offline.png" --max-diff 0
 
+  # A tone curve: the window's display pass applies it as the PNG writer does
+  # (float rounding may move a byte by one); it changes the image.
+  offline "$SCRATCH/offline-aces.png" --tone-curve aces --exposure 2
+  xvfb_run "$RAYTRACER" view "$SCENE_SOURCE" --size $SIZE --max-spp $SPP --spp-per-frame 1 \
+    --frames 6 --no-overlay --no-watch --validation --tone-curve aces --exposure 2 \
+    --screenshot "$SCRATCH/window-aces.png" >"$SCRATCH/log-aces" 2>"$SCRATCH/err-aces" ||
+    fail "viewer with --tone-curve aces: $(cat "$SCRATCH/err-aces")"
+  compare "aces window vs offline" "$SCRATCH/window-aces.png" "$SCRATCH/offline-aces.png" \
+    --max-diff 1
+  offline "$SCRATCH/offline-exposed.png" --exposure 2
+  compare "aces vs clamp" "$SCRATCH/offline-aces.png" "$SCRATCH/offline-exposed.png" --max-psnr 40
+
   # Adaptive sampling: the window's rounds (one a frame) decide as the render
   # command's do, so the two images are the same.
   "$RAYTRACER" "$SCENE_SOURCE" "$SCRATCH/offline-adaptive.png" --size $SIZE --spp 16 --adaptive -q ||

@@ -220,9 +220,17 @@ void JsonObject::ignoreWithWarning(std::string_view key, std::string_view why) {
   diagnostics().warn(childPath(key), why);
 }
 
+// JSON has no comments; students write them as keys ("_comment": "floor",
+// "//": "...", "comment"), which no renderer reads.
+namespace {
+bool isCommentKey(std::string_view key) {
+  return key.starts_with('_') || key.starts_with("//") || key == "comment" || key == "comments";
+}
+}  // namespace
+
 void JsonObject::reportUnknownKeys() {
   for (const auto& [key, value] : node_.raw().items()) {
-    if (!read_.contains(key)) {
+    if (!read_.contains(key) && !isCommentKey(key)) {
       diagnostics().warn(childPath(key), "unknown key '" + key + "' ignored");
     }
   }

@@ -278,6 +278,54 @@ bool readSampling(JsonObject& top, JsonObject& camera, RenderSettings& settings)
   return sampler.has_value();
 }
 
+// Switches of the students' renderers (Kierandon's `use_*`) that do not
+// change what the image converges to here: light importance sampling (this
+// renderer always samples lights directly) and its sample bounds. A denoiser
+// or blur would change it: asked for, it is a warning.
+void readRendererSwitches(JsonObject& top) {
+  top.ignore({"use_importance_sampling", "importance_sampling_min_samples",
+              "importance_sampling_max_samples", "use_shadow_rays"});
+  for (const char* key : {"use_denoiser", "use_gaussian_blur"}) {
+    const std::optional<JsonNode> node = top.optional(key);
+    if (node && node->boolean()) node->warn("ignored: the image is the render itself, unfiltered");
+  }
+}
+
+// `use_stratified_sampling` (Kierandon): jittered when true, random when
+// false, unless the file names a sampler.
+void readStratifiedSwitch(JsonObject& top, RenderSettings& settings) {
+  const std::optional<JsonNode> node = top.optional("use_stratified_sampling");
+  if (!node) return;
+  const bool stratified = node->boolean();
+  if (settings.samplerGiven) return;
+  settings.sampler = stratified ? SamplerKind::Jittered : SamplerKind::Random;
+  settings.samplerGiven = true;
+}
+
+// Tone curve spellings, in the camera (constancefr: "tone_mapping": "aces")
+// or at the top level; `use_tone_mapping: true` (Kierandon, whose renderer
+// applies Reinhard's curve) where no curve is named.
+ToneCurve parseToneCurve(const JsonNode& node) {
+  const std::string name = node.string();
+  if (const std::optional<ToneCurve> curve = toneCurveNamed(name)) return *curve;
+  node.warn("unknown tone curve '" + name +
+            "': clamped (known: \"clamp\", \"reinhard\", \"aces\")");
+  return ToneCurve::Clamp;
+}
+
+ToneCurve readToneCurve(JsonObject& top, JsonObject& camera) {
+  const auto curveAt = [](JsonObject& object) {
+    return object.optionalOneOf(
+        {"tone_mapping", "tonemapping", "toneMapping", "tonemap", "tone_mapper", "tonemapper"});
+  };
+  const std::optional<JsonNode> toggle = top.optional("use_tone_mapping");
+  if (const auto curve = readFromEither(curveAt(top), curveAt(camera), parseToneCurve)) {
+    if (toggle && !toggle->boolean()) return ToneCurve::Clamp;
+    return *curve;
+  }
+  return toggle && toggle->boolean() ? ToneCurve::Reinhard : ToneCurve::Clamp;
+}
+
 // ------------------------------------------------------------------- camera
 
 glm::vec3 unitVector(const JsonNode& node) {
@@ -1586,12 +1634,27 @@ void addAreaLights(const LightList& lights, RenderMode mode, Scene& scene) {
   }
 }
 
+// `ambientlight` (HlnnnWnng): light every hit receives, times its diffuse
+// colour. The path tracer has no ambient term.
+void readAmbientLight(JsonObject& object, RenderMode mode, Scene& scene) {
+  const std::optional<JsonNode> node =
+      object.optionalOneOf({"ambientlight", "ambient_light", "ambientLight"});
+  if (!node) return;
+  const glm::vec3 ambient = node->nonNegativeVec3();
+  if (mode == RenderMode::PathTracer) {
+    node->warn("ignored: the path tracer has no ambient term");
+    return;
+  }
+  scene.ambientLight = ambient;
+}
+
 // `object` is the file's `scene`, or the top level itself for files that
 // put lights and shapes there (`flat`: its unknown keys are reported later).
 LightList readSceneObject(JsonObject& object, ShapeContext& context, Scene& scene, bool flat) {
   if (const std::optional<JsonNode> background = object.optional("backgroundcolor")) {
     scene.backgroundColor = background->nonNegativeVec3();
   }
+  readAmbientLight(object, context.mode, scene);
   LightList lights;
   if (const std::optional<JsonNode> list = object.optionalOneOf({"lightsources", "lights"})) {
     for (const JsonNode& light : list->array()) readLight(light, scene, lights);
@@ -1664,6 +1727,7 @@ Scene readScene(std::string_view jsonText, const fs::path& file) {
   JsonObject camera = top.required("camera").object();
   const bool defaultView = !camera.has("lookat") && !camera.has("lookAt");
   scene.camera = readCamera(camera);
+  scene.camera.toneCurve = readToneCurve(top, camera);
   const bool samplerGiven = readSampling(top, camera, scene.settings);
   camera.reportUnknownKeys();
   ShapeContext context{absoluteFolderOf(file), scene.settings.mode, {}};
@@ -1677,9 +1741,11 @@ Scene readScene(std::string_view jsonText, const fs::path& file) {
     scene.settings.sampler = *lights.sampler;
     scene.settings.samplerGiven = true;
   }
+  readStratifiedSwitch(top, scene.settings);
   if (defaultView) chooseDefaultView(scene);
   setConventions(scene, chosen.conventions, std::move(chosen.reason));
   ignoreRendererKeys(top);
+  readRendererSwitches(top);
   top.reportUnknownKeys();
   // Models read from other files (OBJ, glTF) brought their own warnings.
   std::vector<std::string> own = diagnostics.takeWarnings();
