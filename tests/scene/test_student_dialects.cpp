@@ -477,3 +477,45 @@ TEST_SUITE("student dialects") {
     CHECK_THROWS_AS(parse(scene), rt::Error);
   }
 }
+
+TEST_SUITE("student dialects") {
+  TEST_CASE("texture keys: texturefile, textureFilename with hasTexture, a texture on the shape") {
+    Json scene = baseScene();
+    for (const char* key : {"texturefile", "textureFilename"}) {  // Nebula1253, david14higgins
+      CAPTURE(key);
+      Json material = shape0(scene)["material"];
+      material[key] = "C:\\Users\\someone\\LAVA.ppm";
+      Json withTexture = scene;
+      shape0(withTexture)["material"] = material;
+      const rt::Scene loaded = parse(withTexture);
+      CHECK(loaded.materials.at(0).texture == "C:\\Users\\someone\\LAVA.ppm");
+      CHECK(hasWarning(loaded, "texture file not found"));
+      material["hasTexture"] = false;
+      shape0(withTexture)["material"] = material;
+      const rt::Scene off = parse(withTexture);
+      CHECK(off.materials.at(0).texture.empty());
+      CHECK(off.warnings.empty());
+    }
+    shape0(scene)["texture"] = "Texture1.ppm";  // bartMn: beside the material
+    const rt::Scene onShape = parse(scene);
+    CHECK(onShape.materials.at(0).texture == "Texture1.ppm");
+    CHECK(hasWarning(onShape, "texture file not found"));
+    CHECK_FALSE(hasWarning(onShape, "unknown key"));
+  }
+
+  TEST_CASE("a triangle with v0Normal..v2Normal shades with them (a one-triangle mesh)") {
+    Json scene = baseScene();
+    shape0(scene) = Json::parse(R"({"type": "triangle", "v0": [-1, -1, 3], "v1": [1, -1, 3],
+        "v2": [1, 1, 3], "v0Normal": [0, 0, -2], "v1Normal": [0, 0.6, -0.8],
+        "v2Normal": [0, 0, -1]})");
+    const rt::Scene loaded = parse(scene);
+    REQUIRE(loaded.meshes.size() == 1);
+    REQUIRE(loaded.meshes[0].normals.size() == 3);
+    CHECK(glm::length(loaded.meshes[0].normals[0] - glm::vec3(0, 0, -1)) < 1e-6f);
+    CHECK(glm::length(loaded.meshes[0].normals[1] - glm::vec3(0, 0.6f, -0.8f)) < 1e-6f);
+    CHECK(loaded.meshes[0].uvs.empty());
+    CHECK_FALSE(hasWarning(loaded, "Normal"));
+    shape0(scene)["v1Normal"] = {0, 0, 0};
+    CHECK_THROWS_WITH_AS(parse(scene), doctest::Contains("v1Normal"), rt::Error);
+  }
+}

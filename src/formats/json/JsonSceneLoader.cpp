@@ -998,6 +998,53 @@ constexpr float kDefaultKs = 0.2f;
 constexpr float kDefaultKd = 0.8f;
 constexpr float kDefaultSpecularExponent = 10.0f;
 
+// Where a texture file is named: in the material, or on the shape itself
+// beside its material (bartMn).
+enum class TextureKeys { Material, Shape };
+
+// `diffuse` is nizqleo's, `texturefile` Nebula1253's, `textureFilename`
+// david14higgins'.
+std::optional<JsonNode> textureKey(JsonObject& object, TextureKeys where) {
+  if (where == TextureKeys::Shape) {
+    return object.optionalOneOf({"texture", "texturefile", "textureFilename", "tPath"});
+  }
+  return object.optionalOneOf({"tPath", "texture", "texture_file", "texturepath", "texturefile",
+                               "textureFilename", "texture_filename", "diffuse"});
+}
+
+// The texture `object` names, into `out`: a file, a procedural object or
+// "checkerboard"; a missing file is a warning and the missing-texture
+// squares. `hasTexture: false` (david14higgins) turns it off.
+void readTextureKeys(JsonObject& object, TextureKeys where, const fs::path& sceneDir, Material& out,
+                     Scene& scene) {
+  if (const std::optional<JsonNode> toggle = object.optional("hasTexture");
+      toggle && !toggle->boolean()) {
+    textureKey(object, where);  // read, and left unused
+    return;
+  }
+  if (const std::optional<JsonNode> empty = object.optional("texture");
+      empty && empty->raw() == "") {
+    empty->warn("empty: no texture");
+    return;
+  }
+  const std::optional<JsonNode> texture = textureKey(object, where);
+  if (!texture) return;
+  if (texture->raw().is_object()) {
+    readProceduralTexture(texture->object(), out, scene);
+  } else if (texture->raw() == "checkerboard") {
+    out.texture = "checkerboard";
+    out.diffuseTexture = addCheckerboard(scene);
+  } else if (const std::optional<fs::path> file = findRelative(*texture, sceneDir)) {
+    out.texture = *file;
+    out.diffuseTexture = addTexture(*texture, out.texture, scene);
+  } else {
+    texture->warn(notFoundMessage(*texture, sceneDir, "texture") +
+                  "; drawn with the missing-texture squares");
+    out.texture = texture->string();
+    out.diffuseTexture = addMissingTexture(scene);
+  }
+}
+
 Material readMaterial(JsonObject& material, const fs::path& sceneDir, Scene& scene) {
   Material out;
   const auto weight = [&](std::initializer_list<std::string_view> keys, float fallback) {
@@ -1015,26 +1062,7 @@ Material readMaterial(JsonObject& material, const fs::path& sceneDir, Scene& sce
   }
   out.reflectivity = readReflectivity(material);
   readRefraction(material, out);
-  if (const std::optional<JsonNode> empty = material.optional("texture");
-      empty && empty->raw() == "") {
-    empty->warn("empty: no texture");
-  } else if (const std::optional<JsonNode> texture = material.optionalOneOf(
-                 {"tPath", "texture", "texture_file", "texturepath", "diffuse"})) {
-    if (texture->raw().is_object()) {
-      readProceduralTexture(texture->object(), out, scene);
-    } else if (texture->raw() == "checkerboard") {
-      out.texture = "checkerboard";
-      out.diffuseTexture = addCheckerboard(scene);
-    } else if (const std::optional<fs::path> file = findRelative(*texture, sceneDir)) {
-      out.texture = *file;
-      out.diffuseTexture = addTexture(*texture, out.texture, scene);
-    } else {
-      texture->warn(notFoundMessage(*texture, sceneDir, "texture") +
-                    "; drawn with the missing-texture squares");
-      out.texture = texture->string();
-      out.diffuseTexture = addMissingTexture(scene);
-    }
-  }
+  readTextureKeys(material, TextureKeys::Material, sceneDir, out, scene);
   // The coursework's texture sizes do not match the real images; the image file decides.
   material.ignore({"tWidth", "tHeight"});
   material.ignoreWithWarning("roughness", "'roughness' ignored: mirror reflection is sharp");
@@ -1107,6 +1135,9 @@ uint32_t addShapeMaterial(JsonObject& shape, const ShapeContext& context, Scene&
     }
   } else if (context.mode != RenderMode::Binary) {
     shape.diagnostics().warn(shape.childPath("material"), "missing; the default material is used");
+  }
+  if (material.texture.empty()) {
+    readTextureKeys(shape, TextureKeys::Shape, context.sceneDir, material, scene);
   }
   scene.materials.push_back(std::move(material));
   return static_cast<uint32_t>(scene.materials.size() - 1);
@@ -1326,14 +1357,28 @@ glm::vec2 readUv(const JsonNode& node) {
   return {pair[0].floatValue(), pair[1].floatValue()};
 }
 
-// A triangle with texture coordinates at its corners (Ninteedo: `uv0`..`uv2`
-// beside `v0`..`v2`): a one-triangle mesh, which carries them.
-InlineMesh readUvTriangle(JsonObject& shape) {
+// Corner attributes of a triangle: texture coordinates (Ninteedo: `uv0`..`uv2`
+// beside `v0`..`v2`) and shading normals (J-MR-T: `v0Normal`..`v2Normal`).
+bool hasCornerAttributes(const JsonObject& shape) {
+  return shape.has("uv0") || shape.has("v0Normal");
+}
+
+// Such a triangle is a one-triangle mesh, which carries them.
+InlineMesh readAttributedTriangle(JsonObject& shape) {
   const Triangle corners = readTriangle(shape);
   InlineMesh out;
   setWorldPositions({corners.v0, corners.v1, corners.v2}, out);
   out.mesh.faces.emplace_back(0, 1, 2);
-  for (const char* key : {"uv0", "uv1", "uv2"}) out.mesh.uvs.push_back(readUv(shape.required(key)));
+  if (shape.has("uv0")) {
+    for (const char* key : {"uv0", "uv1", "uv2"}) {
+      out.mesh.uvs.push_back(readUv(shape.required(key)));
+    }
+  }
+  if (shape.has("v0Normal")) {
+    for (const char* key : {"v0Normal", "v1Normal", "v2Normal"}) {
+      out.mesh.normals.push_back(unitVector(shape.required(key)));
+    }
+  }
   return out;
 }
 
@@ -1525,7 +1570,9 @@ Geometry readGeometry(const JsonNode& typeNode, const std::string& type, JsonObj
                       Scene& scene) {
   if (type == "sphere") return readSphere(shape);
   if (type == "plane") return readQuad(shape);
-  if (type == "triangle" && shape.has("uv0")) return addInlineMesh(readUvTriangle(shape), scene);
+  if (type == "triangle" && hasCornerAttributes(shape)) {
+    return addInlineMesh(readAttributedTriangle(shape), scene);
+  }
   if (type == "triangle") return readTriangle(shape);
   if (type == "cylinder") return readCylinder(shape);
   if (type == "box") return addInlineMesh(readBox(shape), scene);
