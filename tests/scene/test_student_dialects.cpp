@@ -519,3 +519,20 @@ TEST_SUITE("student dialects") {
     CHECK_THROWS_WITH_AS(parse(scene), doctest::Contains("v1Normal"), rt::Error);
   }
 }
+
+TEST_SUITE("student dialects") {
+  TEST_CASE("a camera animated through key positions renders its first frame, with a warning") {
+    Json scene = baseScene();
+    scene["FramesNum"] = 250;  // bartMn
+    scene["camera"].erase("position");
+    scene["camera"]["position0"] = {-2.0, 0.0, 2.25};
+    scene["camera"]["position1"] = {0.0, 0.75, -0.25};
+    scene["camera"]["movement0"] = {0, 125};
+    const rt::Scene loaded = parse(scene);
+    CHECK(loaded.camera.position == rt::WorldPoint(-2.0, 0.0, 2.25));
+    CHECK(hasWarning(loaded, "an animated camera of 2 key positions"));
+    CHECK_FALSE(hasWarning(loaded, "unknown key"));
+    scene["camera"]["position1"] = {0, "x", 0};
+    CHECK_THROWS_AS(parse(scene), rt::Error);
+  }
+}

@@ -173,7 +173,7 @@ std::optional<JsonNode> optionalOrDefault(JsonObject& object,
 
 // Settings of the students' own renderers: accepted so their files load; no effect here.
 void ignoreRendererKeys(JsonObject& object) {
-  object.ignore({"bvh", "BVH", "use_bvh", "useBVH", "output"});
+  object.ignore({"bvh", "BVH", "use_bvh", "useBVH", "output", "FramesNum"});
 }
 
 // Render mode spellings (any case).
@@ -514,6 +514,24 @@ bool hasLensKeys(const JsonObject& camera) {
   return false;
 }
 
+// A camera animated through keyframes (bartMn: `position0`..`positionN`,
+// `movement0`.. frame ranges between them, a top-level `FramesNum`): the
+// still is its first frame, at position0, which is said once.
+std::optional<JsonNode> readKeyframedPosition(JsonObject& camera) {
+  std::optional<JsonNode> first = camera.optional("position0");
+  if (!first) return std::nullopt;
+  size_t keys = 1;
+  for (size_t i = 1; camera.has("position" + std::to_string(i)); ++i, ++keys) {
+    camera.optional("position" + std::to_string(i))->point();  // read: checked, not drawn
+  }
+  for (size_t i = 0; camera.has("movement" + std::to_string(i)); ++i) {
+    camera.optional("movement" + std::to_string(i));
+  }
+  first->warn("an animated camera of " + std::to_string(keys) +
+              " key positions: rendered as its first frame, at position0");
+  return first;
+}
+
 Camera readCamera(JsonObject& camera) {
   Camera out;
   if (const std::optional<JsonNode> type = camera.optional("type")) {
@@ -534,7 +552,8 @@ Camera readCamera(JsonObject& camera) {
   const std::optional<JsonNode> fov =
       optionalOrDefault(camera, {"fov", "field_of_view", "fieldOfView"}, "45 degrees");
   out.fovYDegrees = fov ? readFov(*fov) : kDefaultFovDegrees;
-  const std::optional<JsonNode> position = camera.optional("position");
+  std::optional<JsonNode> position = camera.optional("position");
+  if (!position) position = readKeyframedPosition(camera);
   out.position = position ? position->point() : kDefaultPosition;
   out.forward = readForward(camera, out.position);
   out.up = readUp(camera, out.forward);
