@@ -521,11 +521,13 @@ std::optional<JsonNode> readKeyframedPosition(JsonObject& camera) {
   std::optional<JsonNode> first = camera.optional("position0");
   if (!first) return std::nullopt;
   size_t keys = 1;
-  for (size_t i = 1; camera.has("position" + std::to_string(i)); ++i, ++keys) {
-    camera.optional("position" + std::to_string(i))->point();  // read: checked, not drawn
+  // The later key positions must be points too; the frame ranges are not read.
+  while (const std::optional<JsonNode> key = camera.optional("position" + std::to_string(keys))) {
+    key->point();
+    ++keys;
   }
   for (size_t i = 0; camera.has("movement" + std::to_string(i)); ++i) {
-    camera.optional("movement" + std::to_string(i));
+    camera.ignore({"movement" + std::to_string(i)});
   }
   first->warn("an animated camera of " + std::to_string(keys) +
               " key positions: rendered as its first frame, at position0");
