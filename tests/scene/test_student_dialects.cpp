@@ -536,3 +536,20 @@ TEST_SUITE("student dialects") {
     CHECK_THROWS_AS(parse(scene), rt::Error);
   }
 }
+
+TEST_SUITE("student dialects") {
+  TEST_CASE("Blender scene exports are refused with a line that names them") {
+    for (const char* text :
+         {R"({"properties": {"cameras": [{"location": {"x": 9, "y": -8, "z": 8}}]}})",
+          R"({"cameras": [{"location": [7, -6, 4], "gaze_vector": [0, 1, 0]}], "cubes": []})",
+          R"({"camera": {"location": [0, 0, 5], "gaze": [0, 0, -1]}, "objects": []})"}) {
+      CAPTURE(text);
+      CHECK_THROWS_WITH_AS(rt::parseJsonScene(text, "export.json"),
+                           doctest::Contains("a Blender scene export"), rt::Error);
+    }
+    // A coursework camera that also has a `location` key is still read as one.
+    Json scene = baseScene();
+    scene["camera"]["location"] = {0, 0, 0};
+    CHECK_NOTHROW(parse(scene));
+  }
+}

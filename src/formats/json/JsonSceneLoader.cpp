@@ -1781,12 +1781,32 @@ fs::path absoluteFolderOf(const fs::path& file) {
   return (failed ? file : absolute).lexically_normal().parent_path();
 }
 
+// Scenes exported from Blender by a later coursework's students, each with
+// their own exporter (`properties.cameras[]`, `cameras[]` beside `cubes`, a
+// `camera` with `location` and `gaze`): a different format, refused with a
+// line that says so rather than with its first missing key.
+bool looksLikeBlenderExport(const JsonObject& top) {
+  const Json* camera = top.peek("camera");
+  if (!camera) {
+    const Json* properties = top.peek("properties");
+    return top.has("cameras") ||
+           (properties && properties->is_object() && properties->contains("cameras"));
+  }
+  return camera->is_object() && camera->contains("location") && !camera->contains("position") &&
+         (camera->contains("gaze") || camera->contains("gaze_vector"));
+}
+
 Scene readScene(std::string_view jsonText, const fs::path& file) {
   Diagnostics diagnostics(file.string());
   const Json document = parseJson(jsonText, file.string(), diagnostics);
   Scene scene;
   scene.sourcePath = file;
   JsonObject top = JsonNode(document, "", diagnostics).object();
+  if (looksLikeBlenderExport(top)) {
+    top.fail(
+        "a Blender scene export (cameras with `location` and a gaze vector), not the "
+        "coursework JSON scene format this renderer reads (README 'Student scenes')");
+  }
   ChosenConventions chosen = chooseConventions(top, document);
   scene.settings.maxBounces = readBounces(top);
   scene.settings.mode = readRenderMode(top);
