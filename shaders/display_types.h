@@ -23,7 +23,7 @@ namespace rt::gpu {
 // Push constants of one display dispatch.
 struct GpuDisplayParams {
   uvec2 size;       // accumulation (and display image) size in pixels
-  float exposure;   // linear scale before the clamp, as rt::toneMappingFor
+  float exposure;   // linear scale before the curve, as rt::toneMappingFor
   uint firstRow;    // the dispatch covers rows firstRow.. (those that got samples)
   uint truncate;    // 1: bytes are floor(255 v) (rt::Quantization::Truncate); 0: rounded
   uint srgbEncode;  // 1: the sRGB transfer function after the curve (rt::ToneMapping)

@@ -31,12 +31,13 @@ struct ImageRgba8 {
   std::vector<uint8_t> rgba;  // row-major, top row first
 };
 
-// How linear radiance becomes display values (see README "Conventions").
-// The curve from exposed linear values to display values in [0, 1]: a clamp
-// at 1 (the courseworks), Reinhard's x / (1 + x), or Narkowicz's fit of the
-// ACES filmic curve, x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14), clamped
-// (students' renderers that tone-map use one of the two; README "Tone
-// mapping"). The values are those of RT_TONE_CURVE_* (display_types.h).
+// How linear radiance becomes display values (see README "Conventions"):
+// the curve from exposed linear values to display values in [0, 1] is a
+// clamp at 1 (the courseworks), Reinhard's x / (1 + x), or Narkowicz's fit of
+// the ACES filmic curve, x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14),
+// clamped (students' renderers that tone-map use one of the two; README
+// "Student scenes", tone curve). The values are those of RT_TONE_CURVE_*
+// (display_types.h), which the viewer's display pass applies.
 enum class ToneCurve { Clamp = 0, Reinhard = 1, Aces = 2 };
 
 // "clamp" (also "none", "linear", "off"), "reinhard" or "aces" (any case).

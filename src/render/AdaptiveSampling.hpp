@@ -103,7 +103,8 @@ class AdaptivePlan {
 
  private:
   size_t tileOf(uint32_t x, uint32_t y) const;
-  // Tiles with noise v_i raised to a share of their noisiest neighbour's.
+  // Tiles with noise v_i raised to a share of their noisiest neighbour's,
+  // and the cost of a sample from the rays counted so far.
   std::vector<TileNoise> dilatedTiles(const std::vector<double>& variance) const;
 
   uint32_t tilesPerRow_ = 0;
