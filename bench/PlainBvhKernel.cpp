@@ -6,6 +6,7 @@
 
 #include "BenchClock.hpp"
 #include "bvh/Bvh.hpp"
+#include "encode/GpuBvh.hpp"
 #include "gpu/Buffer.hpp"
 #include "gpu/ComputeKernel.hpp"
 #include "gpu/ShaderCompiler.hpp"
@@ -128,6 +129,32 @@ std::vector<float> layoutWideNodes(const rt::Bvh& bvh) {
   return nodes;
 }
 
+// The wide nodes' boxes as half floats: rows x, y, z (min of c0 c1, min of
+// c2 c3, max of c0 c1, max of c2 c3), then the references.
+std::vector<uint32_t> layoutHalfWide(const std::vector<float>& wide) {
+  std::vector<uint32_t> out;
+  for (size_t n = 0; n + 28 <= wide.size(); n += 28) {
+    const float* rows = &wide[n];
+    for (int axis = 0; axis < 3; ++axis) {
+      const float* lo = rows + 8 * axis;
+      const float* hi = lo + 4;
+      auto pair = [&](const float* v, int a, bool up) {
+        return uint32_t(rt::halfTowards(v[a], up)) | uint32_t(rt::halfTowards(v[a + 1], up)) << 16;
+      };
+      out.push_back(pair(lo, 0, false));
+      out.push_back(pair(lo, 2, false));
+      out.push_back(pair(hi, 0, true));
+      out.push_back(pair(hi, 2, true));
+    }
+    for (int c = 0; c < 4; ++c) {
+      uint32_t ref;
+      std::memcpy(&ref, &rows[24 + c], 4);
+      out.push_back(ref);
+    }
+  }
+  return out;
+}
+
 // Triangles in leaf order as (v0, v1 - v0, v2 - v0), one vec4 each.
 std::vector<float> layoutTriangles(const rt::TriangleMesh& mesh, const rt::Bvh& bvh) {
   std::vector<float> triangles;
@@ -153,23 +180,31 @@ rt::Bvh buildMeshBvh(const rt::TriangleMesh& mesh) {
 PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& mesh,
                             const PlainCamera& camera, const PlainLayout& layout, uint32_t width,
                             uint32_t samples) {
-  const bool storageBuffers = layout.storageBuffers;
+  const bool storageBuffers = layout.storageBuffers && !layout.halfWide;
   rt::Bvh bvh = buildMeshBvh(mesh);
-  std::vector<float> nodes = layout.wide ? layoutWideNodes(bvh) : layoutNodes(bvh);
+  const bool wide = layout.wide || layout.halfWide;
+  std::vector<float> nodes = wide ? layoutWideNodes(bvh) : layoutNodes(bvh);
+  std::vector<uint32_t> halfNodes =
+      layout.halfWide ? layoutHalfWide(nodes) : std::vector<uint32_t>{};
   std::vector<float> triangles = layoutTriangles(mesh, bvh);
   const VkBufferUsageFlags usage =
       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
-  rt::Buffer nodeBuffer(context, nodes.size() * sizeof(float), usage);
+  // Both node layouts are 32-bit words.
+  const void* nodeWords =
+      layout.halfWide ? static_cast<const void*>(halfNodes.data()) : nodes.data();
+  size_t nodeBytes = (layout.halfWide ? halfNodes.size() : nodes.size()) * sizeof(float);
+  rt::Buffer nodeBuffer(context, nodeBytes, usage);
   rt::Buffer triangleBuffer(context, triangles.size() * sizeof(float), usage);
   rt::Buffer distances(context, size_t(width) * width * sizeof(float),
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  nodeBuffer.upload(nodes.data(), nodes.size() * sizeof(float));
+  nodeBuffer.upload(nodeWords, nodeBytes);
   triangleBuffer.upload(triangles.data(), triangles.size() * sizeof(float));
 
   rt::ShaderCompiler compiler(RT_BENCH_SHADER_DIR, "");
   rt::ShaderDefines defines;
   if (storageBuffers) defines.emplace_back("PLAIN_STORAGE_BUFFERS", "1");
-  if (layout.wide) defines.emplace_back("PLAIN_WIDE", "1");
+  if (wide) defines.emplace_back("PLAIN_WIDE", "1");
+  if (layout.halfWide) defines.emplace_back("PLAIN_WIDE_HALF", "1");
   defines.emplace_back("PLAIN_NODE_TEXELS", layout.wide ? "7u" : "4u");
   VkDescriptorType sceneType =
       storageBuffers ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER : VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
@@ -180,7 +215,9 @@ PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& 
     kernel.bind(0, nodeBuffer);
     kernel.bind(1, triangleBuffer);
   } else {
-    kernel.bindTexels(0, nodeBuffer, VK_FORMAT_R32G32B32A32_SFLOAT);
+    kernel.bindTexels(
+        0, nodeBuffer,
+        layout.halfWide ? VK_FORMAT_R32G32B32A32_UINT : VK_FORMAT_R32G32B32A32_SFLOAT);
     kernel.bindTexels(1, triangleBuffer, VK_FORMAT_R32G32B32A32_SFLOAT);
   }
   kernel.bind(2, distances);

@@ -32,6 +32,9 @@ struct PlainLayout {
   // Four children per node (the binary tree collapsed by surface area, boxes
   // as structure of arrays), nearest child first; else Aila and Laine's binary.
   bool wide = false;
+  // The four-wide nodes with half-float boxes, four texels a node (texel
+  // buffers only).
+  bool halfWide = false;
 };
 
 // `width` x `width` pixels, `samples` dispatches.

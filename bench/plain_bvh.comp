@@ -20,6 +20,12 @@ layout(std430, set = 0, binding = 0) readonly buffer Nodes { vec4 nodes[]; };
 layout(std430, set = 0, binding = 1) readonly buffer Triangles { vec4 triangles[]; };
 vec4 nodeRow(uint node, uint row) { return nodes[node * PLAIN_NODE_TEXELS + row]; }
 vec4 triangleRow(uint triangle, uint row) { return triangles[triangle * 3u + row]; }
+#elif defined(PLAIN_WIDE_HALF)
+layout(set = 0, binding = 0) uniform utextureBuffer halfNodeTexels;
+layout(set = 0, binding = 1) uniform textureBuffer triangleTexels;
+vec4 triangleRow(uint triangle, uint row) {
+  return texelFetch(triangleTexels, int(triangle * 3u + row));
+}
 #else
 layout(set = 0, binding = 0) uniform textureBuffer nodeTexels;
 layout(set = 0, binding = 1) uniform textureBuffer triangleTexels;
@@ -47,9 +53,12 @@ vec2 slabs(vec2 x, vec2 y, vec2 z, vec3 invDir, vec3 originTimesInv, float tMax)
   return vec2(entry, exit);
 }
 
-#ifdef PLAIN_WIDE
+#if defined(PLAIN_WIDE)
 // Four children per node, structure of arrays: rows min x, max x, min y,
-// max y, min z, max z of the four boxes, then the four child references.
+// max y, min z, max z of the four boxes, then the four child references;
+// with PLAIN_WIDE_HALF the boxes are half floats in four texels a node (rows
+// x, y, z: the four minima then the four maxima as half pairs; then the
+// references), as many texels per child as the binary layout.
 void sortPair(inout float da, inout uint ra, inout float db, inout uint rb) {
   bool swap = db < da;
   float d = swap ? db : da;
@@ -59,6 +68,29 @@ void sortPair(inout float da, inout uint ra, inout float db, inout uint rb) {
   da = d;
   ra = r;
 }
+
+// The four boxes of `node` as min and max per axis (one child a component).
+struct WideNode {
+  vec4 minX, maxX, minY, maxY, minZ, maxZ;
+  uvec4 refs;
+};
+
+#ifdef PLAIN_WIDE_HALF
+vec4 halves4(uvec2 packed) { return vec4(unpackHalf2x16(packed.x), unpackHalf2x16(packed.y)); }
+
+WideNode wideNode(uint node) {
+  uvec4 x = texelFetch(halfNodeTexels, int(node * 4u));
+  uvec4 y = texelFetch(halfNodeTexels, int(node * 4u + 1u));
+  uvec4 z = texelFetch(halfNodeTexels, int(node * 4u + 2u));
+  return WideNode(halves4(x.xy), halves4(x.zw), halves4(y.xy), halves4(y.zw), halves4(z.xy),
+                  halves4(z.zw), texelFetch(halfNodeTexels, int(node * 4u + 3u)));
+}
+#else
+WideNode wideNode(uint node) {
+  return WideNode(nodeRow(node, 0u), nodeRow(node, 1u), nodeRow(node, 2u), nodeRow(node, 3u),
+                  nodeRow(node, 4u), nodeRow(node, 5u), floatBitsToUint(nodeRow(node, 6u)));
+}
+#endif
 
 float closestHit(vec3 origin, vec3 direction) {
   vec3 invDir = 1.0 / direction;
@@ -70,13 +102,14 @@ float closestHit(vec3 origin, vec3 direction) {
   const float MISS = 3e38;
   while (node != DONE) {
     while (node < LEAF) {
-      vec4 t0x = nodeRow(node, 0u) * invDir.x - originTimesInv.x;
-      vec4 t1x = nodeRow(node, 1u) * invDir.x - originTimesInv.x;
-      vec4 t0y = nodeRow(node, 2u) * invDir.y - originTimesInv.y;
-      vec4 t1y = nodeRow(node, 3u) * invDir.y - originTimesInv.y;
-      vec4 t0z = nodeRow(node, 4u) * invDir.z - originTimesInv.z;
-      vec4 t1z = nodeRow(node, 5u) * invDir.z - originTimesInv.z;
-      uvec4 refs = floatBitsToUint(nodeRow(node, 6u));
+      WideNode wide = wideNode(node);
+      uvec4 refs = wide.refs;
+      vec4 t0x = wide.minX * invDir.x - originTimesInv.x;
+      vec4 t1x = wide.maxX * invDir.x - originTimesInv.x;
+      vec4 t0y = wide.minY * invDir.y - originTimesInv.y;
+      vec4 t1y = wide.maxY * invDir.y - originTimesInv.y;
+      vec4 t0z = wide.minZ * invDir.z - originTimesInv.z;
+      vec4 t1z = wide.maxZ * invDir.z - originTimesInv.z;
       vec4 entry = max(max(min(t0x, t1x), min(t0y, t1y)), max(min(t0z, t1z), vec4(0.0)));
       vec4 exit = min(min(max(t0x, t1x), max(t0y, t1y)), min(max(t0z, t1z), vec4(tMax)));
       bvec4 enters = bvec4(uvec4(lessThanEqual(entry, exit)) & uvec4(notEqual(refs, uvec4(DONE))));

@@ -160,6 +160,9 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
   options.adaptive = cli.adaptive || scene.settings.adaptive;
   options.keepErrorImage = !cli.errorMapPath.empty() || rt::isExrPath(cli.outputPath);
   options.seed = cli.seed;
+  // A time budget stops part way through a pass: one sample a pass keeps
+  // every pixel within one sample of the others.
+  if (cli.timeBudget) options.maxPassSamples = 1;
   // Adaptive rounds add samples past any fixed count: Sobol, unless asked.
   const rt::SamplerKind fallback = options.adaptive && !scene.settings.samplerGiven
                                        ? rt::SamplerKind::Sobol
@@ -362,7 +365,9 @@ int runRenderCommand(int argc, char** argv) {
   app.add_flag("--frame-count", cli.frameCount,
                "Print how many frames --camera-path lasts and exit")
       ->needs(cameraPath);
-  app.add_option("--time", cli.timeBudget, "Stop after this many seconds (whole passes kept)")
+  app.add_option("--time", cli.timeBudget,
+                 "Stop after this many seconds (every sample done is kept; passes of one sample, "
+                 "so that every pixel has as many as the others, or one more)")
       ->check(rt::cli::positiveFiniteNumber());
   app.add_option("--target-rmse", cli.targetRmse,
                  "Stop once the estimated RMSE of the displayed image (0..1 values, see README "

@@ -7,10 +7,7 @@
 #include "util/Error.hpp"
 
 namespace rt {
-namespace {
 
-// Half-float bits of v rounded down (or up): a box stored this way still
-// holds everything the float box held.
 uint16_t halfTowards(float v, bool up) {
   uint16_t h = static_cast<uint16_t>(glm::packHalf1x16(v));
   float back = glm::unpackHalf1x16(h);
@@ -25,6 +22,8 @@ uint16_t halfTowards(float v, bool up) {
   }
   return h;
 }
+
+namespace {
 
 uint32_t halfPair(float low, bool lowUp, float high, bool highUp) {
   return uint32_t(halfTowards(low, lowUp)) | uint32_t(halfTowards(high, highUp)) << 16;

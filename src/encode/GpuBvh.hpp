@@ -2,6 +2,7 @@
 // children's boxes in the parent, leaves packed into child references).
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -22,6 +23,10 @@ uint32_t appendBvhNodes(const Bvh& bvh, const LeafReference& leafReference,
 // at most `leafSize`, every box `bounds`. Traversing it tests every item
 // (brute force through the same kernel, to compare against).
 Bvh bruteForceTree(uint32_t count, uint32_t leafSize, const Aabb& bounds);
+
+// Half-float bits of v rounded down (or up): a box stored this way still
+// holds everything the float box held.
+uint16_t halfTowards(float v, bool up);
 
 // Leaf references of the two levels (see GpuBvhNode in gpu_types.h).
 uint32_t topLevelLeaf(uint32_t item, uint32_t kind);

@@ -46,6 +46,10 @@ struct RenderOptions : ImageSampling {
   // Fill RenderStats::estimatedError (needs estimateError or adaptive).
   bool keepErrorImage = false;
   double secondsPerDispatch = 0.1;  // target duration of one dispatch
+  // The most samples one pass over the image adds (passes double from 1 up
+  // to this; render loops in Renderer.cpp). 1 keeps every pixel within one
+  // sample of the others whenever shouldStop ends the render (--time).
+  uint32_t maxPassSamples = 16;
   // Polled between dispatches; returning true ends the render early with
   // the samples accumulated so far (SIGINT, time budgets).
   std::function<bool()> shouldStop;

@@ -299,6 +299,39 @@ TEST_SUITE("render") {
     CHECK(stats.samplesDone < 50);
     CHECK(image.rgba[3] >= 1.0f);
     CHECK(allFinite(image));
+    // Passes double from one sample, so a stop part way through one leaves
+    // every pixel at least half the samples of the most sampled one.
+    CHECK(stats.samplesDone * 2 >= stats.maxSamples);
+    CHECK(stats.maxSamples > stats.samplesDone);  // the stop did come inside a pass
+  }
+
+  TEST_CASE("a render stopped with passes of one sample keeps pixels within one sample") {
+    Scene scene = baseScene(40, 30);
+    addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}));
+    RenderOptions options;
+    options.samplesPerPixel = 50;
+    options.secondsPerDispatch = 1e-9;
+    options.maxPassSamples = 1;
+    int polls = 0;
+    options.shouldStop = [&] { return ++polls > 40; };
+    RenderStats stats;
+    Renderer(test::gpu(), test::shaderCompiler()).render(scene, options, {}, &stats);
+    CHECK(stats.stoppedEarly);
+    CHECK(stats.maxSamples <= stats.samplesDone + 1);
+  }
+
+  TEST_CASE("the image does not depend on how many samples a pass adds") {
+    Scene scene = baseScene(40, 30);
+    addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
+    RenderOptions options;
+    options.samplesPerPixel = 23;
+    options.secondsPerDispatch = 1e-9;  // bands of rows, passes 1, 1, 2, 4, 8, 7
+    ImageF doubling = test::render(scene, options);
+    options.maxPassSamples = 1;
+    CHECK(bitwiseEqual(doubling, test::render(scene, options)));
+    options.maxPassSamples = 64;
+    options.secondsPerDispatch = 10.0;  // after the first pass, one of 22 samples
+    CHECK(bitwiseEqual(doubling, test::render(scene, options)));
   }
 
   TEST_CASE("thin lens: aperture 0 is the pinhole image; an open lens blurs off the focal plane") {
