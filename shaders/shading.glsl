@@ -38,10 +38,15 @@ const int RT_MAX_SHADOW_CROSSINGS = 1;
 float lightVisibility(Ray ray, float tMax, bool throughGlass) {
   float transmittance = 1.0;
   float travelled = 0.0;
+#ifdef RT_FEATURE_REFRACTION
+  bool anyHit = !throughGlass;
+#else
+  const bool anyHit = true;  // nothing to pass through: any hit blocks the light
+#endif
   for (int crossing = 0; crossing < RT_MAX_SHADOW_CROSSINGS; ++crossing) {
     SurfaceHit hit;
     float limit = tMax - travelled;
-    if (!traverse(ray, 0.0, limit, !throughGlass, hit)) return transmittance;
+    if (!traverse(ray, 0.0, limit, anyHit, hit)) return transmittance;
 #ifdef RT_FEATURE_REFRACTION
     if (!throughGlass) return 0.0;
     GpuMaterial blocker = loadMaterial(hitMaterial(hit));
