@@ -213,7 +213,8 @@ expect_error "area light: zero samples" 'area-bad\.json: scene\.lightsources\[0\
 write area-noshape.json "${AREA/\"v0\":\[-1,2,-2\],/\"shape\":\"lamp\",}"
 expect_error "area light: unknown shape" "area-noshape\.json: scene\.lightsources\[0\]\.shape: no shape has the id 'lamp'" "$SCRATCH/area-noshape.json" "$SCRATCH/out.png"
 write area-zero.json "${AREA/\"v0\":\[-1,2,-2\],\"v1\":\[1,2,-2\],\"v2\":\[1,2,-4\],\"v3\":\[-1,2,-4\]/\"v0\":[0,2,0],\"v1\":[0,2,0],\"v2\":[0,2,0]}"
-expect_error "area light: no area" 'area-zero\.json: scene\.lightsources\[0\]: area light has no area' "$SCRATCH/area-zero.json" "$SCRATCH/out.png"
+expect_error "area light: no area (--strict)" 'area-zero\.json: scene\.lightsources\[0\]: an area light without area' "$SCRATCH/area-zero.json" "$SCRATCH/out.png" --strict
+"$RAYTRACER" "$SCRATCH/area-zero.json" "$SCRATCH/area-zero.png" --spp 1 -q 2>/dev/null && [[ -s "$SCRATCH/area-zero.png" ]] && pass || fail "area light without area: a point light"
 
 # --- official scenes load and render (small) -------------------------------
 # --- student scenes: lenient by default, --strict, check, OBJ -------------

@@ -851,11 +851,20 @@ TEST_SUITE("scene loader: in-memory scenes") {
     scene["camera"]["method"] = "stratified";
     CHECK(contains(errorOf(scene), "camera.method: unknown sampler 'stratified'"));
 
+    // Inside `scene` (Seanst98's renderer reads them there): used where the
+    // top level and the camera give none.
     scene = minimalScene();
     scene["scene"]["nsamples"] = 4;
+    scene["scene"]["sampling"] = "jittering";
     loaded = parse(scene);
-    CHECK(loaded.settings.samplesPerPixel == 0);
-    CHECK(hasWarning(loaded, "scene.nsamples: 'nsamples' inside scene is ignored"));
+    CHECK(loaded.settings.samplesPerPixel == 4);
+    CHECK(loaded.settings.samplerGiven);
+    CHECK(loaded.settings.sampler == rt::SamplerKind::Jittered);
+    scene["spp"] = 2;
+    loaded = parse(scene);
+    CHECK(loaded.settings.samplesPerPixel == 2);
+    CHECK(
+        hasWarning(loaded, "scene.nsamples: ignored: the top level or the camera already sets it"));
   }
 
   TEST_CASE("unknown keys are warnings, renderer settings are silent") {

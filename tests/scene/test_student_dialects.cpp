@@ -416,8 +416,8 @@ TEST_SUITE("student dialects") {
     CHECK(loaded.meshes[0].uvs == std::vector<glm::vec2>{{0, 1}, {1, 0}, {1, 1}});
     CHECK(near(placedVertex(loaded, 0, 2), {1, 1, 3}));
     CHECK_FALSE(hasWarning(loaded, "uv0"));
-    shape0(scene)["uv2"] = {1, 1, 1};
-    CHECK_THROWS_WITH_AS(parse(scene), doctest::Contains("expected 2 texture coordinates, got 3"),
+    shape0(scene)["uv2"] = {1, 1, 1, 1};
+    CHECK_THROWS_WITH_AS(parse(scene), doctest::Contains("expected 2 texture coordinates, got 4"),
                          rt::Error);
   }
 }
@@ -551,5 +551,93 @@ TEST_SUITE("student dialects") {
     Json scene = baseScene();
     scene["camera"]["location"] = {0, 0, 0};
     CHECK_NOTHROW(parse(scene));
+  }
+}
+
+TEST_SUITE("student dialects") {
+  TEST_CASE("a mesh of vertices without faces is a triangle strip (Seanst98), UVs of 3") {
+    Json scene = baseScene();
+    shape0(scene) = Json::parse(R"({"type": "trimesh",
+        "points": [[-1, -1, 3], [1, -1, 3], [-1, 1, 3], [1, 1, 3]],
+        "texturecoordinates": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]})");
+    const rt::Scene loaded = parse(scene);
+    REQUIRE(loaded.meshes.size() == 1);
+    CHECK(loaded.meshes[0].faces == std::vector<glm::uvec3>{{0, 1, 2}, {1, 2, 3}});
+    CHECK(loaded.meshes[0].uvs.at(3) == glm::vec2(1, 1));
+    shape0(scene)["points"] = Json::parse("[[0, 0, 3], [1, 0, 3]]");
+    shape0(scene).erase("texturecoordinates");
+    CHECK_THROWS_WITH_AS(parse(scene), doctest::Contains("fewer than 3 vertices"), rt::Error);
+  }
+
+  TEST_CASE("Seanst98's thin lens (ap, f), isGlass as a string, sampling inside the scene") {
+    Json scene = baseScene();
+    scene["camera"]["type"] = "thinlens";
+    scene["camera"]["ap"] = 0.2;
+    scene["camera"]["f"] = 4;
+    shape0(scene)["material"]["isGlass"] = "true";
+    shape0(scene)["material"]["refractiveIndex"] = 1.3;
+    const rt::Scene loaded = parse(scene);
+    CHECK(loaded.camera.type == rt::CameraType::ThinLens);
+    CHECK(loaded.camera.apertureRadius == doctest::Approx(0.1).scale(0));
+    CHECK(loaded.camera.focusDistance == 4.0f);
+    CHECK(loaded.materials.at(0).transmission == 1.0f);
+    CHECK(loaded.materials.at(0).ior == 1.3f);
+    shape0(scene)["material"]["isGlass"] = "false";
+    CHECK(parse(scene).materials.at(0).transmission == 0.0f);
+    shape0(scene)["material"]["isGlass"] = "maybe";
+    CHECK_THROWS_WITH_AS(parse(scene), doctest::Contains("isGlass: expected a boolean"), rt::Error);
+  }
+
+  TEST_CASE("Trenza1ore: area light size [a, b], an ambient light, PLY offset, scale and euler") {
+    Json scene = baseScene();
+    scene["scene"]["lightsources"] = Json::parse(R"([
+        {"type": "arealight", "position": [0, 3, 3], "intensity": [1, 1, 1], "size": [0.5, 0.25]},
+        {"type": "ambient", "intensity": [0.2, 0.3, 0.4]}])");
+    const rt::Scene loaded = parse(scene);
+    REQUIRE(loaded.areaLights.size() == 1);
+    const auto& quad = std::get<rt::Quad>(loaded.shapes.at(loaded.areaLights[0].shape).geometry);
+    CHECK(near(quad.v0, {-0.5, 3, 2.75}));  // 2a by 2b on x and z, centred, facing down
+    CHECK(near(quad.v2, {0.5, 3, 3.25}));
+    CHECK(glm::cross(quad.v1 - quad.v0, quad.v3 - quad.v0).y < 0.0);
+    REQUIRE(loaded.ambientLight.has_value());
+    CHECK(*loaded.ambientLight == glm::vec3(0.2f, 0.3f, 0.4f));
+    for (const char* type : {"uvsphere", "cubemap", "sphericalmap"}) {
+      shape0(scene)["type"] = type;
+      CHECK(std::holds_alternative<rt::Sphere>(parse(scene).shapes.at(0).geometry));
+    }
+    const rt::test::TempDir temp;
+    const std::filesystem::path dir = temp.path();
+    temp.write("tri.ply",
+               "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+               "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+               "end_header\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n");
+    shape0(scene) = Json::parse(R"({"type": "ply", "path": "tri.ply", "offset": [1, 2, 3],
+        "scale": [2, 3, 4], "euler": [0, 0, 90]})");
+    const rt::Scene placed = rt::parseJsonScene(scene.dump(), dir / "scene.json");
+    // (1, 0, 0) turned 90 degrees about z is (0, 1, 0), scaled (0, 3, 0), moved (1, 5, 3).
+    CHECK(near(placedVertex(placed, 0, 0), {1, 5, 3}));
+    CHECK(near(placedVertex(placed, 0, 2), {1, 2, 7}));
+  }
+
+  TEST_CASE("an area light without area (an edge of length 0) is a point light at its centre") {
+    Json scene = baseScene();
+    scene["scene"]["lightsources"] = Json::parse(R"([{"type": "rectlight", "position": [0, 2, 1],
+        "u": [1, 0, 0], "v": [0, 0, 0], "width": 2, "height": 2, "intensity": [3, 3, 3]}])");
+    const rt::Scene loaded = parse(scene);
+    CHECK(loaded.areaLights.empty());
+    REQUIRE(loaded.pointLights.size() == 1);
+    CHECK(near(loaded.pointLights[0].position, {0, 2, 1}));
+    CHECK(loaded.pointLights[0].diffuseIntensity == glm::vec3(3.0f));
+    CHECK(hasWarning(loaded, "an area light without area"));
+  }
+
+  TEST_CASE("more Blender exports: a bare list of objects, objects with a CAMERA") {
+    for (const char* text : {R"([{"name": "Camera", "type": "CAMERA", "location": [7, -6, 4]}])",
+                             R"({"scene_name": "Scene", "objects": [{"type": "MESH"},
+                                 {"type": "CAMERA", "location": [7, -6, 4]}]})"}) {
+      CAPTURE(text);
+      CHECK_THROWS_WITH_AS(rt::parseJsonScene(text, "export.json"),
+                           doctest::Contains("a Blender scene export"), rt::Error);
+    }
   }
 }

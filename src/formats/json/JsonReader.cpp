@@ -91,6 +91,8 @@ bool JsonNode::boolean() const {
     const auto value = raw().get<int64_t>();
     if (value == 0 || value == 1) return value == 1;
   }
+  // Seanst98's "isGlass": "true": its author's parser compared strings.
+  if (raw().is_string() && (raw() == "true" || raw() == "false")) return raw() == "true";
   failType("a boolean (true/false)");
 }
 

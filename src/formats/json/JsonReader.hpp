@@ -50,7 +50,7 @@ class JsonNode {
   float floatInRange(float low, float high) const;   // inclusive
   int64_t integer() const;                           // integral value, 3.0 included, within +-2^53
   int64_t integer(int64_t low, int64_t high) const;  // inclusive range
-  bool boolean() const;                              // true/false, or 0/1 as some files write it
+  bool boolean() const;  // true/false, or 0/1 or "true"/"false" as some files write it
   std::string string() const;
   std::string nonEmptyString() const;
   glm::vec3 vec3() const;             // exactly three finite numbers

@@ -243,13 +243,21 @@ auto readFromEither(const std::optional<JsonNode>& first, const std::optional<Js
 }
 
 // Returns whether the file names a sampler.
+// The sampler's key: `sampler` | `method`, or `sampling` where it names one
+// (Seanst98: "jittering"; a number there, as Zspirates96 writes, is not).
+std::optional<JsonNode> samplerKey(JsonObject& object) {
+  const Json* sampling = object.peek("sampling");
+  if (sampling && sampling->is_string() && !object.has("sampler") && !object.has("method")) {
+    return object.optional("sampling");
+  }
+  return object.optionalOneOf({"sampler", "method"});
+}
+
 bool readSampling(JsonObject& top, JsonObject& camera, RenderSettings& settings) {
-  const auto samplerAt = [](JsonObject& object) {
-    return object.optionalOneOf({"sampler", "method"});
-  };
+  const auto samplerAt = [](JsonObject& object) { return samplerKey(object); };
   const auto samplesAt = [](JsonObject& object) {
-    return object.optionalOneOf(
-        {"nsamples", "samples", "spp", "pixel_sample_num", "samples_per_pixel"});
+    return object.optionalOneOf({"nsamples", "samples", "spp", "pixel_sample_num",
+                                 "samples_per_pixel", "camera samples"});  // Trenza1ore
   };
   std::optional<SamplerKind> sampler =
       readFromEither(samplerAt(top), samplerAt(camera), parseSampler);
@@ -420,7 +428,8 @@ std::optional<JsonNode> readFocusDistanceKey(JsonObject& camera) {
 LensKeys readLensKeys(JsonObject& camera) {
   LensKeys keys;
   // `size`: TsFreddie's files
-  keys.aperture = camera.optionalOneOf({"aperture", "size", "aperture_size", "apertureSize"});
+  keys.aperture =
+      camera.optionalOneOf({"aperture", "size", "aperture_size", "apertureSize", "diameter"});
   keys.lensRadius = camera.optionalOneOf({"lensRadius", "lensradius", "lens_radius"});
   if (keys.aperture && keys.lensRadius) {
     keys.lensRadius->fail(
@@ -428,6 +437,13 @@ LensKeys readLensKeys(JsonObject& camera) {
         "(lensRadius)");
   }
   keys.focusDistance = readFocusDistanceKey(camera);
+  if (!keys.aperture && !keys.lensRadius && camera.has("ap") && !camera.has("d")) {
+    // Seanst98: `ap` the lens diameter, `f` the distance to the plane in
+    // focus (its camera aims each lens ray at origin + f * direction).
+    keys.aperture = camera.optional("ap");
+    if (!keys.focusDistance) keys.focusDistance = camera.optional("f");
+    return keys;
+  }
   keys.focalLength = camera.optionalOneOf({"f", "focal"});
   keys.sensorDistance = camera.optional("d");
   return keys;
@@ -496,7 +512,7 @@ void warnLensKeysOnPinhole(JsonObject& camera) {
   for (const char* key :
        {"aperture", "size", "aperture_size", "apertureSize", "lensRadius", "lensradius",
         "lens_radius", "focusdistance", "focus_dist", "focalDistance", "focal_length",
-        "focus_distance", "focalLength", "focusDistance", "f", "focal", "d"}) {
+        "focus_distance", "focalLength", "focusDistance", "f", "focal", "d", "diameter", "ap"}) {
     camera.ignoreWithWarning(
         key, std::string("thin lens key '") + key + "' ignored: the camera type is \"pinhole\"");
   }
@@ -626,6 +642,17 @@ bool isAreaLightType(const std::string& written) {
          type == "spherelight";  // Ninteedo: a sphere of `radius` at `position`
 }
 
+// The ambient term a file asks for (a scene key, or a light of type
+// "ambient"): that colour times each hit's diffuse colour. `where` is the
+// key it came from.
+void setAmbientLight(const glm::vec3& ambient, const JsonNode& where, Scene& scene) {
+  if (scene.settings.mode == RenderMode::PathTracer) {
+    where.warn("ignored: the path tracer has no ambient term");
+    return;
+  }
+  scene.ambientLight = ambient;
+}
+
 struct LightIntensity {
   glm::vec3 diffuse{1.0f};
   glm::vec3 specular{1.0f};
@@ -725,13 +752,33 @@ Quad facingRectangle(JsonObject& light, const WorldPoint& position, glm::vec3 no
   return centredParallelogram(position, u, v);
 }
 
+// Trenza1ore's `size`: [a, b], half the extents along x and z of a
+// horizontal rectangle centred on the position, facing down, as its
+// author's AreaLight samples it. [a, b, c] is a box there (points sampled in
+// its volume): its horizontal middle, x by z, with a warning.
+Quad horizontalRectangle(const JsonNode& size, const WorldPoint& position) {
+  const std::vector<JsonNode> extents = size.array();
+  if (extents.size() != 2 && extents.size() != 3) {
+    size.fail("expected a number, or 2 or 3 half extents, got an array of " +
+              std::to_string(extents.size()));
+  }
+  const double x = extents[0].positiveFloat();
+  const double z = extents.back().positiveFloat();
+  if (extents.size() == 3) {
+    extents[1].nonNegativeFloat();
+    size.warn("a box of light: read as its horizontal rectangle, x by z at the position's height");
+  }
+  return centredParallelogram(position, {2.0 * x, 0.0, 0.0}, {0.0, 0.0, 2.0 * z});
+}
+
 // The emitting surface of an area light written with its own geometry:
 //   v0 v1 v2 [v3]        a triangle or a planar quad (julie-o, PFNK);
 //   position u v [width height]
 //                        a parallelogram centred on position with edges u
 //                        and v (with width/height: unit directions scaled);
 //   position radius      a sphere;
-//   position size        a sphere of diameter size (TsFreddie).
+//   position size        a sphere of diameter size (TsFreddie), or, with
+//                        size [a, b], a horizontal rectangle (Trenza1ore).
 Geometry readAreaLightGeometry(JsonObject& light) {
   if (const auto c = readNamedCorners(light, 3, 4)) {
     if (c->size() == 4) return cyclicQuad({(*c)[0], (*c)[1], (*c)[2], (*c)[3]}, light);
@@ -755,14 +802,16 @@ Geometry readAreaLightGeometry(JsonObject& light) {
     glm::dvec3 v = light.required("v").point();
     const std::optional<JsonNode> width = light.optional("width");
     const std::optional<JsonNode> height = light.optional("height");
-    if (width) u = glm::dvec3(unitVector(light.required("u")) * width->positiveFloat());
-    if (height) v = glm::dvec3(unitVector(light.required("v")) * height->positiveFloat());
+    // A zero edge stays zero: the light has no area (readAreaLight).
+    if (width && u != glm::dvec3(0.0)) u = glm::normalize(u) * double(width->positiveFloat());
+    if (height && v != glm::dvec3(0.0)) v = glm::normalize(v) * double(height->positiveFloat());
     return centredParallelogram(position, u, v);
   }
   if (const std::optional<JsonNode> radius = light.optionalOneOf({"radius", "areaRadius"})) {
     return Sphere{position, radius->positiveFloat()};
   }
   if (const std::optional<JsonNode> size = light.optional("size")) {
+    if (size->raw().is_array()) return horizontalRectangle(*size, position);
     return Sphere{position, size->positiveFloat() / 2.0f};
   }
   light.diagnostics().fail(light.childPath("shape"),
@@ -825,7 +874,19 @@ Geometry readLightSurface(JsonObject& surface) {
   typeNode.fail("an area light's surface must be a sphere, plane or triangle");
 }
 
-void readAreaLight(JsonObject& light, LightList& lights) {
+WorldPoint geometryCentre(const Geometry& geometry) {
+  return std::visit(
+      [](const auto& g) -> WorldPoint {
+        using T = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<T, Quad>) return (g.v0 + g.v1 + g.v2 + g.v3) / 4.0;
+        if constexpr (std::is_same_v<T, Triangle>) return (g.v0 + g.v1 + g.v2) / 3.0;
+        if constexpr (std::is_same_v<T, Sphere> || std::is_same_v<T, Cylinder>) return g.center;
+        return WorldPoint(0.0);  // area lights' own surfaces are never meshes
+      },
+      geometry);
+}
+
+void readAreaLight(JsonObject& light, Scene& scene, LightList& lights) {
   PendingAreaLight pending;
   const LightIntensity intensity = readIntensity(light);
   pending.light.diffuseIntensity = intensity.diffuse;
@@ -850,7 +911,15 @@ void readAreaLight(JsonObject& light, LightList& lights) {
     pending.shapeId.reset();
   } else if (!pending.shapeId) {
     pending.geometry = readAreaLightGeometry(light);
-    if (!(surfaceArea(*pending.geometry, {}) > 0.0f)) light.fail("area light has no area");
+    if (!(surfaceArea(*pending.geometry, {}) > 0.0f)) {
+      // JinBa1's v [0, 0, 0]: its author's renderer samples a segment.
+      light.diagnostics().warn(light.path(),
+                               "an area light without area (an edge of length 0): read as a "
+                               "point light at its centre");
+      scene.pointLights.push_back(
+          {geometryCentre(*pending.geometry), intensity.diffuse, intensity.specular});
+      return;
+    }
   }
   lights.areaLights.push_back(std::move(pending));
 }
@@ -879,10 +948,13 @@ void readLight(const JsonNode& node, Scene& scene, LightList& lights) {
     typeNode.warn("an area light without a surface (position only): read as a point light");
     scene.pointLights.push_back(readPointLight(light));
   } else if (isAreaLightType(type)) {
-    readAreaLight(light, lights);
+    readAreaLight(light, scene, lights);
   } else if (lowercase(type) == "pointlight" || lowercase(type) == "point" ||
              lowercase(type) == "point_light") {
     scene.pointLights.push_back(readPointLight(light));
+  } else if (lowercase(type) == "ambient" || lowercase(type) == "ambientlight") {
+    // Trenza1ore: the ambient term as a light source.
+    setAmbientLight(readIntensity(light).diffuse, typeNode, scene);
   } else {
     typeNode.fail("unknown light type '" + type + "' (expected \"pointlight\" or \"arealight\")");
   }
@@ -967,7 +1039,8 @@ float readReflectivity(JsonObject& material) {
 // weight (already read into `out`) leaves.
 void readRefraction(JsonObject& material, Material& out) {
   const std::optional<JsonNode> kt = weightOrAlias(material, "kt", "transmit");
-  const std::optional<JsonNode> isRefractive = material.optional("isrefractive");
+  const std::optional<JsonNode> isRefractive =
+      material.optionalOneOf({"isrefractive", "isGlass", "isglass"});  // isGlass: Seanst98
   if (kt && isRefractive) kt->fail("conflicts with 'isrefractive': give one transmission weight");
   if (kt) out.transmission = kt->floatInRange(0.0f, 1.0f);
   if (isRefractive) out.transmission = isRefractive->boolean() ? 1.0f - out.reflectivity : 0.0f;
@@ -1265,6 +1338,17 @@ void appendFace(const JsonNode& face, TriangleMesh& mesh) {
   }
 }
 
+// Vertices without faces (Seanst98): a triangle strip, triangle i from
+// vertices i, i + 1, i + 2 in that order, as its author's TriMesh makes them.
+void readTriangleStrip(JsonObject& shape, TriangleMesh& mesh) {
+  const auto count = static_cast<uint32_t>(mesh.positions.size());
+  if (count < 3) {
+    shape.diagnostics().fail(shape.childPath("faces"),
+                             "missing, and fewer than 3 vertices make no triangle strip");
+  }
+  for (uint32_t i = 0; i + 2 < count; ++i) mesh.faces.emplace_back(i, i + 1, i + 2);
+}
+
 // Faces as lists of corners ("faces"/"tris"), or as a flat index list with
 // a corner count per face (sukriti27: faceindex + vertexindex; Zspirates96:
 // numVerticesOnEachFace + verticesOnEachFace, with "faces" their number).
@@ -1293,7 +1377,10 @@ void readFaces(JsonObject& shape, TriangleMesh& mesh) {
     return;
   }
   const std::optional<JsonNode> faces = shape.optionalOneOf({"faces", "tris"});
-  if (!faces) shape.diagnostics().fail(shape.childPath("faces"), "missing required key");
+  if (!faces) {
+    readTriangleStrip(shape, mesh);
+    return;
+  }
   for (const JsonNode& face : faces->array()) appendFace(face, mesh);
   if (mesh.faces.empty()) faces->fail("must list at least one face");
 }
@@ -1371,10 +1458,13 @@ InlineMesh readBox(JsonObject& shape) {
   return out;
 }
 
+// (u, v), or (u, v, w) as OBJ's `vt` and Seanst98's `texturecoordinates`
+// write them: w is not used.
 glm::vec2 readUv(const JsonNode& node) {
   const std::vector<JsonNode> pair = node.array();
-  if (pair.size() != 2)
+  if (pair.size() != 2 && pair.size() != 3)
     node.fail("expected 2 texture coordinates, got " + std::to_string(pair.size()));
+  if (pair.size() == 3) pair[2].floatValue();  // checked, unused
   return {pair[0].floatValue(), pair[1].floatValue()};
 }
 
@@ -1430,7 +1520,8 @@ InlineMesh readInlineMesh(JsonObject& shape) {
     setWorldPositions(points, placed);
     readFaces(shape, mesh);
   }
-  if (const std::optional<JsonNode> uvs = shape.optionalOneOf({"uv", "uvs"})) {
+  if (const std::optional<JsonNode> uvs =
+          shape.optionalOneOf({"uv", "uvs", "texturecoordinates", "textureCoordinates"})) {
     for (const JsonNode& uv : uvs->array()) mesh.uvs.push_back(readUv(uv));
     if (mesh.uvs.size() != mesh.positions.size()) {
       uvs->fail("has " + std::to_string(mesh.uvs.size()) + " entries for " +
@@ -1440,18 +1531,36 @@ InlineMesh readInlineMesh(JsonObject& shape) {
   return placed;
 }
 
-// Students' placement of a PLY mesh: `center`/`pos` moves the model's own
-// origin there, `scale`/`sizeScale` scales it uniformly about that origin.
+// Students' placement of a PLY mesh: `center` | `pos` | `offset`
+// (Trenza1ore) moves the model's own origin there; `scale` | `sizeScale`
+// scales it about that origin, uniformly or per axis ([x, y, z]); `euler`
+// (Trenza1ore) turns it first, in degrees about the world x, then y, then z
+// axes (its author's PlyParser: rotate, scale, then offset).
 WorldTransform readPlacement(JsonObject& shape) {
   WorldPoint translation(0.0);
-  double scale = 1.0;
-  if (const std::optional<JsonNode> node = shape.optionalOneOf({"center", "pos"})) {
+  glm::dvec3 scale(1.0);
+  if (const std::optional<JsonNode> node = shape.optionalOneOf({"center", "pos", "offset"})) {
     translation = node->point();
   }
   if (const std::optional<JsonNode> node = shape.optionalOneOf({"scale", "sizeScale"})) {
-    scale = node->positiveFloat();
+    if (node->raw().is_array()) {
+      scale = glm::dvec3(node->vec3());
+      if (!(scale.x > 0.0 && scale.y > 0.0 && scale.z > 0.0)) node->fail("must be positive");
+    } else {
+      scale = glm::dvec3(node->positiveFloat());
+    }
   }
-  return glm::scale(glm::translate(WorldTransform(1.0), translation), glm::dvec3(scale));
+  WorldTransform rotation(1.0);
+  if (const std::optional<JsonNode> node = shape.optional("euler")) {
+    const glm::dvec3 degrees(node->vec3());
+    for (int axis = 2; axis >= 0; --axis) {
+      glm::dvec3 around(0.0);
+      around[axis] = 1.0;
+      rotation = rotation * glm::rotate(WorldTransform(1.0), glm::radians(degrees[axis]), around);
+    }
+  }
+  return glm::translate(WorldTransform(1.0), translation) * glm::scale(WorldTransform(1.0), scale) *
+         rotation;
 }
 
 // Reads each PLY file once, however many shapes place it. PLY errors keep
@@ -1562,11 +1671,13 @@ Quad readAxisRectangle(const std::string& axes, JsonObject& shape) {
 
 // Shape type spellings, matched without regard to case: the canonical name
 // first. "ply" and "obj" shapes always name a file.
+// Trenza1ore's uvsphere, sphericalmap and cubemap are spheres and uvcylinder
+// a cylinder, each with its own texture mapping (read as the plain shape's).
 const std::vector<std::vector<std::string_view>> kShapeTypes = {
-    {"sphere"},
+    {"sphere", "uvsphere", "sphericalmap", "cubemap"},
     {"plane", "planarquad", "planerquad", "planar_quad", "quad", "rectangle", "rect"},
     {"triangle", "traingle", "tri"},
-    {"cylinder"},
+    {"cylinder", "uvcylinder"},
     {"box", "cube", "aabb"},
     {"trimesh", "mesh", "ply", "obj", "model", "trianglemesh"},
     {"rectanglexy"},
@@ -1704,16 +1815,33 @@ void addAreaLights(const LightList& lights, RenderMode mode, Scene& scene) {
 
 // `ambientlight` (HlnnnWnng): light every hit receives, times its diffuse
 // colour. The path tracer has no ambient term.
-void readAmbientLight(JsonObject& object, RenderMode mode, Scene& scene) {
+void readAmbientLight(JsonObject& object, Scene& scene) {
   const std::optional<JsonNode> node =
       object.optionalOneOf({"ambientlight", "ambient_light", "ambientLight"});
-  if (!node) return;
-  const glm::vec3 ambient = node->nonNegativeVec3();
-  if (mode == RenderMode::PathTracer) {
-    node->warn("ignored: the path tracer has no ambient term");
-    return;
+  if (node) setAmbientLight(node->nonNegativeVec3(), *node, scene);
+}
+
+// Sampling settings inside `scene` (Seanst98's renderer reads them there):
+// used where the top level and the camera give none, else ignored.
+void readSceneSampling(JsonObject& object, RenderSettings& settings) {
+  const auto ignored = [](const JsonNode& node) {
+    node.warn("ignored: the top level or the camera already sets it");
+  };
+  if (const std::optional<JsonNode> node = samplerKey(object)) {
+    if (settings.samplerGiven) {
+      ignored(*node);
+    } else {
+      settings.sampler = parseSampler(*node);
+      settings.samplerGiven = true;
+    }
   }
-  scene.ambientLight = ambient;
+  if (const std::optional<JsonNode> node = object.optionalOneOf({"nsamples", "samples", "spp"})) {
+    if (settings.samplesPerPixel != 0) {
+      ignored(*node);
+    } else {
+      settings.samplesPerPixel = parseSampleCount(*node);
+    }
+  }
 }
 
 // `object` is the file's `scene`, or the top level itself for files that
@@ -1722,7 +1850,7 @@ LightList readSceneObject(JsonObject& object, ShapeContext& context, Scene& scen
   if (const std::optional<JsonNode> background = object.optional("backgroundcolor")) {
     scene.backgroundColor = background->nonNegativeVec3();
   }
-  readAmbientLight(object, context.mode, scene);
+  readAmbientLight(object, scene);
   LightList lights;
   if (const std::optional<JsonNode> list = object.optionalOneOf({"lightsources", "lights"})) {
     for (const JsonNode& light : list->array()) readLight(light, scene, lights);
@@ -1732,12 +1860,10 @@ LightList readSceneObject(JsonObject& object, ShapeContext& context, Scene& scen
   for (const JsonNode& shape : shapes->array()) readShape(shape, context, scene);
   addAreaLights(lights, context.mode, scene);
   ignoreRendererKeys(object);
-  for (const char* key : {"sampler", "method", "nsamples", "samples", "spp"}) {
-    object.ignoreWithWarning(key, std::string("'") + key +
-                                      "' inside scene is ignored: sampling settings are read at "
-                                      "the top level or in camera");
+  if (!flat) {
+    readSceneSampling(object, scene.settings);
+    object.reportUnknownKeys();
   }
-  if (!flat) object.reportUnknownKeys();
   return lights;
 }
 
@@ -1781,15 +1907,27 @@ fs::path absoluteFolderOf(const fs::path& file) {
   return (failed ? file : absolute).lexically_normal().parent_path();
 }
 
+// A list of Blender objects, one of them a camera ({"type": "CAMERA", ...}).
+bool listsBlenderCamera(const Json* objects) {
+  return objects && objects->is_array() &&
+         std::any_of(objects->begin(), objects->end(), [](const Json& object) {
+           const Json* type = findKey(object, "type");
+           return type && type->is_string() && *type == "CAMERA";
+         });
+}
+
 // Scenes exported from Blender by a later coursework's students, each with
 // their own exporter (`properties.cameras[]`, `cameras[]` beside `cubes`, a
-// `camera` with `location` and `gaze`): a different format, refused with a
-// line that says so rather than with its first missing key.
-bool looksLikeBlenderExport(const JsonObject& top) {
-  const Json* camera = top.peek("camera");
+// `camera` with `location` and `gaze`, `objects` or a bare list of Blender
+// objects with a "CAMERA"): a different format, refused with a line that says
+// so rather than with its first missing key.
+bool looksLikeBlenderExport(const Json& document) {
+  if (listsBlenderCamera(&document)) return true;
+  if (!document.is_object()) return false;
+  const Json* camera = findKey(document, "camera");
   if (!camera) {
-    const Json* properties = top.peek("properties");
-    return top.has("cameras") ||
+    const Json* properties = findKey(document, "properties");
+    return document.contains("cameras") || listsBlenderCamera(findKey(document, "objects")) ||
            (properties && properties->is_object() && properties->contains("cameras"));
   }
   return camera->is_object() && camera->contains("location") && !camera->contains("position") &&
@@ -1801,12 +1939,13 @@ Scene readScene(std::string_view jsonText, const fs::path& file) {
   const Json document = parseJson(jsonText, file.string(), diagnostics);
   Scene scene;
   scene.sourcePath = file;
-  JsonObject top = JsonNode(document, "", diagnostics).object();
-  if (looksLikeBlenderExport(top)) {
-    top.fail(
+  const JsonNode root(document, "", diagnostics);
+  if (looksLikeBlenderExport(document)) {
+    root.fail(
         "a Blender scene export (cameras with `location` and a gaze vector), not the "
         "coursework JSON scene format this renderer reads (README 'Student scenes')");
   }
+  JsonObject top = root.object();
   ChosenConventions chosen = chooseConventions(top, document);
   scene.settings.maxBounces = readBounces(top);
   scene.settings.mode = readRenderMode(top);
