@@ -242,7 +242,6 @@ auto readFromEither(const std::optional<JsonNode>& first, const std::optional<Js
   return value;
 }
 
-// Returns whether the file names a sampler.
 // The sampler's key: `sampler` | `method`, or `sampling` where it names one
 // (Seanst98: "jittering"; a number there, as Zspirates96 writes, is not).
 std::optional<JsonNode> samplerKey(JsonObject& object) {
@@ -253,14 +252,14 @@ std::optional<JsonNode> samplerKey(JsonObject& object) {
   return object.optionalOneOf({"sampler", "method"});
 }
 
+// Returns whether the file names a sampler.
 bool readSampling(JsonObject& top, JsonObject& camera, RenderSettings& settings) {
-  const auto samplerAt = [](JsonObject& object) { return samplerKey(object); };
   const auto samplesAt = [](JsonObject& object) {
     return object.optionalOneOf({"nsamples", "samples", "spp", "pixel_sample_num",
                                  "samples_per_pixel", "camera samples"});  // Trenza1ore
   };
   std::optional<SamplerKind> sampler =
-      readFromEither(samplerAt(top), samplerAt(camera), parseSampler);
+      readFromEither(samplerKey(top), samplerKey(camera), parseSampler);
   if (const std::optional<JsonNode> random = top.optional("random"); random && !sampler) {
     if (random->boolean()) sampler = SamplerKind::Random;  // nizqleo: "random": 1
   }
@@ -874,14 +873,23 @@ Geometry readLightSurface(JsonObject& surface) {
   typeNode.fail("an area light's surface must be a sphere, plane or triangle");
 }
 
-WorldPoint geometryCentre(const Geometry& geometry) {
+// A point inside a shape: the centre of an analytic one, the mean vertex of
+// a mesh (looked up in `meshes`).
+WorldPoint geometryCenter(const Geometry& geometry, const std::vector<TriangleMesh>& meshes) {
   return std::visit(
-      [](const auto& g) -> WorldPoint {
+      [&](const auto& g) -> WorldPoint {
         using T = std::decay_t<decltype(g)>;
-        if constexpr (std::is_same_v<T, Quad>) return (g.v0 + g.v1 + g.v2 + g.v3) / 4.0;
-        if constexpr (std::is_same_v<T, Triangle>) return (g.v0 + g.v1 + g.v2) / 3.0;
         if constexpr (std::is_same_v<T, Sphere> || std::is_same_v<T, Cylinder>) return g.center;
-        return WorldPoint(0.0);  // area lights' own surfaces are never meshes
+        if constexpr (std::is_same_v<T, Triangle>) return (g.v0 + g.v1 + g.v2) / 3.0;
+        if constexpr (std::is_same_v<T, Quad>) return (g.v0 + g.v1 + g.v2 + g.v3) / 4.0;
+        if constexpr (std::is_same_v<T, MeshInstance>) {
+          const TriangleMesh& mesh = meshes.at(g.mesh);
+          glm::dvec3 sum(0.0);
+          for (const glm::vec3& p : mesh.positions) sum += glm::dvec3(p);
+          const glm::dvec3 mean =
+              sum / static_cast<double>(std::max<size_t>(1, mesh.positions.size()));
+          return WorldPoint(g.objectToWorld * glm::dvec4(mean, 1.0));
+        }
       },
       geometry);
 }
@@ -917,7 +925,7 @@ void readAreaLight(JsonObject& light, Scene& scene, LightList& lights) {
                                "an area light without area (an edge of length 0): read as a "
                                "point light at its centre");
       scene.pointLights.push_back(
-          {geometryCentre(*pending.geometry), intensity.diffuse, intensity.specular});
+          {geometryCenter(*pending.geometry, {}), intensity.diffuse, intensity.specular});
       return;
     }
   }
@@ -1867,26 +1875,6 @@ LightList readSceneObject(JsonObject& object, ShapeContext& context, Scene& scen
   return lights;
 }
 
-// A point inside each shape, for the default view.
-WorldPoint shapeCenter(const Shape& shape, const Scene& scene) {
-  return std::visit(
-      [&](const auto& g) -> WorldPoint {
-        using T = std::decay_t<decltype(g)>;
-        if constexpr (std::is_same_v<T, Sphere> || std::is_same_v<T, Cylinder>) return g.center;
-        if constexpr (std::is_same_v<T, Triangle>) return (g.v0 + g.v1 + g.v2) / 3.0;
-        if constexpr (std::is_same_v<T, Quad>) return (g.v0 + g.v1 + g.v2 + g.v3) / 4.0;
-        if constexpr (std::is_same_v<T, MeshInstance>) {
-          const TriangleMesh& mesh = scene.meshes.at(g.mesh);
-          glm::dvec3 sum(0.0);
-          for (const glm::vec3& p : mesh.positions) sum += glm::dvec3(p);
-          const glm::dvec3 mean =
-              sum / static_cast<double>(std::max<size_t>(1, mesh.positions.size()));
-          return WorldPoint(g.objectToWorld * glm::dvec4(mean, 1.0));
-        }
-      },
-      shape.geometry);
-}
-
 // A camera without a view direction looks along the z axis (the 2019 file's
 // spheres lie at +z, TsFreddie's at -z): towards the side the shapes are
 // on, planes left out (floors and walls reach past the camera).
@@ -1894,7 +1882,7 @@ void chooseDefaultView(Scene& scene) {
   double side = 0.0;
   double planeSide = 0.0;
   for (const Shape& shape : scene.shapes) {
-    const double z = shapeCenter(shape, scene).z - scene.camera.position.z;
+    const double z = geometryCenter(shape.geometry, scene.meshes).z - scene.camera.position.z;
     (std::holds_alternative<Quad>(shape.geometry) ? planeSide : side) += z;
   }
   if (side == 0.0) side = planeSide;
