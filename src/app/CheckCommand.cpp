@@ -133,7 +133,7 @@ void printList(const char* title, const std::vector<std::string>& lines) {
 int run(const CommandLine& cli) {
   rt::Scene scene = rt::loadSceneFile(cli.scenePath, {cli.strict});
   rt::cli::applyConventionsOption(cli.conventions, scene);
-  std::printf("scene: %s, read as %s\n", cli.scenePath.c_str(), rt::sceneFileKind(cli.scenePath));
+  std::printf("scene: %s, read as %s\n", cli.scenePath.c_str(), scene.fileKind.c_str());
   std::printf("conventions: %s (%s)\n", rt::conventionsName(scene.conventions),
               scene.conventionsReason.c_str());
   const rt::RenderSettings& s = scene.settings;

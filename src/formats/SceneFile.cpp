@@ -18,16 +18,13 @@ Scene loadSceneFile(const std::filesystem::path& file, const SceneLoadOptions& o
   Scene scene = isGltfFile(file)  ? loadGltfScene(file)
                 : isObjFile(file) ? loadObjScene(file)
                                   : loadJsonScene(file);
+  if (scene.fileKind.empty()) {
+    scene.fileKind = isGltfFile(file) ? "glTF" : isObjFile(file) ? "OBJ" : "coursework JSON";
+  }
   if (options.strict && !scene.warnings.empty()) {
     throw Error(scene.warnings.front() + " (--strict: every warning is an error)");
   }
   return scene;
-}
-
-const char* sceneFileKind(const std::filesystem::path& file) {
-  if (isGltfFile(file)) return "glTF";
-  if (isObjFile(file)) return "OBJ";
-  return "coursework JSON";
 }
 
 }  // namespace rt

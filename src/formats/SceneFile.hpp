@@ -1,6 +1,6 @@
 // Any scene file the renderer reads, chosen by extension: .gltf/.glb as a
 // glTF scene of its own, .obj as an OBJ model (framed the same way),
-// everything else as a coursework JSON scene.
+// everything else as a JSON scene (coursework, or a Blender export).
 #pragma once
 
 #include <filesystem>
@@ -17,9 +17,6 @@ struct SceneLoadOptions {
 };
 
 Scene loadSceneFile(const std::filesystem::path& file, const SceneLoadOptions& options = {});
-
-// What kind of file loadSceneFile reads it as: "coursework JSON", "glTF", "OBJ".
-const char* sceneFileKind(const std::filesystem::path& file);
 
 bool isGltfFile(const std::filesystem::path& file);
 

@@ -201,6 +201,9 @@ struct RenderSettings {
 
 struct Scene {
   std::filesystem::path sourcePath;
+  // How the file was read ("coursework JSON", "Blender scene export",
+  // "glTF", "OBJ"), for `raytracer check`.
+  std::string fileKind;
   Conventions conventions = Conventions::CourseworkA;
   std::string conventionsReason;  // why the loader chose them, e.g. "key 'rendermode'"
   RenderSettings settings;

@@ -246,6 +246,24 @@ else
 fi
 "$RAYTRACER" check "$SCRATCH/lenient.json" --strict >/dev/null 2>&1; [[ $? -eq 1 ]] && pass || fail "check --strict must exit 1"
 expect_failure nothing "check of a broken file" "^error: .*broken.json: byte " check "$SCRATCH/broken.json"
+# A Blender scene export (README "Student scenes"): read in Blender's units
+# and camera, said so by `check`, rendered end to end.
+BLENDER='{"properties": {"cameras": [{"location": {"x": 7, "y": -7, "z": 5},
+  "gaze_vector": {"x": -0.65, "y": 0.61, "z": -0.45}, "up_vector": {"x": -0.32, "y": 0.31, "z": 0.9},
+  "focal_length": 50, "sensor": {"width": 36, "height": 24}, "film_resolution": {"width": 48, "height": 27}}],
+  "point_lights": [{"location": {"x": 4, "y": 1, "z": 6}, "radiant_intensity": 1000}],
+  "cubes": [{"translation": {"x": 0, "y": 0, "z": 0}, "rotation": {"x": 0, "y": 0, "z": 0}, "scale": 1}]}}'
+write blender.json "$BLENDER"
+"$RAYTRACER" check "$SCRATCH/blender.json" >"$SCRATCH/check" 2>&1; status=$?
+if [[ $status -eq 0 ]] && grep -q "read as a Blender scene export" "$SCRATCH/check" &&
+  grep -q "^conventions: physical (a Blender scene export" "$SCRATCH/check" &&
+  grep -q "^camera: pinhole 48x27" "$SCRATCH/check" &&
+  "$RAYTRACER" "$SCRATCH/blender.json" "$SCRATCH/blender.png" --spp 1 -q 2>"$SCRATCH/stderr" &&
+  [[ -s "$SCRATCH/blender.png" ]]; then
+  pass
+else
+  fail "Blender export: status $status: $(cat "$SCRATCH/check" "$SCRATCH/stderr")"
+fi
 CRATE="$(dirname "${BASH_SOURCE[0]}")/../../assets/models/crate.obj"
 if "$RAYTRACER" "$CRATE" "$SCRATCH/crate.png" --size 64x48 --spp 1 -q 2>"$SCRATCH/stderr" && [[ -s "$SCRATCH/crate.png" ]]; then
   pass

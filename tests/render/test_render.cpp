@@ -394,3 +394,29 @@ TEST_SUITE("render") {
     }
   }
 }
+
+// A Blender export (formats/json/BlenderExport), end to end: Blender's
+// camera, cube, light power and world colour.
+TEST_SUITE("render") {
+  TEST_CASE("the default cube, lit by the default light, renders where Blender draws it") {
+    // Blender's startup scene as an exporter writes it, on a 64 x 36 image.
+    const rt::Scene scene = rt::parseJsonScene(R"({
+      "cameras": [{"location": [7.3589, -6.9258, 4.9583],
+                   "gaze_vector": [-0.6516, 0.6142, -0.4453],
+                   "up_vector": [-0.3240, 0.3054, 0.8954], "focal_length": 50,
+                   "sensor_width": 36, "sensor_height": 24, "film_resolution": [64, 36]}],
+      "point_lights": [{"location": [4.0762, 1.0055, 5.9039], "radiant_intensity": 1000}],
+      "cubes": [{"translation": [0, 0, 0], "rotation": [0, 0, 0], "scale": 1}]})",
+                                               "startup.json");
+    rt::RenderOptions options;
+    options.samplesPerPixel = 4;
+    const rt::ImageF image = rt::test::render(scene, options);
+    const float center = image.pixel(32, 18)[0];
+    const float corner = image.pixel(1, 1)[0];
+    // The cube fills the middle of the frame and is lit; the corner is the world's grey.
+    CHECK(center > 0.1f);
+    CHECK(corner == doctest::Approx(0.050876f).epsilon(0.01));
+    // The face towards the light is brighter than the one away from it.
+    CHECK(image.pixel(38, 18)[0] != doctest::Approx(image.pixel(26, 18)[0]).epsilon(0.05));
+  }
+}

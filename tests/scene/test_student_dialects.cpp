@@ -538,23 +538,6 @@ TEST_SUITE("student dialects") {
 }
 
 TEST_SUITE("student dialects") {
-  TEST_CASE("Blender scene exports are refused with a line that names them") {
-    for (const char* text :
-         {R"({"properties": {"cameras": [{"location": {"x": 9, "y": -8, "z": 8}}]}})",
-          R"({"cameras": [{"location": [7, -6, 4], "gaze_vector": [0, 1, 0]}], "cubes": []})",
-          R"({"camera": {"location": [0, 0, 5], "gaze": [0, 0, -1]}, "objects": []})"}) {
-      CAPTURE(text);
-      CHECK_THROWS_WITH_AS(rt::parseJsonScene(text, "export.json"),
-                           doctest::Contains("a Blender scene export"), rt::Error);
-    }
-    // A coursework camera that also has a `location` key is still read as one.
-    Json scene = baseScene();
-    scene["camera"]["location"] = {0, 0, 0};
-    CHECK_NOTHROW(parse(scene));
-  }
-}
-
-TEST_SUITE("student dialects") {
   TEST_CASE("a mesh of vertices without faces is a triangle strip (Seanst98), UVs of 3") {
     Json scene = baseScene();
     shape0(scene) = Json::parse(R"({"type": "trimesh",
@@ -629,15 +612,5 @@ TEST_SUITE("student dialects") {
     CHECK(near(loaded.pointLights[0].position, {0, 2, 1}));
     CHECK(loaded.pointLights[0].diffuseIntensity == glm::vec3(3.0f));
     CHECK(hasWarning(loaded, "an area light without area"));
-  }
-
-  TEST_CASE("more Blender exports: a bare list of objects, objects with a CAMERA") {
-    for (const char* text : {R"([{"name": "Camera", "type": "CAMERA", "location": [7, -6, 4]}])",
-                             R"({"scene_name": "Scene", "objects": [{"type": "MESH"},
-                                 {"type": "CAMERA", "location": [7, -6, 4]}]})"}) {
-      CAPTURE(text);
-      CHECK_THROWS_WITH_AS(rt::parseJsonScene(text, "export.json"),
-                           doctest::Contains("a Blender scene export"), rt::Error);
-    }
   }
 }

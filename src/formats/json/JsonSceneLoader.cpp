@@ -21,7 +21,9 @@
 #include "formats/common/SceneTextures.hpp"
 #include "formats/common/UnitVector.hpp"
 #include "formats/gltf/GltfLoader.hpp"
+#include "formats/json/BlenderExport.hpp"
 #include "formats/json/JsonReader.hpp"
+#include "formats/json/ReferencedFiles.hpp"
 #include "formats/obj/ObjLoader.hpp"
 #include "formats/ply/PlyLoader.hpp"
 #include "scene/Limits.hpp"
@@ -971,44 +973,6 @@ void readLight(const JsonNode& node, Scene& scene, LightList& lights) {
 
 // ---------------------------------------------------------------- materials
 
-// Some students ran from a build folder inside the scene's folder
-// ("../textures/x.jpg" next to demo.json): the path seen from a subfolder.
-fs::path seenFromSubfolder(const fs::path& written, const fs::path& sceneDir) {
-  auto part = written.begin();
-  if (written.is_absolute() || part == written.end() || *part != "..") return {};
-  fs::path rest;
-  for (++part; part != written.end(); ++part) rest /= *part;
-  return rest.empty() ? fs::path{} : (sceneDir / rest).lexically_normal();
-}
-
-// Texture paths in family A are relative to a build folder beside examples/,
-// so "../textures/x.jpg" works from the scene's own folder; the README also
-// allows the folder above it. Students' mesh paths follow the same habit
-// ("examples/monkey.ply" from examples/), and some ran from a folder inside
-// the scene's. Backslashes (Windows) are folder separators.
-std::optional<fs::path> findRelative(const JsonNode& node, const fs::path& sceneDir) {
-  std::string text = node.nonEmptyString();
-  std::replace(text.begin(), text.end(), '\\', '/');
-  const fs::path written = text;
-  const fs::path parentDir = sceneDir.parent_path();
-  for (const fs::path& candidate :
-       {(sceneDir / written).lexically_normal(), (parentDir / written).lexically_normal(),
-        seenFromSubfolder(written, sceneDir)}) {
-    std::error_code ignored;
-    if (!candidate.empty() && fs::is_regular_file(candidate, ignored)) return candidate;
-  }
-  return std::nullopt;
-}
-
-// "<kind> file not found: <path> (looked in ...)"; `kind` names the file.
-std::string notFoundMessage(const JsonNode& node, const fs::path& sceneDir, std::string_view kind) {
-  const fs::path written = node.raw().get<std::string>();
-  const std::string notFound = std::string(kind) + " file not found: " + written.string();
-  if (written.is_absolute()) return notFound;
-  return notFound + " (looked in " + sceneDir.string() + " and " + sceneDir.parent_path().string() +
-         ")";
-}
-
 // TsFreddie's files may name a texture ("checkerboard") where a weight belongs.
 std::optional<JsonNode> withoutTextureWeight(std::optional<JsonNode> node) {
   if (node && node->raw().is_string()) {
@@ -1060,15 +1024,6 @@ void readRefraction(JsonObject& material, Material& out) {
       return;
     }
     out.ior = ior->positiveFloat();
-  }
-}
-
-// Decodes the texture once per file, however many materials use it.
-int32_t addTexture(const JsonNode& node, const fs::path& file, Scene& scene) {
-  try {
-    return addTextureFile(scene, file);
-  } catch (const Error& error) {
-    node.fail(std::string("cannot use texture: ") + error.what());
   }
 }
 
@@ -1136,14 +1091,8 @@ void readTextureKeys(JsonObject& object, TextureKeys where, const fs::path& scen
   } else if (texture->raw() == "checkerboard") {
     out.texture = "checkerboard";
     out.diffuseTexture = addCheckerboard(scene);
-  } else if (const std::optional<fs::path> file = findRelative(*texture, sceneDir)) {
-    out.texture = *file;
-    out.diffuseTexture = addTexture(*texture, out.texture, scene);
   } else {
-    texture->warn(notFoundMessage(*texture, sceneDir, "texture") +
-                  "; drawn with the missing-texture squares");
-    out.texture = texture->string();
-    out.diffuseTexture = addMissingTexture(scene);
+    readTextureFile(*texture, sceneDir, out, scene);
   }
 }
 
@@ -1634,7 +1583,7 @@ bool readMeshFileShape(const JsonNode& fileNode, JsonObject& shape, ShapeContext
                                                          "': give inline vertices or a mesh file");
     }
   }
-  const std::optional<fs::path> file = findRelative(fileNode, context.sceneDir);
+  const std::optional<fs::path> file = findReferencedFile(fileNode, context.sceneDir);
   if (!file) {
     fileNode.warn(notFoundMessage(fileNode, context.sceneDir, "mesh") + "; the shape is left out");
     readPlacement(shape);
@@ -1889,50 +1838,26 @@ void chooseDefaultView(Scene& scene) {
   if (side < 0.0) scene.camera.forward = -kDefaultForward;
 }
 
-fs::path absoluteFolderOf(const fs::path& file) {
-  std::error_code failed;
-  const fs::path absolute = fs::absolute(file, failed);
-  return (failed ? file : absolute).lexically_normal().parent_path();
-}
-
-// A list of Blender objects, one of them a camera ({"type": "CAMERA", ...}).
-bool listsBlenderCamera(const Json* objects) {
-  return objects && objects->is_array() &&
-         std::any_of(objects->begin(), objects->end(), [](const Json& object) {
-           const Json* type = findKey(object, "type");
-           return type && type->is_string() && *type == "CAMERA";
-         });
-}
-
-// Scenes exported from Blender by a later coursework's students, each with
-// their own exporter (`properties.cameras[]`, `cameras[]` beside `cubes`, a
-// `camera` with `location` and `gaze`, `objects` or a bare list of Blender
-// objects with a "CAMERA"): a different format, refused with a line that says
-// so rather than with its first missing key.
-bool looksLikeBlenderExport(const Json& document) {
-  if (listsBlenderCamera(&document)) return true;
-  if (!document.is_object()) return false;
-  const Json* camera = findKey(document, "camera");
-  if (!camera) {
-    const Json* properties = findKey(document, "properties");
-    return document.contains("cameras") || listsBlenderCamera(findKey(document, "objects")) ||
-           (properties && properties->is_object() && properties->contains("cameras"));
-  }
-  return camera->is_object() && camera->contains("location") && !camera->contains("position") &&
-         (camera->contains("gaze") || camera->contains("gaze_vector"));
+// The loader's warnings, ahead of those models read from other files (OBJ,
+// glTF) brought, and the values it read.
+void takeDiagnostics(Diagnostics& diagnostics, Scene& scene) {
+  std::vector<std::string> own = diagnostics.takeWarnings();
+  makePrintable(own);
+  scene.warnings.insert(scene.warnings.begin(), own.begin(), own.end());
+  scene.valuesRead = diagnostics.takeReads();
 }
 
 Scene readScene(std::string_view jsonText, const fs::path& file) {
   Diagnostics diagnostics(file.string());
   const Json document = parseJson(jsonText, file.string(), diagnostics);
+  if (looksLikeBlenderExport(document)) {
+    Scene scene = readBlenderExport(document, file, diagnostics);
+    takeDiagnostics(diagnostics, scene);
+    return scene;
+  }
   Scene scene;
   scene.sourcePath = file;
   const JsonNode root(document, "", diagnostics);
-  if (looksLikeBlenderExport(document)) {
-    root.fail(
-        "a Blender scene export (cameras with `location` and a gaze vector), not the "
-        "coursework JSON scene format this renderer reads (README 'Student scenes')");
-  }
   JsonObject top = root.object();
   ChosenConventions chosen = chooseConventions(top, document);
   scene.settings.maxBounces = readBounces(top);
@@ -1962,11 +1887,7 @@ Scene readScene(std::string_view jsonText, const fs::path& file) {
   ignoreRendererKeys(top);
   readRendererSwitches(top);
   top.reportUnknownKeys();
-  // Models read from other files (OBJ, glTF) brought their own warnings.
-  std::vector<std::string> own = diagnostics.takeWarnings();
-  makePrintable(own);
-  scene.warnings.insert(scene.warnings.begin(), own.begin(), own.end());
-  scene.valuesRead = diagnostics.takeReads();
+  takeDiagnostics(diagnostics, scene);
   return scene;
 }
 

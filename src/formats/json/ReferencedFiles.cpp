@@ -1,0 +1,76 @@
+#include "formats/json/ReferencedFiles.hpp"
+
+#include <algorithm>
+#include <system_error>
+
+#include "formats/common/SceneTextures.hpp"
+#include "util/Error.hpp"
+
+namespace rt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Some students ran from a build folder inside the scene's folder
+// ("../textures/x.jpg" next to demo.json): the path seen from a subfolder.
+fs::path seenFromSubfolder(const fs::path& written, const fs::path& sceneDir) {
+  auto part = written.begin();
+  if (written.is_absolute() || part == written.end() || *part != "..") return {};
+  fs::path rest;
+  for (++part; part != written.end(); ++part) rest /= *part;
+  return rest.empty() ? fs::path{} : (sceneDir / rest).lexically_normal();
+}
+
+}  // namespace
+
+fs::path absoluteFolderOf(const fs::path& file) {
+  std::error_code failed;
+  const fs::path absolute = fs::absolute(file, failed);
+  return (failed ? file : absolute).lexically_normal().parent_path();
+}
+
+// Texture paths in family A are relative to a build folder beside examples/,
+// so "../textures/x.jpg" works from the scene's own folder; the README also
+// allows the folder above it. Students' mesh paths follow the same habit
+// ("examples/monkey.ply" from examples/), and some ran from a folder inside
+// the scene's. Backslashes (Windows) are folder separators.
+std::optional<fs::path> findReferencedFile(const JsonNode& node, const fs::path& sceneDir) {
+  std::string text = node.nonEmptyString();
+  std::replace(text.begin(), text.end(), '\\', '/');
+  const fs::path written = text;
+  const fs::path parentDir = sceneDir.parent_path();
+  for (const fs::path& candidate :
+       {(sceneDir / written).lexically_normal(), (parentDir / written).lexically_normal(),
+        seenFromSubfolder(written, sceneDir)}) {
+    std::error_code ignored;
+    if (!candidate.empty() && fs::is_regular_file(candidate, ignored)) return candidate;
+  }
+  return std::nullopt;
+}
+
+std::string notFoundMessage(const JsonNode& node, const fs::path& sceneDir, std::string_view kind) {
+  const fs::path written = node.raw().get<std::string>();
+  const std::string notFound = std::string(kind) + " file not found: " + written.string();
+  if (written.is_absolute()) return notFound;
+  return notFound + " (looked in " + sceneDir.string() + " and " + sceneDir.parent_path().string() +
+         ")";
+}
+
+void readTextureFile(const JsonNode& node, const fs::path& sceneDir, Material& out, Scene& scene) {
+  if (const std::optional<fs::path> file = findReferencedFile(node, sceneDir)) {
+    out.texture = *file;
+    try {
+      out.diffuseTexture = addTextureFile(scene, *file);
+    } catch (const Error& error) {
+      node.fail(std::string("cannot use texture: ") + error.what());
+    }
+    return;
+  }
+  node.warn(notFoundMessage(node, sceneDir, "texture") +
+            "; drawn with the missing-texture squares");
+  out.texture = node.string();
+  out.diffuseTexture = addMissingTexture(scene);
+}
+
+}  // namespace rt
