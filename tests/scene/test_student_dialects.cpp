@@ -614,3 +614,68 @@ TEST_SUITE("student dialects") {
     CHECK(hasWarning(loaded, "an area light without area"));
   }
 }
+
+TEST_SUITE("student dialects") {
+  TEST_CASE("the textbook camera: lookfrom, lookat a point, vup (sukriti27)") {
+    Json scene = baseScene();
+    scene["camera"] = Json::parse(R"({"type": "pinhole", "width": 32, "height": 24, "fov": 45,
+        "lookfrom": [0, 0, 5], "lookat": [0, 0, 3], "vup": [0, 1, 0]})");
+    const rt::Scene loaded = parse(scene);
+    CHECK(loaded.camera.position == rt::WorldPoint(0, 0, 5));
+    // A point: from (0, 0, 5) towards (0, 0, 3), not the direction (0, 0, 3).
+    CHECK(loaded.camera.forward == glm::vec3(0, 0, -1));
+    CHECK(!hasWarning(loaded, "unknown key"));
+  }
+
+  TEST_CASE("camPos, camView (a direction) and camAxis (acs107102)") {
+    Json scene = baseScene();
+    scene["camera"] = Json::parse(R"({"type": "pinhole", "width": 32, "height": 24, "fov": 35,
+        "camPos": [0, -3.5, 2], "camView": [0, 1, 0], "camAxis": [0, 0, 0.5]})");
+    const rt::Scene loaded = parse(scene);
+    CHECK(loaded.camera.position == rt::WorldPoint(0, -3.5, 2));
+    // Read as the view, not replaced by the default view (which was parallel to up).
+    CHECK(loaded.camera.forward == glm::vec3(0, 1, 0));
+    CHECK(loaded.camera.up == glm::vec3(0, 0, 0.5f));
+  }
+
+  TEST_CASE("sample_number, use_jitter_sample (IrwinChay), camera samplesize (Vergilc)") {
+    Json scene = baseScene();
+    scene["sample_number"] = 12;
+    scene["use_jitter_sample"] = false;
+    rt::Scene loaded = parse(scene);
+    CHECK(loaded.settings.samplesPerPixel == 12);
+    CHECK(loaded.settings.sampler == rt::SamplerKind::Random);
+    scene = baseScene();
+    scene["camera"]["samplesize"] = 9;
+    loaded = parse(scene);
+    CHECK(loaded.settings.samplesPerPixel == 9);
+  }
+
+  TEST_CASE("a triangle's uv1..uv3 beside corners v1..v3 (sukriti27)") {
+    Json scene = baseScene();
+    shape0(scene) = Json::parse(R"({"type": "triangle", "v1": [0, 0, 3], "v2": [1, 0, 3],
+        "v3": [0, 1, 3], "uv1": [0.5, 0.1], "uv2": [0.1, 0.9], "uv3": [0.9, 0.9],
+        "material": {"ks": 0, "kd": 1, "specularexponent": 3, "diffusecolor": [1, 1, 1]}})");
+    const rt::Scene loaded = parse(scene);
+    REQUIRE(loaded.meshes.size() == 1);
+    REQUIRE(loaded.meshes[0].uvs.size() == 3);
+    CHECK(loaded.meshes[0].uvs[0] == glm::vec2(0.5f, 0.1f));
+    CHECK(loaded.meshes[0].uvs[2] == glm::vec2(0.9f, 0.9f));
+  }
+
+  TEST_CASE("a mesh file placed by `position` (IrwinChay)") {
+    rt::test::TempDir dir;
+    dir.write("tri.ply",
+              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+              "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+              "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    Json scene = baseScene();
+    shape0(scene) = Json::parse(R"({"type": "mesh", "path": "tri.ply", "position": [1, 2, 3],
+        "vs": 3, "fs": 1,
+        "material": {"ks": 0, "kd": 1, "specularexponent": 3, "diffusecolor": [1, 1, 1]}})");
+    const rt::Scene loaded = rt::parseJsonScene(scene.dump(), dir.path() / "scene.json");
+    REQUIRE(loaded.shapes.size() == 1);
+    CHECK(near(placedVertex(loaded, 0, 1), {2, 2, 3}));
+    CHECK(!hasWarning(loaded, "unknown key"));
+  }
+}

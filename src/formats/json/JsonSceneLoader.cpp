@@ -72,6 +72,10 @@ Json parseJson(std::string_view text, const std::string& file, Diagnostics& diag
   });
 }
 
+// Camera keys that say where it looks; without any, chooseDefaultView decides.
+constexpr std::array<const char*, 5> kViewKeys = {"lookat", "lookAt", "look_at", "target",
+                                                  "camView"};
+
 // ---------------------------------------------------------- family detection
 
 const Json* findKey(const Json& object, std::string_view key) {
@@ -257,8 +261,10 @@ std::optional<JsonNode> samplerKey(JsonObject& object) {
 // Returns whether the file names a sampler.
 bool readSampling(JsonObject& top, JsonObject& camera, RenderSettings& settings) {
   const auto samplesAt = [](JsonObject& object) {
+    // `camera samples`: Trenza1ore; `sample_number`: IrwinChay; `samplesize`: Vergilc.
     return object.optionalOneOf({"nsamples", "samples", "spp", "pixel_sample_num",
-                                 "samples_per_pixel", "camera samples"});  // Trenza1ore
+                                 "samples_per_pixel", "camera samples", "sample_number",
+                                 "samplesize"});
   };
   std::optional<SamplerKind> sampler =
       readFromEither(samplerKey(top), samplerKey(camera), parseSampler);
@@ -303,7 +309,9 @@ void readRendererSwitches(JsonObject& top) {
 // `use_stratified_sampling` (Kierandon): jittered when true, random when
 // false, unless the file names a sampler.
 void readStratifiedSwitch(JsonObject& top, RenderSettings& settings) {
-  const std::optional<JsonNode> node = top.optional("use_stratified_sampling");
+  // use_jitter_sample: IrwinChay.
+  const std::optional<JsonNode> node =
+      top.optionalOneOf({"use_stratified_sampling", "use_jitter_sample"});
   if (!node) return;
   const bool stratified = node->boolean();
   if (settings.samplerGiven) return;
@@ -346,8 +354,13 @@ glm::vec3 unitVector(const JsonNode& node) {
 // Family A `lookat` is a view direction, family B `lookAt` a target point
 // (both verified against the official renders; see README).
 glm::vec3 readForward(JsonObject& camera, const WorldPoint& position) {
-  const std::optional<JsonNode> direction = camera.optional("lookat");
-  const std::optional<JsonNode> target = camera.optionalOneOf({"lookAt", "look_at", "target"});
+  // Beside the textbook's `lookfrom`, `lookat` is the point looked at.
+  const bool textbook = camera.has("lookfrom");
+  const std::optional<JsonNode> direction =
+      textbook ? std::nullopt : camera.optionalOneOf({"lookat", "camView"});
+  const std::optional<JsonNode> target =
+      textbook ? camera.optionalOneOf({"lookat", "lookAt", "target"})
+               : camera.optionalOneOf({"lookAt", "look_at", "target"});
   if (direction && target) {
     target->fail(
         "conflicts with 'camera.lookat': lookat is a view direction, lookAt a target point");
@@ -374,7 +387,8 @@ glm::vec3 readForward(JsonObject& camera, const WorldPoint& position) {
 // `up` is kept as given (the ray builder orthogonalises it) but must span an
 // image plane with the view direction.
 glm::vec3 readUp(JsonObject& camera, glm::vec3 forward) {
-  const std::optional<JsonNode> node = camera.optionalOneOf({"up", "upVector", "up_vector"});
+  const std::optional<JsonNode> node =
+      camera.optionalOneOf({"up", "upVector", "up_vector", "vup", "camAxis"});
   const glm::vec3 up = node ? node->vec3() : kDefaultUp;
   const std::string path = node ? node->path() : camera.childPath("up");
   glm::vec3 direction = up;
@@ -571,7 +585,8 @@ Camera readCamera(JsonObject& camera) {
   const std::optional<JsonNode> fov =
       optionalOrDefault(camera, {"fov", "field_of_view", "fieldOfView"}, "45 degrees");
   out.fovYDegrees = fov ? readFov(*fov) : kDefaultFovDegrees;
-  std::optional<JsonNode> position = camera.optional("position");
+  // lookfrom/lookat/vup: the textbook's camera (sukriti27); camPos/camView/camAxis: acs107102.
+  std::optional<JsonNode> position = camera.optionalOneOf({"position", "lookfrom", "camPos"});
   if (!position) position = readKeyframedPosition(camera);
   out.position = position ? position->point() : kDefaultPosition;
   out.forward = readForward(camera, out.position);
@@ -1428,7 +1443,7 @@ glm::vec2 readUv(const JsonNode& node) {
 // Corner attributes of a triangle: texture coordinates (Ninteedo: `uv0`..`uv2`
 // beside `v0`..`v2`) and shading normals (J-MR-T: `v0Normal`..`v2Normal`).
 bool hasCornerAttributes(const JsonObject& shape) {
-  return shape.has("uv0") || shape.has("v0Normal");
+  return shape.has("uv0") || shape.has("uv1") || shape.has("v0Normal");
 }
 
 // Such a triangle is a one-triangle mesh, which carries them.
@@ -1437,8 +1452,11 @@ InlineMesh readAttributedTriangle(JsonObject& shape) {
   InlineMesh out;
   setWorldPositions({corners.v0, corners.v1, corners.v2}, out);
   out.mesh.faces.emplace_back(0, 1, 2);
-  if (shape.has("uv0")) {
-    for (const char* key : {"uv0", "uv1", "uv2"}) {
+  // uv1..uv3 beside corners v1..v3 (sukriti27).
+  const bool fromOne = !shape.has("uv0") && shape.has("uv1");
+  if (shape.has("uv0") || fromOne) {
+    for (const char* key :
+         fromOne ? std::array{"uv1", "uv2", "uv3"} : std::array{"uv0", "uv1", "uv2"}) {
       out.mesh.uvs.push_back(readUv(shape.required(key)));
     }
   }
@@ -1496,7 +1514,8 @@ InlineMesh readInlineMesh(JsonObject& shape) {
 WorldTransform readPlacement(JsonObject& shape) {
   WorldPoint translation(0.0);
   glm::dvec3 scale(1.0);
-  if (const std::optional<JsonNode> node = shape.optionalOneOf({"center", "pos", "offset"})) {
+  if (const std::optional<JsonNode> node =
+          shape.optionalOneOf({"center", "pos", "offset", "position"})) {
     translation = node->point();
   }
   if (const std::optional<JsonNode> node = shape.optionalOneOf({"scale", "sizeScale"})) {
@@ -1583,6 +1602,7 @@ bool readMeshFileShape(const JsonNode& fileNode, JsonObject& shape, ShapeContext
                                                          "': give inline vertices or a mesh file");
     }
   }
+  shape.ignore({"vs", "fs"});  // MBaczun: the file's vertex and face counts
   const std::optional<fs::path> file = findReferencedFile(fileNode, context.sceneDir);
   if (!file) {
     fileNode.warn(notFoundMessage(fileNode, context.sceneDir, "mesh") + "; the shape is left out");
@@ -1865,7 +1885,8 @@ Scene readScene(std::string_view jsonText, const fs::path& file) {
   scene.settings.distributedBounces = readDistributedBounces(top, scene.settings.mode);
   scene.settings.indirectClamp = readIndirectClamp(top);
   JsonObject camera = top.required("camera").object();
-  const bool defaultView = !camera.has("lookat") && !camera.has("lookAt");
+  const bool defaultView = std::none_of(kViewKeys.begin(), kViewKeys.end(),
+                                        [&](const char* key) { return camera.has(key); });
   scene.camera = readCamera(camera);
   scene.camera.toneCurve = readToneCurve(top, camera);
   const bool samplerGiven = readSampling(top, camera, scene.settings);
