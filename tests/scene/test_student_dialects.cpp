@@ -679,3 +679,61 @@ TEST_SUITE("student dialects") {
     CHECK(!hasWarning(loaded, "unknown key"));
   }
 }
+
+TEST_SUITE("student dialects") {
+  TEST_CASE("named materials and textures, cameraToWorld, an infinite plane (isaacery)") {
+    Json scene = baseScene();
+    scene["sampling"] = "grid";
+    scene["camera"] = Json::parse(R"({"type": "thinlens", "width": 32, "height": 32, "fov": 50,
+        "cameraToWorld": [1, 0, 0, 0,  0, 0.6, 0.8, 4,  0, -0.8, 0.6, 0,  0, 0, 0, 1],
+        "radius": 0.2, "focus": 5})");
+    scene["scene"]["backgroundcolour"] = {0.1, 0.2, 0.3};
+    scene["scene"]["ambient"] = 0.25;
+    scene["scene"]["textures"] = Json::parse(R"([
+        {"name": "green", "type": "constant", "colour": [0.04, 0.42, 0.01]},
+        {"name": "ball", "type": "image", "image": "Ball1.jpg", "offset_u": 0.4, "offset_v": 0.9}])");
+    scene["scene"]["materials"] = Json::parse(R"([
+        {"name": "floor", "type": "blinnphong", "ka": 0, "ks": 0, "kd": 0.75, "alpha": 5,
+         "reflectance": 0, "texture": "green"},
+        {"name": "ball", "type": "blinnphong", "ka": 0.2, "ks": 0.8, "kd": 0.8, "alpha": 8,
+         "reflectance": 0.5, "texture": "ball"}])");
+    scene["scene"]["shapes"] = Json::parse(R"([
+        {"type": "sphere", "radius": 1, "center": [-1, 0, -3], "material": "ball"},
+        {"type": "sphere", "radius": 1, "center": [1, 0, -3], "material": "ball"},
+        {"type": "plane", "distance": -1, "normal": [0, 1, 0], "material": "floor"}])");
+    const rt::Scene loaded = parse(scene);
+    CHECK(loaded.settings.sampler == rt::SamplerKind::Jittered);
+    CHECK(loaded.backgroundColor == glm::vec3(0.1f, 0.2f, 0.3f));
+    // Camera space looks down -z with y up; the matrix's last column places it.
+    CHECK(loaded.camera.position == rt::WorldPoint(0, 4, 0));
+    CHECK(glm::length(loaded.camera.forward - glm::vec3(0, -0.8f, -0.6f)) < 1e-6f);
+    CHECK(loaded.camera.type == rt::CameraType::ThinLens);
+    CHECK(loaded.camera.apertureRadius == 0.2f);
+    CHECK(loaded.camera.focusDistance == 5.0f);
+    REQUIRE(loaded.shapes.size() == 3);
+    // Both balls share the one named material.
+    CHECK(loaded.shapes[0].material == loaded.shapes[1].material);
+    const rt::Material& ball = loaded.materials[loaded.shapes[0].material];
+    CHECK(ball.specularExponent == 8.0f);
+    CHECK(ball.reflectivity == 0.5f);
+    CHECK(ball.diffuseTexture >= 0);  // the missing-texture squares
+    const rt::Material& floor = loaded.materials[loaded.shapes[2].material];
+    CHECK(floor.diffuseColor == glm::vec3(0.04f, 0.42f, 0.01f));
+    const auto& plane = std::get<rt::Quad>(loaded.shapes[2].geometry);
+    CHECK(plane.v0.y == -1.0);
+    CHECK(std::abs(plane.v0.x) == 1e4);
+    for (const char* warning : {"texture file not found: Ball1.jpg", "texture offsets are not read",
+                                "an infinite plane", "'ka' ignored", "scene.ambient: ignored"}) {
+      CAPTURE(warning);
+      CHECK(hasWarning(loaded, warning));
+    }
+  }
+
+  TEST_CASE("a shape naming a material that was not defined names the key") {
+    Json scene = baseScene();
+    shape0(scene)["material"] = "nowhere";
+    CHECK_THROWS_WITH_AS(parse(scene),
+                         doctest::Contains("scene.shapes[0].material: no material named 'nowhere'"),
+                         rt::Error);
+  }
+}

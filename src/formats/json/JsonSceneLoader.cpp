@@ -23,6 +23,7 @@
 #include "formats/gltf/GltfLoader.hpp"
 #include "formats/json/BlenderExport.hpp"
 #include "formats/json/JsonReader.hpp"
+#include "formats/json/NamedMaterials.hpp"
 #include "formats/json/ReferencedFiles.hpp"
 #include "formats/obj/ObjLoader.hpp"
 #include "formats/ply/PlyLoader.hpp"
@@ -52,6 +53,7 @@ struct ShapeContext {
   fs::path sceneDir;  // absolute folder of the scene file, for texture and mesh paths
   RenderMode mode;
   std::map<fs::path, uint32_t> plyMeshes;  // Scene::meshes index of each PLY file read
+  NamedMaterials namedMaterials;           // a `materials` list's, by name (isaacery)
 };
 
 // ---------------------------------------------------------------- JSON text
@@ -73,8 +75,8 @@ Json parseJson(std::string_view text, const std::string& file, Diagnostics& diag
 }
 
 // Camera keys that say where it looks; without any, chooseDefaultView decides.
-constexpr std::array<const char*, 5> kViewKeys = {"lookat", "lookAt", "look_at", "target",
-                                                  "camView"};
+constexpr std::array<const char*, 6> kViewKeys = {"lookat", "lookAt",  "look_at",
+                                                  "target", "camView", "cameraToWorld"};
 
 // ---------------------------------------------------------- family detection
 
@@ -437,7 +439,7 @@ struct LensKeys {
 
 std::optional<JsonNode> readFocusDistanceKey(JsonObject& camera) {
   return camera.optionalOneOf({"focusdistance", "focus_dist", "focalDistance", "focal_length",
-                               "focus_distance", "focalLength", "focusDistance"});
+                               "focus_distance", "focalLength", "focusDistance", "focus"});
 }
 
 LensKeys readLensKeys(JsonObject& camera) {
@@ -445,7 +447,7 @@ LensKeys readLensKeys(JsonObject& camera) {
   // `size`: TsFreddie's files
   keys.aperture =
       camera.optionalOneOf({"aperture", "size", "aperture_size", "apertureSize", "diameter"});
-  keys.lensRadius = camera.optionalOneOf({"lensRadius", "lensradius", "lens_radius"});
+  keys.lensRadius = camera.optionalOneOf({"lensRadius", "lensradius", "lens_radius", "radius"});
   if (keys.aperture && keys.lensRadius) {
     keys.lensRadius->fail(
         "conflicts with 'camera.aperture': give the lens diameter (aperture) or its radius "
@@ -565,6 +567,24 @@ std::optional<JsonNode> readKeyframedPosition(JsonObject& camera) {
   return first;
 }
 
+// isaacery's `cameraToWorld`: 16 numbers, a 4x4 matrix row by row that
+// takes camera space (looking down -z, y up) to the world.
+void readCameraMatrix(const JsonNode& node, Camera& out) {
+  const std::vector<JsonNode> numbers = node.array();
+  if (numbers.size() != 16) {
+    node.fail("expected 16 numbers (a 4x4 matrix, row by row), got " +
+              std::to_string(numbers.size()));
+  }
+  const auto at = [&](int row, int column) { return numbers[size_t(row * 4 + column)].number(); };
+  out.position = {at(0, 3), at(1, 3), at(2, 3)};
+  out.forward = -glm::vec3(float(at(0, 2)), float(at(1, 2)), float(at(2, 2)));
+  out.up = glm::vec3(float(at(0, 1)), float(at(1, 1)), float(at(2, 1)));
+  if (!normalizeInPlace(out.forward) ||
+      glm::length(glm::cross(out.forward, out.up)) < kParallelTolerance * glm::length(out.up)) {
+    node.fail("its rotation gives no view direction and up");
+  }
+}
+
 Camera readCamera(JsonObject& camera) {
   Camera out;
   if (const std::optional<JsonNode> type = camera.optional("type")) {
@@ -585,12 +605,16 @@ Camera readCamera(JsonObject& camera) {
   const std::optional<JsonNode> fov =
       optionalOrDefault(camera, {"fov", "field_of_view", "fieldOfView"}, "45 degrees");
   out.fovYDegrees = fov ? readFov(*fov) : kDefaultFovDegrees;
-  // lookfrom/lookat/vup: the textbook's camera (sukriti27); camPos/camView/camAxis: acs107102.
-  std::optional<JsonNode> position = camera.optionalOneOf({"position", "lookfrom", "camPos"});
-  if (!position) position = readKeyframedPosition(camera);
-  out.position = position ? position->point() : kDefaultPosition;
-  out.forward = readForward(camera, out.position);
-  out.up = readUp(camera, out.forward);
+  if (const std::optional<JsonNode> matrix = camera.optional("cameraToWorld")) {
+    readCameraMatrix(*matrix, out);
+  } else {
+    // lookfrom/lookat/vup: the textbook's camera (sukriti27); camPos/camView/camAxis: acs107102.
+    std::optional<JsonNode> position = camera.optionalOneOf({"position", "lookfrom", "camPos"});
+    if (!position) position = readKeyframedPosition(camera);
+    out.position = position ? position->point() : kDefaultPosition;
+    out.forward = readForward(camera, out.position);
+    out.up = readUp(camera, out.forward);
+  }
   if (const std::optional<JsonNode> exposure = camera.optional("exposure")) {
     out.exposure = exposure->positiveFloat();
   }
@@ -1191,6 +1215,9 @@ std::optional<std::string> materialKind(const JsonObject& material) {
 uint32_t addShapeMaterial(JsonObject& shape, const ShapeContext& context, Scene& scene,
                           std::optional<glm::vec3>& emission) {
   Material material;
+  if (const Json* name = shape.peek("material"); name && name->is_string()) {
+    return namedMaterial(shape.required("material"), context.namedMaterials);
+  }
   if (const std::optional<JsonNode> node = shape.optional("material")) {
     JsonObject object = node->object();
     if (const std::optional<std::string> kind = materialKind(object)) {
@@ -1675,9 +1702,31 @@ std::string shapeType(const JsonNode& typeNode) {
                 "'Student scenes' lists the other spellings)");
 }
 
+// isaacery's infinite plane {normal n, distance d}: the points p with
+// n . p = d. Shapes here are finite, so it becomes a square this many units
+// from its centre to each side, centred at the plane's point nearest the
+// origin (a warning says so).
+constexpr double kInfinitePlaneHalfSize = 1e4;
+
+Quad readInfinitePlane(JsonObject& shape) {
+  const glm::dvec3 normal(unitVector(shape.required("normal")));
+  const double distance = shape.required("distance").number();
+  shape.diagnostics().warn(shape.path(),
+                           "an infinite plane: drawn as a square 20000 units across, centred at "
+                           "its point nearest the origin");
+  const WorldPoint center = normal * distance;
+  const glm::dvec3 helper = std::abs(normal.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 u = glm::normalize(glm::cross(normal, helper)) * kInfinitePlaneHalfSize;
+  const glm::dvec3 v = glm::cross(normal, u);
+  return {center - u - v, center + u - v, center + u + v, center - u + v};
+}
+
 Geometry readGeometry(const JsonNode& typeNode, const std::string& type, JsonObject& shape,
                       Scene& scene) {
   if (type == "sphere") return readSphere(shape);
+  if (type == "plane" && shape.has("normal") && shape.has("distance")) {
+    return readInfinitePlane(shape);
+  }
   if (type == "plane") return readQuad(shape);
   if (type == "triangle" && hasCornerAttributes(shape)) {
     return addInlineMesh(readAttributedTriangle(shape), scene);
@@ -1796,6 +1845,9 @@ void readAmbientLight(JsonObject& object, Scene& scene) {
   const std::optional<JsonNode> node =
       object.optionalOneOf({"ambientlight", "ambient_light", "ambientLight"});
   if (node) setAmbientLight(node->nonNegativeVec3(), *node, scene);
+  // isaacery: a number that each material's `ka` scales.
+  object.ignoreWithWarning("ambient",
+                           "ignored: an ambient light scaled per material (ka) is not drawn");
 }
 
 // Sampling settings inside `scene` (Seanst98's renderer reads them there):
@@ -1824,10 +1876,12 @@ void readSceneSampling(JsonObject& object, RenderSettings& settings) {
 // `object` is the file's `scene`, or the top level itself for files that
 // put lights and shapes there (`flat`: its unknown keys are reported later).
 LightList readSceneObject(JsonObject& object, ShapeContext& context, Scene& scene, bool flat) {
-  if (const std::optional<JsonNode> background = object.optional("backgroundcolor")) {
+  if (const std::optional<JsonNode> background =
+          object.optionalOneOf({"backgroundcolor", "backgroundcolour"})) {
     scene.backgroundColor = background->nonNegativeVec3();
   }
   readAmbientLight(object, scene);
+  context.namedMaterials = readNamedMaterials(object, context.sceneDir, scene);
   LightList lights;
   if (const std::optional<JsonNode> list = object.optionalOneOf({"lightsources", "lights"})) {
     for (const JsonNode& light : list->array()) readLight(light, scene, lights);
@@ -1924,7 +1978,7 @@ Scene loadJsonScene(const fs::path& file) {
 
 std::optional<SamplerKind> samplerKindNamed(const std::string& name) {
   if (name == "random") return SamplerKind::Random;
-  if (name == "jittered" || name == "jittering") return SamplerKind::Jittered;
+  if (name == "jittered" || name == "jittering" || name == "grid") return SamplerKind::Jittered;
   if (name == "sobol" || name == "owen-sobol" || name == "ld" || name == "lowdiscrepancy" ||
       name == "low-discrepancy") {
     return SamplerKind::Sobol;

@@ -24,7 +24,7 @@ Scene loadJsonScene(const std::filesystem::path& file);
 Scene parseJsonScene(std::string_view jsonText, const std::filesystem::path& file);
 
 // Sampler names of the `sampler` key and --sampler: "random", "jittered"
-// (also "jittering"), "sobol" (also "owen-sobol", "ld", "lowdiscrepancy",
+// (also "jittering", "grid"), "sobol" (also "owen-sobol", "ld", "lowdiscrepancy",
 // "low-discrepancy"); nullopt for anything else.
 std::optional<SamplerKind> samplerKindNamed(const std::string& name);
 // The canonical name ("random", "jittered", "sobol").
