@@ -5,7 +5,9 @@ Per target RMSE (0.01, the issue's, which whole images reach in a few samples;
 to the target (log-log interpolation
 between the measured points around the crossing, '>' when the series never
 got there), the ratio to uniform jittered, and the RMSE each series had at the
-CPU time adaptive needed (interpolated the same way). Standard library only.
+CPU time adaptive needed (interpolated the same way); for adaptive also the
+ratio to uniform Sobol, the sampler it draws its samples from. Standard
+library only.
 
 Usage: adaptive_table.py OUT_DIR SCENE.json...
 """
@@ -47,7 +49,8 @@ def rmse_at(points, seconds):
 
 def print_table(out, scenes, target):
     print(f"\ntime to RMSE {target} (CPU s, whole image) and RMSE at adaptive's time")
-    print(f"{'scene':<16} {'series':<9} {'cpu_s':>9} {'vs jittered':>12} {'rmse@t_adaptive':>16}")
+    print(f"{'scene':<16} {'series':<9} {'cpu_s':>9} {'vs jittered':>12} {'vs sobol':>9} "
+          f"{'rmse@t_adaptive':>16}")
     for scene in scenes:
         name = os.path.splitext(os.path.basename(scene))[0]
         points = read_points(os.path.join(out, name + ".csv"))
@@ -60,8 +63,11 @@ def print_table(out, scenes, target):
             last = points[series][-1][0]
             shown = f"{t:.2f}" if t else f">{last:.2f}"
             ratio = f"{t / times['jittered']:.2f}x" if t and times.get("jittered") else "-"
+            to_sobol = "-"
+            if series == "adaptive" and t and times.get("sobol"):
+                to_sobol = f"{t / times['sobol']:.2f}x"
             at = rmse_at(points[series], pivot) if pivot else None
-            print(f"{name:<16} {series:<9} {shown:>9} {ratio:>12} "
+            print(f"{name:<16} {series:<9} {shown:>9} {ratio:>12} {to_sobol:>9} "
                   f"{(f'{at:.5f}' if at else '-'):>16}")
 
 

@@ -48,6 +48,7 @@ struct CommandLine {
   double targetRmse = 0.01;
   std::string clock = "wall";
   bool estimate = false;
+  uint32_t repeats = 1;
   std::string shading;
   std::optional<float> roulette;
   std::string conventions;
@@ -88,6 +89,7 @@ rt::ConvergenceSetup convergenceSetup(const CommandLine& cli, const rt::Scene& s
   setup.shading = rt::cli::shadingNamed(cli.shading);
   setup.mapping = rt::toneMappingFor(scene);
   setup.estimateError = cli.estimate;
+  setup.repeats = cli.repeats;
   return setup;
 }
 
@@ -232,6 +234,9 @@ void addOptions(CLI::App& app, CommandLine& cli) {
                  "Time of the table and plot: wall (default) or cpu (process CPU time, all "
                  "threads: lavapipe's work, robust on a busy machine); the CSV has both")
       ->check(CLI::IsMember({"wall", "cpu"}));
+  app.add_option("--repeat", cli.repeats,
+                 "Renders of each point; the times are their medians (default 1)")
+      ->check(CLI::Range(1, 99));
   app.add_flag("--estimate", cli.estimate,
                "Render as for --estimate-rmse (independent even/odd halves) and record the "
                "renderer's own RMSE estimate beside the true one");

@@ -21,6 +21,13 @@ struct LogPoint {
   double rmse;
 };
 
+// The middle value (the mean of the middle two for an even count).
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const size_t middle = values.size() / 2;
+  return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
+}
+
 double secondsOf(const ConvergencePoint& point, ConvergenceClock clock) {
   return clock == ConvergenceClock::Cpu ? point.cpuSeconds : point.seconds;
 }
@@ -115,10 +122,17 @@ std::vector<ConvergencePoint> ConvergenceStudy::measure(const ImageF& reference,
     RenderOptions options = seriesOptions(samples);
     RenderStats stats;
     ImageF image = renderer_.render(scene_, options, {}, &stats);
+    std::vector<double> seconds{stats.renderSeconds}, cpuSeconds{stats.renderCpuSeconds};
+    for (uint32_t repeat = 1; repeat < setup_.repeats; ++repeat) {
+      RenderStats again;
+      renderer_.render(scene_, options, {}, &again);
+      seconds.push_back(again.renderSeconds);
+      cpuSeconds.push_back(again.renderCpuSeconds);
+    }
     ConvergencePoint point{series.sampler,
                            samples,
-                           stats.renderSeconds,
-                           stats.renderCpuSeconds,
+                           median(seconds),
+                           median(cpuSeconds),
                            displayRmse(image, reference, setup_.mapping, setup_.region),
                            stats.rmseEstimate,
                            series.adaptive};

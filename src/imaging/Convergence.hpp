@@ -27,6 +27,10 @@ struct ConvergenceSetup {
   // Also record the renderer's own estimate (RenderOptions::estimateError:
   // independent halves, so the measured errors are those of such renders).
   bool estimateError = false;
+  // Renders of each point; its times are their medians (one render's time
+  // moves by 20-40% between runs on a shared machine). The images are the
+  // same each time: sampling is deterministic.
+  uint32_t repeats = 1;
 };
 
 // What one series of a study measures: a sampler with uniform sampling, or

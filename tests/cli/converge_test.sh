@@ -51,8 +51,9 @@ else
   fail "converge with adaptive: $(cat "$SCRATCH/stderr")"
 fi
 
-# --- the saved reference gives the same errors ---------------------------
-if "$RAYTRACER" converge "$SCENE" "${COMMON[@]}" --samplers sobol --spp-list 4,8 \
+# --- the saved reference gives the same errors (and --repeat, whose ------
+# --- medians are of times: the images are the same each time) -----------
+if "$RAYTRACER" converge "$SCENE" "${COMMON[@]}" --samplers sobol --spp-list 4,8 --repeat 3 \
     --reference "$SCRATCH/study-reference.exr" --estimate --out "$SCRATCH/again" -q >/dev/null 2>&1; then
   [[ "$(grep '^sobol,8,' "$SCRATCH/again.csv" | cut -d, -f5)" == \
      "$(grep '^sobol,8,' "$SCRATCH/study.csv" | cut -d, -f5)" ]] && pass ||
@@ -74,6 +75,7 @@ expect_error "reference of another size" "reference is 64x48 but the renders are
 expect_error "both reference options" "excludes" converge "$SCENE" --reference "$SCRATCH/x.exr" \
   --reference-spp 64 --out "$SCRATCH/bad"
 expect_error "one count" "at least two" converge "$SCENE" --spp-list 8 --out "$SCRATCH/bad"
+expect_error "no repeats" "--repeat" converge "$SCENE" --repeat 0 --out "$SCRATCH/bad"
 
 # --- render --target-rmse: stops early, reports the estimate -------------
 if "$RAYTRACER" "$SCENE" "$SCRATCH/target.png" --size 48x36 --sampler sobol --target-rmse 0.02 \
