@@ -65,24 +65,26 @@ bool groupsByBlenderType(const Json& document) {
 
 // ------------------------------------------------------------------ values
 
+// Three numbers of an object by key: {"x", "y", "z"} or {"roll", "pitch", "yaw"}.
+glm::dvec3 readKeyedTriple(const JsonNode& node, const char* first, const char* second,
+                           const char* third) {
+  JsonObject object = node.object();
+  const glm::dvec3 v(object.required(first).number(), object.required(second).number(),
+                     object.required(third).number());
+  object.reportUnknownKeys();
+  return v;
+}
+
 // [x, y, z] or {"x", "y", "z"}.
 glm::dvec3 readVector(const JsonNode& node) {
   if (!node.raw().is_object()) return node.point();
-  JsonObject xyz = node.object();
-  const glm::dvec3 v(xyz.required("x").number(), xyz.required("y").number(),
-                     xyz.required("z").number());
-  xyz.reportUnknownKeys();
-  return v;
+  return readKeyedTriple(node, "x", "y", "z");
 }
 
 // Euler angles in radians: [x, y, z], {"x", "y", "z"} or {"roll", "pitch", "yaw"}.
 glm::dvec3 readEuler(const JsonNode& node) {
   if (!node.raw().is_object() || !node.raw().contains("roll")) return readVector(node);
-  JsonObject angles = node.object();
-  const glm::dvec3 v(angles.required("roll").number(), angles.required("pitch").number(),
-                     angles.required("yaw").number());
-  angles.reportUnknownKeys();
-  return v;
+  return readKeyedTriple(node, "roll", "pitch", "yaw");
 }
 
 // One number (uniform) or three.
