@@ -6,16 +6,23 @@
 # the same tables as the other bench scripts.
 #   bench/run-gpu.sh [REPORT.md]        (default: build/gpu-report.md)
 # RT_SKIP_SETUP=1 skips the package install (machines without a network).
+# RT_PREBUILT=1 skips the build and uses build/ as it is (a GPU machine with
+# neither the packages nor a network: build on Debian 12, copy build/ over).
+# RT_CTEST_EXCLUDE is the regex of ctest entries left out (default: farm,
+# which needs scripts/setup.sh --farm; add viewer where there is no Xvfb).
 set -uo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 shared=$(cd "${SHARED_DIR:-$root/../shared}" 2>/dev/null && pwd || echo "")
 report=${1:-$root/build/gpu-report.md}
-bash "$root/scripts/build.sh" -DRT_BUILD_TESTS=ON || exit 1
+if [[ -z "${RT_PREBUILT:-}" ]]; then
+  bash "$root/scripts/build.sh" -DRT_BUILD_TESTS=ON || exit 1
+fi
 mkdir -p "$(dirname "$report")"
 scenes=("$root/scenes/default.json")
 if [[ -n "$shared" ]]; then
   mapfile -t official < <(find "$shared/scene-format/official" -name '*.json' | sort)
-  scenes+=("${official[@]}" "$shared/bench/common-scene/common_pinhole.json")
+  common=$shared/bench/common-scene
+  scenes+=("${official[@]}" "$common/common_pinhole.json" "$common/common_dof.json")
   bunny=$shared/assets/ply/stanford-bunny/bunny/reconstruction/bun_zipper.ply
 fi
 
@@ -35,12 +42,34 @@ section() {
   echo
   echo "$(date -u +%FT%TZ), commit $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown), $(nproc) CPU threads"
 } >"$report"
+# common_scene SPP_PINHOLE SPP_DOF: the common scene as
+# ../shared/bench/common-scene/run.sh renders it (640x480; the render time the
+# renderer prints, first kernel compile included), as Msamples/s per variant.
+common_scene() {
+  local variant spp seconds images
+  images=$(mktemp -d)
+  for variant in pinhole dof; do
+    spp=$1
+    [[ $variant == dof ]] && spp=$2
+    seconds=$("$root/build/raytracer" "$common/common_$variant.json" "$images/$variant.png" \
+      --size 640x480 --spp "$spp" 2>&1 | sed -n 's/^rendered .* in \([0-9.]*\) s .*/\1/p')
+    awk -v variant="$variant" -v spp="$spp" -v s="$seconds" 'BEGIN {
+      if (s == "") { print variant, spp " spp: FAILED"; exit }
+      printf "%s %d spp: %.3f s, %.2f Msamples/s\n", variant, spp, s, 640 * 480 * spp / s / 1e6 }'
+  done
+  rm -rf "$images"
+}
+
+# The speed figures first, the test suite last: where time runs short, the
+# tables are what this report is for.
 section "Vulkan devices" "$root/build/raytracer" --device list
-section "Test suite (ctest)" bash -c "cd '$root/build' && ctest --output-on-failure --parallel $(nproc) --timeout 600"
 section "Scenes: rt-bench, 800x800, 16 spp (bvh and hardware)" \
   "$root/build/rt-bench" --width 800 --height 800 --spp 16 "${scenes[@]}"
 if [[ -n "$shared" ]]; then
+  section "The common scene at run.sh's settings (16 / 64 spp)" common_scene 16 64
+  section "The common scene at 1024 / 4096 spp (kernel compile amortised)" common_scene 1024 4096
   section "Meshes: rt-bench-bvh (BVH build, primary and diffuse rays)" \
     "$root/build/rt-bench-bvh" --bunny "$bunny" --plain
 fi
+section "Test suite (ctest)" bash -c "cd '$root/build' && ctest --output-on-failure --parallel $(nproc) --timeout 600 -E '${RT_CTEST_EXCLUDE:-farm}'"
 echo "wrote $report"

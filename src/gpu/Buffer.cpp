@@ -47,7 +47,14 @@ RawBuffer allocate(VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags
 constexpr VkBufferUsageFlags kTransferUsage =
     VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
+constexpr VkDeviceSize kDirectUncachedReadLimit = 16 * 1024;
+
 }  // namespace
+
+bool readsThroughStaging(VkMemoryPropertyFlags memory, VkDeviceSize bytes) {
+  if (!(memory & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)) return true;
+  return !(memory & VK_MEMORY_PROPERTY_HOST_CACHED_BIT) && bytes > kDirectUncachedReadLimit;
+}
 
 Buffer::Buffer(VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage)
     : context_(&context), size_(size) {
@@ -57,10 +64,9 @@ Buffer::Buffer(VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usa
                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   buffer_ = raw.buffer;
   memory_ = raw.memory;
-  VkMemoryPropertyFlags flags = context.memoryTypeFlags(raw.memoryType);
-  if (flags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) {
+  memoryFlags_ = context.memoryTypeFlags(raw.memoryType);
+  if (memoryFlags_ & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) {
     vkCheck(vkMapMemory(context.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
-    coherent_ = flags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
   }
 }
 
@@ -82,7 +88,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
     size_ = std::exchange(other.size_, 0);
     mapped_ = std::exchange(other.mapped_, nullptr);
-    coherent_ = other.coherent_;
+    memoryFlags_ = std::exchange(other.memoryFlags_, 0);
   }
   return *this;
 }
@@ -105,7 +111,7 @@ void Buffer::upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
     return;
   }
   std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
-  if (!coherent_) {
+  if (!(memoryFlags_ & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)) {
     VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, memory_, 0,
                               VK_WHOLE_SIZE};
     vkCheck(vkFlushMappedMemoryRanges(context_->device(), 1, &range), "vkFlushMappedMemoryRanges");
@@ -114,11 +120,11 @@ void Buffer::upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
 
 void Buffer::download(void* data, VkDeviceSize bytes, VkDeviceSize offset) {
   if (offset + bytes > size_) throw Error("internal: download past the end of a GPU buffer");
-  if (!mapped_) {
+  if (readsThroughStaging(memoryFlags_, bytes)) {
     copyThroughStaging(data, bytes, offset, false);
     return;
   }
-  if (!coherent_) {
+  if (!(memoryFlags_ & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)) {
     VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, memory_, 0,
                               VK_WHOLE_SIZE};
     vkCheck(vkInvalidateMappedMemoryRanges(context_->device(), 1, &range),
