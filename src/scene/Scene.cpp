@@ -20,6 +20,19 @@ void setConventions(Scene& scene, Conventions conventions, std::string reason) {
                                                                     : ImageRight::ForwardCrossUp;
 }
 
+uint32_t addEmitterShape(Scene& scene, Geometry geometry, std::string label) {
+  Material emitter;
+  emitter.kd = 0.0f;
+  emitter.ks = 0.0f;
+  scene.materials.push_back(emitter);
+  Shape shape;
+  shape.geometry = std::move(geometry);
+  shape.material = static_cast<uint32_t>(scene.materials.size() - 1);
+  shape.label = std::move(label);
+  scene.shapes.push_back(std::move(shape));
+  return static_cast<uint32_t>(scene.shapes.size() - 1);
+}
+
 std::optional<Conventions> conventionsNamed(const std::string& name) {
   if (name == "coursework-a") return Conventions::CourseworkA;
   if (name == "coursework-b") return Conventions::CourseworkB;

@@ -228,4 +228,10 @@ struct Scene {
 // imply; `reason` says why (for messages).
 void setConventions(Scene& scene, Conventions conventions, std::string reason);
 
+// Adds the visible shape of an area light that no scene shape stands for (an
+// emitter given by its geometry alone): a shape of its own, with a black
+// material of its own, so that it shows only the light's emission. Returns
+// the shape's index, for AreaLight::shape.
+uint32_t addEmitterShape(Scene& scene, Geometry geometry, std::string label);
+
 }  // namespace rt

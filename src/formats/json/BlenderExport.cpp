@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "formats/common/QuadCorners.hpp"
 #include "formats/common/UnitVector.hpp"
 #include "formats/json/ReferencedFiles.hpp"
 #include "scene/Limits.hpp"
@@ -37,12 +38,6 @@ constexpr float kDefaultRoughness = 0.5f;
 constexpr float kDefaultKs = 0.2f;
 
 // ------------------------------------------------------------- recognition
-
-const Json* findKey(const Json& object, std::string_view key) {
-  if (!object.is_object()) return nullptr;
-  const auto found = object.find(key);
-  return found == object.end() ? nullptr : &*found;
-}
 
 // A list of Blender objects, one of them a camera ({"type": "CAMERA", ...}).
 bool listsBlenderCamera(const Json* objects) {
@@ -590,16 +585,9 @@ class BlenderSceneReader {
   // A point light with a radius (Blender's soft shadows): a spherical area
   // light of the same power.
   void addSphereLight(const PointLight& point, float radius, const std::string& label) {
-    Material emitter;
-    emitter.kd = 0.0f;
-    emitter.ks = 0.0f;
-    Shape shape;
-    shape.geometry = Sphere{point.position, radius};
-    shape.material = addMaterial(emitter);
-    shape.label = label.empty() ? "light" : label;
-    scene_.shapes.push_back(std::move(shape));
     AreaLight light;
-    light.shape = static_cast<uint32_t>(scene_.shapes.size() - 1);
+    light.shape =
+        addEmitterShape(scene_, Sphere{point.position, radius}, label.empty() ? "light" : label);
     light.diffuseIntensity = point.diffuseIntensity;
     light.specularIntensity = point.specularIntensity;
     scene_.areaLights.push_back(light);
@@ -776,19 +764,11 @@ class BlenderSceneReader {
                 readVector(points[3])};
       fields.ignore({"location", "translation", "rotation", "rotation_euler_radians", "scale",
                      "rotation_euler_rad", "normal"});
-      return aroundTheQuad(quad);
+      return cornersAroundTheQuad(quad);
     }
     const glm::dmat4 placed = readPlacement(fields).matrix();
     auto corner = [&](double x, double y) { return WorldPoint(placed * glm::dvec4(x, y, 0, 1)); };
     return Quad{corner(-1, -1), corner(1, -1), corner(1, 1), corner(-1, 1)};
-  }
-
-  // Corners given in vertex order make a bow tie: read them as 0 1 3 2.
-  static Quad aroundTheQuad(const Quad& q) {
-    const glm::dvec3 n1 = glm::cross(q.v1 - q.v0, q.v2 - q.v0);
-    const glm::dvec3 n2 = glm::cross(q.v2 - q.v0, q.v3 - q.v0);
-    if (!(glm::dot(n1, n2) < 0.0)) return q;
-    return {q.v0, q.v1, q.v3, q.v2};
   }
 
   // Blender's cylinder: radius 1 and depth 2 along its local z, placed;

@@ -17,6 +17,12 @@ std::string describeType(const Json& value) {
 
 }  // namespace
 
+const Json* findKey(const Json& object, std::string_view key) {
+  if (!object.is_object()) return nullptr;
+  const auto found = object.find(key);
+  return found == object.end() ? nullptr : &*found;
+}
+
 std::string formatNumber(double value) {
   if (std::isfinite(value) && std::trunc(value) == value && std::fabs(value) < 1e15) {
     return std::to_string(static_cast<long long>(value));

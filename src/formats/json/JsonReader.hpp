@@ -25,6 +25,11 @@ using Json = nlohmann::ordered_json;
 // fraction, everything else in %g form.
 std::string formatNumber(double value);
 
+// The member `key` of a raw JSON value, or null when the value is no object or
+// lacks the key: for looking at a document before reading it (which family or
+// layout it is), where nothing is reported and no key is marked as read.
+const Json* findKey(const Json& object, std::string_view key);
+
 class JsonObject;
 
 // One JSON value plus its path from the document root, e.g. "scene.shapes[3].radius".

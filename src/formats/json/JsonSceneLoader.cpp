@@ -18,6 +18,7 @@
 #include "formats/common/JsonSyntax.hpp"
 #include "formats/common/MessageText.hpp"
 #include "formats/common/ModelFraming.hpp"
+#include "formats/common/QuadCorners.hpp"
 #include "formats/common/SceneTextures.hpp"
 #include "formats/common/UnitVector.hpp"
 #include "formats/gltf/GltfLoader.hpp"
@@ -79,12 +80,6 @@ constexpr std::array<const char*, 6> kViewKeys = {"lookat", "lookAt",  "look_at"
                                                   "target", "camView", "cameraToWorld"};
 
 // ---------------------------------------------------------- family detection
-
-const Json* findKey(const Json& object, std::string_view key) {
-  if (!object.is_object()) return nullptr;
-  const auto found = object.find(key);
-  return found == object.end() ? nullptr : &*found;
-}
 
 bool anyElement(const Json* array, bool (*predicate)(const Json&)) {
   return array && array->is_array() && std::any_of(array->begin(), array->end(), predicate);
@@ -665,13 +660,11 @@ std::optional<std::vector<WorldPoint>> readNamedCorners(JsonObject& object, size
 // around it: then v1 and v3 lie on the same side of the diagonal v0-v2, and
 // the quad would be a bow tie. Read such corners as v0 v1 v3 v2.
 Quad cyclicQuad(const Quad& q, const JsonObject& shape) {
-  const glm::dvec3 n1 = glm::cross(q.v1 - q.v0, q.v2 - q.v0);
-  const glm::dvec3 n2 = glm::cross(q.v2 - q.v0, q.v3 - q.v0);
-  if (!(glm::dot(n1, n2) < 0.0)) return q;
+  if (!isBowTie(q)) return q;
   shape.diagnostics().warn(shape.path(),
                            "quad corners given row by row, not around the quad: read in the "
                            "order 0 1 3 2");
-  return {q.v0, q.v1, q.v3, q.v2};
+  return cornersAroundTheQuad(q);
 }
 
 // ------------------------------------------------------------------- lights
@@ -1824,16 +1817,8 @@ void addAreaLights(const LightList& lights, RenderMode mode, Scene& scene) {
       light.shape = findLightShape(*pending.shapeId, scene);
     } else {
       if (mode == RenderMode::Binary) continue;
-      Material emitter;
-      emitter.kd = 0.0f;
-      emitter.ks = 0.0f;
-      scene.materials.push_back(emitter);
-      Shape shape;
-      shape.geometry = *pending.geometry;
-      shape.material = static_cast<uint32_t>(scene.materials.size() - 1);
-      shape.label = "area light " + std::to_string(scene.areaLights.size());
-      scene.shapes.push_back(std::move(shape));
-      light.shape = static_cast<uint32_t>(scene.shapes.size() - 1);
+      light.shape = addEmitterShape(scene, *pending.geometry,
+                                    "area light " + std::to_string(scene.areaLights.size()));
     }
     scene.areaLights.push_back(light);
   }

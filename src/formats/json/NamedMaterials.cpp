@@ -1,6 +1,7 @@
 #include "formats/json/NamedMaterials.hpp"
 
 #include <optional>
+#include <set>
 
 #include "formats/common/SceneTextures.hpp"
 #include "formats/json/ReferencedFiles.hpp"
@@ -82,12 +83,12 @@ template <typename Read>
 void readNamedList(JsonObject& owner, const char* key, Read read) {
   const std::optional<JsonNode> list = owner.optional(key);
   if (!list) return;
-  std::map<std::string, bool> seen;
+  std::set<std::string> seen;
   for (const JsonNode& node : list->array()) {
     JsonObject object = node.object();
     const JsonNode nameNode = object.required("name");
     const std::string name = nameNode.string();
-    if (!seen.emplace(name, true).second)
+    if (!seen.insert(name).second)
       nameNode.fail("a second " + std::string(key) + " entry named '" + name + "'");
     read(name, object);
     object.reportUnknownKeys();
