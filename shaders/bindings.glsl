@@ -48,17 +48,40 @@ void loadSceneInfo() {
       opaqueFloat(b.ambient, z), opaqueFloat(b.indirectClamp, z),
       opaqueUint(b.mirrorsReplaceLocalLight, z), opaqueUint(b.areaLightSamples, z), b.pad0, b.pad1);
 }
-// Primitives and BVH nodes are read through texel buffers (RGBA32F, records
-// of whole texels): CPU drivers such as lavapipe gather texels with vector
-// loads but read storage buffers at divergent indices one lane at a time,
-// which made traversal several times slower.
-layout(set = 0, binding = RT_BINDING_PRIMITIVES) uniform textureBuffer primitiveTexels;
-layout(set = 0, binding = RT_BINDING_BVH_NODES) uniform utextureBuffer bvhNodeTexels;
+
+// The scene arrays (records of whole 16-byte rows, gpu_types.h) are texel
+// buffers, or with RT_SCENE_STORAGE_BUFFERS storage buffers of the same
+// bytes (--scene-arrays; encode/SceneBuffers.hpp says what each measured).
+// CPU drivers such as lavapipe gather texels with vector loads but read
+// storage buffers at divergent indices one lane at a time.
+// RT_FLOAT_ROWS / RT_UINT_ROWS declare an array of vec4 / uvec4 rows,
+// RT_UINT_WORDS one of single uints; RT_ROW and RT_WORD read one.
+#ifdef RT_SCENE_STORAGE_BUFFERS
+#define RT_FLOAT_ROWS(bindingIndex, name) \
+  layout(std430, set = 0, binding = bindingIndex) restrict readonly buffer name##Block { vec4 name[]; };
+#define RT_UINT_ROWS(bindingIndex, name) \
+  layout(std430, set = 0, binding = bindingIndex) restrict readonly buffer name##Block { uvec4 name[]; };
+#define RT_UINT_WORDS(bindingIndex, name) \
+  layout(std430, set = 0, binding = bindingIndex) restrict readonly buffer name##Block { uint name[]; };
+#define RT_ROW(name, index) name[index]
+#define RT_WORD(name, index) name[index]
+#else
+#define RT_FLOAT_ROWS(bindingIndex, name) \
+  layout(set = 0, binding = bindingIndex) uniform textureBuffer name;
+#define RT_UINT_ROWS(bindingIndex, name) \
+  layout(set = 0, binding = bindingIndex) uniform utextureBuffer name;
+#define RT_UINT_WORDS(bindingIndex, name) RT_UINT_ROWS(bindingIndex, name)
+#define RT_ROW(name, index) texelFetch(name, int(index))
+#define RT_WORD(name, index) texelFetch(name, int(index)).x
+#endif
+
+RT_FLOAT_ROWS(RT_BINDING_PRIMITIVES, primitiveTexels)
+RT_UINT_ROWS(RT_BINDING_BVH_NODES, bvhNodeTexels)
 
 // Shading data of top-level primitive `index` (GpuPrimitive), texel `row`
 // (0..3): a, b, c, then kind/material/shape/flags.
 vec4 primitiveRow(uint index, uint row) {
-  return texelFetch(primitiveTexels, int(index * RT_TEXELS_PER_PRIMITIVE + row));
+  return RT_ROW(primitiveTexels, index * RT_TEXELS_PER_PRIMITIVE + row);
 }
 
 uvec4 primitiveInfo(uint index) { return floatBitsToUint(primitiveRow(index, 3u)); }
@@ -71,24 +94,23 @@ GpuPrimitive loadPrimitive(uint index) {
 
 // Texel `row` (0..1) of BVH node `index` (see GpuBvhNode).
 uvec4 nodeRow(uint index, uint row) {
-  return texelFetch(bvhNodeTexels, int(index * RT_TEXELS_PER_BVH_NODE + row));
+  return RT_ROW(bvhNodeTexels, index * RT_TEXELS_PER_BVH_NODE + row);
 }
 
-layout(set = 0, binding = RT_BINDING_ITEMS) uniform textureBuffer itemTexels;
+RT_FLOAT_ROWS(RT_BINDING_ITEMS, itemTexels)
 
 // Texel `row` (0..2) of leaf item `index` (see GpuItem).
 vec4 itemRow(uint index, uint row) {
-  return texelFetch(itemTexels, int(index * RT_TEXELS_PER_ITEM + row));
+  return RT_ROW(itemTexels, index * RT_TEXELS_PER_ITEM + row);
 }
 
-// Materials and point lights: texel buffers too (read at every hit and for
-// every light).
-layout(set = 0, binding = RT_BINDING_MATERIALS) uniform utextureBuffer materialTexels;
-layout(set = 0, binding = RT_BINDING_POINT_LIGHTS) uniform textureBuffer pointLightTexels;
+// Materials and point lights (read at every hit and for every light).
+RT_UINT_ROWS(RT_BINDING_MATERIALS, materialTexels)
+RT_FLOAT_ROWS(RT_BINDING_POINT_LIGHTS, pointLightTexels)
 
 // Texel `row` (0..4) of material `index` (see GpuMaterial).
 uvec4 materialRow(uint index, uint row) {
-  return texelFetch(materialTexels, int(index * RT_TEXELS_PER_MATERIAL + row));
+  return RT_ROW(materialTexels, index * RT_TEXELS_PER_MATERIAL + row);
 }
 
 GpuMaterial loadMaterial(uint index) {
@@ -105,7 +127,7 @@ GpuMaterial loadMaterial(uint index) {
 
 // Texel `row` (0..2) of point light `index` (see GpuPointLight).
 vec4 pointLightRow(uint index, uint row) {
-  return texelFetch(pointLightTexels, int(index * RT_TEXELS_PER_POINT_LIGHT + row));
+  return RT_ROW(pointLightTexels, index * RT_TEXELS_PER_POINT_LIGHT + row);
 }
 
 GpuPointLight loadPointLight(uint index) {

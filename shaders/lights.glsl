@@ -10,13 +10,13 @@
 #include "surface.glsl"
 
 #ifdef RT_FEATURE_AREA_LIGHTS
-// Texel buffers (RGBA32UI), read per light sample.
-layout(set = 0, binding = RT_BINDING_AREA_LIGHTS) uniform utextureBuffer areaLightTexels;
-layout(set = 0, binding = RT_BINDING_EMITTERS) uniform utextureBuffer emitterTexels;
+// Rows of uints (bindings.glsl), read per light sample.
+RT_UINT_ROWS(RT_BINDING_AREA_LIGHTS, areaLightTexels)
+RT_UINT_ROWS(RT_BINDING_EMITTERS, emitterTexels)
 
 // Texel `row` (0..2) of area light `index` (see GpuAreaLight).
 uvec4 areaLightRow(uint index, uint row) {
-  return texelFetch(areaLightTexels, int(index * RT_TEXELS_PER_AREA_LIGHT + row));
+  return RT_ROW(areaLightTexels, index * RT_TEXELS_PER_AREA_LIGHT + row);
 }
 
 GpuAreaLight loadAreaLight(uint index) {
@@ -30,7 +30,7 @@ GpuAreaLight loadAreaLight(uint index) {
 // Texel `row` (0..3) of emitter `index` (see GpuEmitter): a, b, c, then
 // kind/cdfEnd/area.
 uvec4 emitterRow(uint index, uint row) {
-  return texelFetch(emitterTexels, int(index * RT_TEXELS_PER_EMITTER + row));
+  return RT_ROW(emitterTexels, index * RT_TEXELS_PER_EMITTER + row);
 }
 
 float emitterCdfEnd(uint index) { return uintBitsToFloat(emitterRow(index, 3u).y); }

@@ -8,11 +8,11 @@
 #include "geometry.glsl"
 
 #ifdef RT_FEATURE_VERTICES
-layout(set = 0, binding = RT_BINDING_VERTICES) uniform textureBuffer vertexTexels;
+RT_FLOAT_ROWS(RT_BINDING_VERTICES, vertexTexels)
 
 // Texel `row` (0..1) of vertex `index` (see GpuVertex): normal/u, then v.
 vec4 vertexRow(uint index, uint row) {
-  return texelFetch(vertexTexels, int(index * RT_TEXELS_PER_VERTEX + row));
+  return RT_ROW(vertexTexels, index * RT_TEXELS_PER_VERTEX + row);
 }
 
 GpuVertex loadVertex(uint index) {

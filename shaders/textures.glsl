@@ -7,17 +7,17 @@
 #include "bindings.glsl"
 
 #ifdef RT_FEATURE_TEXTURES
-// Texel buffers: the table (RGBA32UI, one GpuTextureInfo a texel) and every
-// texture's texels (R32UI, each a packed RGBA8 sRGB-encoded texel).
-layout(set = 0, binding = RT_BINDING_TEXTURE_INFO) uniform utextureBuffer textureInfoTexels;
-layout(set = 0, binding = RT_BINDING_TEXELS) uniform utextureBuffer textureTexels;
+// The table (uint rows, one GpuTextureInfo a row) and every texture's
+// texels (uints, each a packed RGBA8 sRGB-encoded texel); bindings.glsl.
+RT_UINT_ROWS(RT_BINDING_TEXTURE_INFO, textureInfoTexels)
+RT_UINT_WORDS(RT_BINDING_TEXELS, textureTexels)
 
 GpuTextureInfo loadTextureInfo(int index) {
-  uvec4 info = texelFetch(textureInfoTexels, index * int(RT_TEXELS_PER_TEXTURE_INFO));
+  uvec4 info = RT_ROW(textureInfoTexels, index * int(RT_TEXELS_PER_TEXTURE_INFO));
   return GpuTextureInfo(info.x, info.y, info.z, info.w);
 }
 
-uint textureTexel(uint index) { return texelFetch(textureTexels, int(index)).x; }
+uint textureTexel(uint index) { return RT_WORD(textureTexels, index); }
 
 vec3 srgbToLinear(vec3 c) {
   return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));

@@ -112,6 +112,18 @@ AccelKind accelNamed(const std::string& name) {
   return AccelKind::Bvh;
 }
 
+void addSceneArraysOption(CLI::App& app, std::string& name) {
+  app.add_option("--scene-arrays", name,
+                 "How kernels read the scene: texel (texel buffers, the default: the faster on "
+                 "lavapipe and on an NVIDIA H200) or storage (storage buffers of the same bytes, "
+                 "to measure other GPUs); the image is the same")
+      ->check(CLI::IsMember({"texel", "storage"}));
+}
+
+SceneArrays sceneArraysNamed(const std::string& name) {
+  return name == "storage" ? SceneArrays::StorageBuffers : SceneArrays::TexelBuffers;
+}
+
 void addConventionsOption(CLI::App& app, std::string& name) {
   app.add_option(
          "--conventions", name,

@@ -10,6 +10,7 @@
 
 #include "encode/Conventions.hpp"
 #include "encode/FlatScene.hpp"
+#include "encode/SceneBuffers.hpp"
 #include "scene/Limits.hpp"
 #include "scene/Scene.hpp"
 
@@ -51,6 +52,11 @@ std::optional<ShadingModel> shadingNamed(const std::string& name);
 // ("" is bvh, the default).
 void addAccelOption(CLI::App& app, std::string& name);
 AccelKind accelNamed(const std::string& name);
+
+// --scene-arrays texel|storage into `name`; sceneArraysNamed turns it into
+// the kind (empty: texel).
+void addSceneArraysOption(CLI::App& app, std::string& name);
+SceneArrays sceneArraysNamed(const std::string& name);
 
 // --conventions NAME (coursework-a, coursework-b, textbook) into `name`.
 void addConventionsOption(CLI::App& app, std::string& name);

@@ -42,6 +42,7 @@ struct CommandLine {
   std::string shading;
   std::string conventions;
   std::string accel;
+  std::string sceneArrays;
   std::string device;
   std::string shaderDir;
   std::optional<float> exposure;
@@ -170,6 +171,7 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
   options.sampler = rt::cli::samplerNamed(cli.sampler, fallback);
   options.shading = rt::cli::shadingNamed(cli.shading);
   options.accel = rt::cli::accelNamed(cli.accel);
+  options.sceneArrays = rt::cli::sceneArraysNamed(cli.sceneArrays);
   if (!cli.sampleRange.empty()) parseSampleRange(cli.sampleRange, options);
   refuseSplitAdaptive(cli, options);
   checkMapOptions(cli, options);
@@ -333,6 +335,7 @@ int runRenderCommand(int argc, char** argv) {
   rt::cli::addConventionsOption(app, cli.conventions);
   rt::cli::addStrictOption(app, cli.strict);
   rt::cli::addAccelOption(app, cli.accel);
+  rt::cli::addSceneArraysOption(app, cli.sceneArrays);
   app.add_flag("--offscreen", cli.offscreen, "Render without a window (the default)");
   app.add_option("--device", cli.device, "'list' to list Vulkan devices, or the number to use");
   app.add_flag("--validation", cli.validation,

@@ -109,6 +109,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(countRays, "RT_COUNT_RAYS");
   flag(adaptiveSampling, "RT_ADAPTIVE_SAMPLING");
   flag(hardwareAccel, "RT_ACCEL_HARDWARE");
+  flag(storageBuffers, "RT_SCENE_STORAGE_BUFFERS");
   flag(binaryOnly, "RT_BINARY_ONLY");
   if (samplerKind >= 0) result.emplace_back("RT_SAMPLER_KIND", std::to_string(samplerKind) + "u");
   if (emitterKinds != 0) {

@@ -32,6 +32,8 @@ struct ShaderFeatures {
   bool countRays = false;         // benchmark instrumentation
   bool adaptiveSampling = false;  // per-tile sample ranges (render/AdaptiveSampling.hpp)
   bool hardwareAccel = false;     // ray queries instead of the BVH walk (--accel hardware)
+  // The scene arrays are storage buffers, not texel buffers (SceneArrays).
+  bool storageBuffers = false;
   // Binary mode: a sample is one closest-hit query; no shading code is built.
   bool binaryOnly = false;
   // The pixel sampler (RT_SAMPLER_*) when one is fixed for the kernel's life,

@@ -1,4 +1,4 @@
-// A FlatScene uploaded to GPU texel buffers (and a uniform buffer for its
+// A FlatScene uploaded to GPU buffers (and a uniform buffer for its
 // constants), bindable to any kernel that includes shaders/bindings.glsl;
 // for --accel hardware also as the driver's acceleration structures.
 #pragma once
@@ -15,6 +15,16 @@ namespace rt {
 
 class VulkanContext;
 
+// How kernels read the scene arrays (shaders/bindings.glsl): as texel
+// buffers or as storage buffers of the same bytes; the images are the same.
+// Texel buffers are the default on every device measured: lavapipe gathers
+// texels with vector loads but reads storage buffers one lane at a time
+// (default.json 2.4x slower with storage buffers), and on an NVIDIA H200
+// storage buffers rendered at 0.91-0.98x (though the plain BVH kernel of
+// bench/ walked 1.16x faster with them). Storage buffers stay selectable
+// (--scene-arrays) to measure other GPUs.
+enum class SceneArrays { TexelBuffers, StorageBuffers };
+
 // Largest buffers a scene may use; 0: the device's limit (tests set less).
 struct SceneBufferLimits {
   VkDeviceSize texels = 0;  // per texel buffer (maxTexelBufferElements)
@@ -24,16 +34,21 @@ class SceneBuffers {
  public:
   // A buffer that would exceed the limits is a one-line "scene too large"
   // Error naming it (nothing is rendered).
+  // Kernels bound to these buffers are compiled with
+  // ShaderFeatures::storageBuffers set to match `arrays`.
   SceneBuffers(VulkanContext& context, const FlatScene& scene,
+               SceneArrays arrays = SceneArrays::TexelBuffers,
                const SceneBufferLimits& limits = {});
   void bindTo(ComputeKernel& kernel) const;
-  // The binding numbers bindTo() fills (set 0), for kernel layouts.
-  static std::vector<KernelBinding> bindings(AccelKind accel = AccelKind::Bvh);
+  // The bindings bindTo() fills (set 0), for kernel layouts.
+  static std::vector<KernelBinding> bindings(AccelKind accel = AccelKind::Bvh,
+                                             SceneArrays arrays = SceneArrays::TexelBuffers);
   // Replaces the per-scene constants (camera moves); no dispatch may be in flight.
   void updateInfo(const gpu::GpuSceneInfo& info);
   size_t bytes() const;
 
  private:
+  SceneArrays arrays_;
   Buffer info_;
   Buffer primitives_;
   Buffer bvhNodes_;

@@ -7,6 +7,7 @@
 
 #include "encode/Conventions.hpp"
 #include "encode/FlatScene.hpp"
+#include "encode/SceneBuffers.hpp"
 #include "imaging/PixelRegion.hpp"
 #include "scene/Scene.hpp"
 
@@ -21,6 +22,8 @@ struct ImageSampling {
   std::optional<ShadingModel> shading;  // default: the scene family's
   bool countRays = false;               // compile in a ray counter (benchmarks)
   AccelKind accel = AccelKind::Bvh;     // none: brute force, to compare against
+  // How kernels read the scene arrays; the image does not depend on it.
+  SceneArrays sceneArrays = SceneArrays::TexelBuffers;
 };
 
 }  // namespace rt

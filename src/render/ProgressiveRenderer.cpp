@@ -77,6 +77,7 @@ VkDeviceSize accumulationBytes(VulkanContext& context, const FlatScene& flat) {
 ShaderFeatures featuresFor(const Scene& scene, const FlatScene& flat,
                            const ProgressiveOptions& options) {
   ShaderFeatures features = detectFeatures(scene, flat);
+  features.storageBuffers = options.sceneArrays == SceneArrays::StorageBuffers;
   features.countRays = options.countRays;
   features.samplerKind = static_cast<int>(gpuSamplerKind(options.sampler));
   features.adaptiveSampling = options.adaptive;
@@ -94,7 +95,7 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
       features_(featuresFor(scene, flat_, options)),
       width_(flat_.info.width),
       height_(flat_.info.height),
-      sceneBuffers_(context, flat_),
+      sceneBuffers_(context, flat_, options.sceneArrays),
       region_(resolveRegion(options.region, width_, height_)),
       accumulation_(context, accumulationBytes(context, flat_), kAccumulationUsage),
       oddAccumulation_(context, accumulation_.size(), kAccumulationUsage) {
@@ -120,8 +121,8 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
 }
 
 std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(bool countRays, AccelKind accel,
-                                                               bool adaptive) {
-  std::vector<KernelBinding> bindings = SceneBuffers::bindings(accel);
+                                                               bool adaptive, SceneArrays arrays) {
+  std::vector<KernelBinding> bindings = SceneBuffers::bindings(accel, arrays);
   bindings.push_back({RT_BINDING_ACCUMULATION, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER});
   bindings.push_back({RT_BINDING_ACCUMULATION_ODD, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER});
   if (countRays) bindings.push_back({RT_BINDING_RAY_COUNTER});
@@ -135,7 +136,8 @@ std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(bool countRays, A
 std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
   auto kernel = std::make_unique<ComputeKernel>(
       context_, compiler_.compile("trace.comp", features_.defines()),
-      kernelBindings(rayCounter_.has_value(), flat_.accel, samplePlan_.has_value()),
+      kernelBindings(rayCounter_.has_value(), flat_.accel, samplePlan_.has_value(),
+                     options_.sceneArrays),
       static_cast<uint32_t>(sizeof(gpu::GpuFrameParams)));
   sceneBuffers_.bindTo(*kernel);
   kernel->bindTexels(RT_BINDING_ACCUMULATION, accumulation_, VK_FORMAT_R32G32B32A32_SFLOAT);

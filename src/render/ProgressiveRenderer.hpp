@@ -83,7 +83,8 @@ class ProgressiveRenderer {
   const Buffer& accumulation() const { return accumulation_; }
   // Descriptor bindings of the render kernel (trace.comp).
   static std::vector<KernelBinding> kernelBindings(bool countRays, AccelKind accel = AccelKind::Bvh,
-                                                   bool adaptive = false);
+                                                   bool adaptive = false,
+                                                   SceneArrays arrays = SceneArrays::TexelBuffers);
   // Mean radiance per pixel; alpha = the pixel's sample count.
   ImageF resolve();
   // The accumulation sums of all and of the odd-indexed samples.

@@ -272,7 +272,7 @@ TEST_SUITE("bvh-gpu") {
     SceneBufferLimits limits;
     limits.texels = flat.items.size() * RT_TEXELS_PER_ITEM - 1;
     try {
-      SceneBuffers buffers(test::gpu(), flat, limits);
+      SceneBuffers buffers(test::gpu(), flat, SceneArrays::TexelBuffers, limits);
       FAIL("no error");
     } catch (const Error& e) {
       std::string message = e.what();
@@ -283,7 +283,7 @@ TEST_SUITE("bvh-gpu") {
     // other buffer holds texels, the vertices are what does not fit.
     flat.vertices.resize(4 * (flat.items.size() + flat.bvhNodes.size() + flat.primitives.size()));
     limits.texels = flat.vertices.size() * RT_TEXELS_PER_VERTEX - 1;
-    CHECK_THROWS_WITH_AS(SceneBuffers(test::gpu(), flat, limits),
+    CHECK_THROWS_WITH_AS(SceneBuffers(test::gpu(), flat, SceneArrays::StorageBuffers, limits),
                          doctest::Contains("scene too large: vertices need"), Error);
     test::checkNoValidationMessages();
   }

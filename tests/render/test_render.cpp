@@ -395,6 +395,50 @@ TEST_SUITE("render") {
   }
 }
 
+// The scene arrays read as texel buffers or as storage buffers of the same
+// bytes (SceneArrays): the same kernel code around either, so the same image.
+TEST_SUITE("render") {
+  // Renders `scene` both ways and checks the images are bit for bit equal.
+  void checkSameImageFromEitherArrays(const Scene& scene) {
+    RenderOptions options;
+    options.width = 64;
+    options.height = 48;
+    options.samplesPerPixel = 3;
+    options.sceneArrays = SceneArrays::TexelBuffers;
+    RenderStats texelStats;
+    const ImageF texels = test::render(scene, options, &texelStats);
+    options.sceneArrays = SceneArrays::StorageBuffers;
+    RenderStats storageStats;
+    const ImageF storage = test::render(scene, options, &storageStats);
+    CHECK_FALSE(texelStats.features.storageBuffers);
+    CHECK(storageStats.features.storageBuffers);
+    CHECK(bitwiseEqual(texels, storage));
+    CHECK(allFinite(storage));
+  }
+
+  TEST_CASE("storage-buffer scene arrays give the texel buffers' image") {
+    // Spheres, cylinders, meshes, loose triangles, mirrors and glass.
+    checkSameImageFromEitherArrays(test::projectScene("default.json"));
+    // Area lights (emitters) and point lights.
+    checkSameImageFromEitherArrays(test::projectScene("study-arealight.json"));
+    // Textures, on the default scene's materials.
+    Scene textured = test::projectScene("default.json");
+    textured.textures.push_back(
+        {"checker", {2, 2, {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 128, 128, 128, 255}}});
+    for (Material& material : textured.materials) material.diffuseTexture = 0;
+    checkSameImageFromEitherArrays(textured);
+    test::checkNoValidationMessages();
+  }
+
+  TEST_CASE("storage-buffer scene arrays: per-vertex normals and UVs (the common scene)" *
+            test::needsShared()) {
+    const std::filesystem::path shared = test::requireShared();
+    checkSameImageFromEitherArrays(
+        loadJsonScene(shared / "bench" / "common-scene" / "common_pinhole.json"));
+    test::checkNoValidationMessages();
+  }
+}
+
 // A Blender export (formats/json/BlenderExport), end to end: Blender's
 // camera, cube, light power and world colour.
 TEST_SUITE("render") {
