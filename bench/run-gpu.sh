@@ -63,6 +63,11 @@ common_scene() {
 # The speed figures first, the test suite last: where time runs short, the
 # tables are what this report is for.
 section "Vulkan devices" "$root/build/raytracer" --device list
+# A GPU idles at a fraction of its clock and takes a while under load to
+# raise it: timings taken cold read up to 4x slower (an H200's bunny walk:
+# 489 cold, 1963 Mrays/s warm). Five seconds of rendering first.
+section "Warm-up (5 s of rendering, not timed)" "$root/build/raytracer" --quiet --time 5 --spp 65536 \
+  --size 1920x1080 "$root/scenes/default.json" "$(mktemp -d)/warm-up.png"
 section "Scenes: rt-bench, 800x800, 16 spp (bvh and hardware)" \
   "$root/build/rt-bench" --width 800 --height 800 --spp 16 "${scenes[@]}"
 if [[ -n "$shared" ]]; then
