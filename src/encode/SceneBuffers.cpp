@@ -20,7 +20,7 @@ Buffer makeRows(VulkanContext& context, SceneArrays arrays, const SceneBufferLim
   static_assert(sizeof(T) % RowBytes == 0, "records are whole rows");
   VkDeviceSize rows = std::max<VkDeviceSize>(1, items.size()) * (sizeof(T) / RowBytes);
   const bool storage = arrays == SceneArrays::StorageBuffers;
-  VkDeviceSize limit = limits.texels ? limits.texels
+  VkDeviceSize limit = limits.rows ? limits.rows
                        : storage     ? context.limits().maxStorageBufferRange / RowBytes
                                      : context.limits().maxTexelBufferElements;
   if (rows > limit) {

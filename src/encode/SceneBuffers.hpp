@@ -27,7 +27,9 @@ enum class SceneArrays { TexelBuffers, StorageBuffers };
 
 // Largest buffers a scene may use; 0: the device's limit (tests set less).
 struct SceneBufferLimits {
-  VkDeviceSize texels = 0;  // per texel buffer (maxTexelBufferElements)
+  // Rows per scene array (texels: maxTexelBufferElements; storage-buffer
+  // rows: maxStorageBufferRange / row size).
+  VkDeviceSize rows = 0;
 };
 
 class SceneBuffers {

@@ -270,7 +270,7 @@ TEST_SUITE("bvh-gpu") {
   TEST_CASE("a scene beyond the buffer limits is a one-line error, not a crash") {
     FlatScene flat = flattenScene(meshScene(false));
     SceneBufferLimits limits;
-    limits.texels = flat.items.size() * RT_TEXELS_PER_ITEM - 1;
+    limits.rows = flat.items.size() * RT_TEXELS_PER_ITEM - 1;
     try {
       SceneBuffers buffers(test::gpu(), flat, SceneArrays::TexelBuffers, limits);
       FAIL("no error");
@@ -282,7 +282,7 @@ TEST_SUITE("bvh-gpu") {
     // Shading data is in texel buffers too: with more vertices than any
     // other buffer holds texels, the vertices are what does not fit.
     flat.vertices.resize(4 * (flat.items.size() + flat.bvhNodes.size() + flat.primitives.size()));
-    limits.texels = flat.vertices.size() * RT_TEXELS_PER_VERTEX - 1;
+    limits.rows = flat.vertices.size() * RT_TEXELS_PER_VERTEX - 1;
     CHECK_THROWS_WITH_AS(SceneBuffers(test::gpu(), flat, SceneArrays::StorageBuffers, limits),
                          doctest::Contains("scene too large: vertices need"), Error);
     test::checkNoValidationMessages();
