@@ -25,12 +25,15 @@ using uint = uint32_t;
   static_assert(sizeof(T) % 16 == 0 || sizeof(T) < 16, #T               \
                 ": array stride must be a multiple of "                 \
                 "16")
+// A function both sides compile from this file.
+#define RT_SHARED_FUNCTION inline
 // A record read from a texel buffer as `texels` RGBA32 texels.
 #define RT_ASSERT_TEXELS(T, texels) \
   static_assert(sizeof(T) == (texels)*16, #T ": not a whole number of RGBA32 texels")
 #else
 #define RT_ASSERT_STD430_SIZE(T, bytes)
 #define RT_ASSERT_TEXELS(T, texels)
+#define RT_SHARED_FUNCTION
 #endif
 
 // Descriptor set 0 bindings of the render and intersection kernels.
@@ -65,6 +68,11 @@ using uint = uint32_t;
 // Adaptive sampling decides per square tile of this many pixels a side
 // (one workgroup, so that a workgroup's lanes run the same sample count).
 #define RT_ADAPTIVE_TILE_SIZE 8
+// Flags in a tile's (first sample, count) of the sample plan, for the pixels
+// adaptivePairedPixel picks: in the first round's count, "one sample more"
+// (they hold the tile's noise estimate); in later rounds' first sample, "one
+// later" (they already have that extra sample).
+#define RT_ADAPTIVE_PAIRED_FLAG 0x80000000u
 
 // The BVH builder never exceeds this depth, so traversal needs no more stack.
 #define RT_BVH_MAX_DEPTH 48
@@ -379,6 +387,26 @@ struct GpuBatchParams {
   uint pad2;
 };
 RT_ASSERT_STD430_SIZE(GpuBatchParams, 16);
+
+// Adaptive sampling's first round gives a second sample to two of the eight
+// 4x2 blocks of every 8x8 tile, so that each tile's noise is measured from
+// 16 pairs at 1.25 samples a pixel (AdaptiveSampling.hpp). Blocks, not
+// single pixels: a 4x2 block is one run of eight invocations (pixelInGroup
+// in trace.comp), one SIMD vector on lavapipe, which runs its loop until its
+// slowest lane is done; one pixel in four of every vector with two samples
+// made the first round as slow as two samples everywhere. Which two blocks
+// is a hash of the tile, so no pattern repeats with the tiles. 1 for a pixel
+// of a picked block, else 0; the host and the kernel share this definition.
+RT_SHARED_FUNCTION uint adaptivePairedPixel(uint x, uint y) {
+  uint h = (x >> 3u) * 0x9E3779B1u ^ (y >> 3u) * 0x85EBCA77u;
+  h ^= h >> 15u;
+  h *= 0x2C1B3C6Du;
+  h ^= h >> 13u;
+  uint first = h >> 29u;
+  uint second = first ^ (1u + ((h >> 26u) & 3u));
+  uint block = ((y & 7u) >> 1u) * 2u + ((x & 7u) >> 2u);
+  return (block == first || block == second) ? 1u : 0u;
+}
 
 #ifdef __cplusplus
 }  // namespace rt::gpu

@@ -65,7 +65,10 @@ void main() {
 #ifdef RT_ADAPTIVE_SAMPLING
   uint tilesPerRow = (sceneInfo.width + RT_ADAPTIVE_TILE_SIZE - 1u) / RT_ADAPTIVE_TILE_SIZE;
   uint tile = (pixel.y / RT_ADAPTIVE_TILE_SIZE) * tilesPerRow + pixel.x / RT_ADAPTIVE_TILE_SIZE;
-  uvec2 range = samplePlan[tile];
+  // The paired pixels' extra first-round sample (RT_ADAPTIVE_PAIRED_FLAG).
+  uvec2 planned = samplePlan[tile];
+  uvec2 range = (planned & ~RT_ADAPTIVE_PAIRED_FLAG) +
+                (planned >> 31u) * adaptivePairedPixel(pixel.x, pixel.y);
   if (range.y == 0u) return;
 #else
   uvec2 range = uvec2(frame.sampleBegin, frame.sampleCount);

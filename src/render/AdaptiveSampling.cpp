@@ -106,10 +106,14 @@ AdaptivePlan::AdaptivePlan(uint32_t width, uint32_t height, const PixelRegion& r
     : tilesPerRow_(divideRoundUp(width, kTileSize)), width_(width), region_(region) {
   const uint32_t rows = divideRoundUp(height, kTileSize);
   pixels_.assign(size_t(tilesPerRow_) * rows, 0);
+  paired_.assign(pixels_.size(), 0);
   samples_.assign(pixels_.size(), 0);
   rays_.assign(pixels_.size(), 0);
   for (uint32_t y = region.y; y < region.y + region.height; ++y) {
-    for (uint32_t x = region.x; x < region.x + region.width; ++x) ++pixels_[tileOf(x, y)];
+    for (uint32_t x = region.x; x < region.x + region.width; ++x) {
+      ++pixels_[tileOf(x, y)];
+      paired_[tileOf(x, y)] += gpu::adaptivePairedPixel(x, y);
+    }
   }
   regionPixels_ = uint64_t(region.width) * region.height;
 }
@@ -124,28 +128,88 @@ std::vector<uint32_t> AdaptivePlan::uniformRound(uint32_t count) const {
   return added;
 }
 
-NoiseMeasurement AdaptivePlan::measureNoise(const SampleSums& sums,
-                                            const ToneMapping& mapping) const {
-  std::vector<double> variance(pixels_.size(), 0.0);
-  double squaredSum = 0;
-  bool everyPixel = true;
+AdaptivePlan::PixelErrors AdaptivePlan::pixelErrors(const SampleSums& sums,
+                                                    const ToneMapping& mapping) const {
+  PixelErrors errors;
+  errors.squared.assign(sums.all.size(), -1.0);
+  errors.tileVariance.assign(pixels_.size(), 0.0);
+  std::vector<uint32_t> measured(pixels_.size(), 0);
   for (uint32_t y = region_.y; y < region_.y + region_.height; ++y) {
     for (uint32_t x = region_.x; x < region_.x + region_.width; ++x) {
       const size_t pixel = size_t(y) * width_ + x;
       std::optional<double> squared = estimatePixelSquaredError(sums, pixel, mapping);
-      if (!squared) {
-        everyPixel = false;
-        continue;
-      }
-      squaredSum += *squared;
+      if (!squared) continue;
+      errors.squared[pixel] = *squared;
       // Error of the mean times the sample count: the variance of one sample.
-      variance[tileOf(x, y)] += *squared * sums.all[pixel].w;
+      errors.tileVariance[tileOf(x, y)] += *squared * sums.all[pixel].w;
+      ++measured[tileOf(x, y)];
     }
   }
+  std::vector<double> own = errors.tileVariance;
+  for (size_t i = 0; i < own.size(); ++i) {
+    if (measured[i] > 0) own[i] /= measured[i];
+  }
+  const int rows = static_cast<int>(pixels_.size() / tilesPerRow_);
+  const int columns = static_cast<int>(tilesPerRow_);
+  for (int ty = 0; ty < rows; ++ty) {
+    for (int tx = 0; tx < columns; ++tx) {
+      const size_t i = size_t(ty) * tilesPerRow_ + tx;
+      errors.tileVariance[i] = own[i];
+      if (measured[i] > 0 || pixels_[i] == 0) continue;
+      // A tile at the image's edge whose blocks picked pixels outside it:
+      // its noisiest measured neighbour's noise.
+      bool found = false;
+      for (int ny = std::max(ty - 1, 0); ny <= std::min(ty + 1, rows - 1); ++ny) {
+        for (int nx = std::max(tx - 1, 0); nx <= std::min(tx + 1, columns - 1); ++nx) {
+          const size_t j = size_t(ny) * tilesPerRow_ + nx;
+          if (measured[j] == 0) continue;
+          errors.tileVariance[i] = found ? std::max(errors.tileVariance[i], own[j]) : own[j];
+          found = true;
+        }
+      }
+      if (!found) errors.complete = false;
+    }
+  }
+  // Pixels without both halves: their tile's noise over their count.
+  for (uint32_t y = region_.y; y < region_.y + region_.height; ++y) {
+    for (uint32_t x = region_.x; x < region_.x + region_.width; ++x) {
+      const size_t pixel = size_t(y) * width_ + x;
+      const float count = sums.all[pixel].w;
+      if (errors.squared[pixel] >= 0) continue;
+      if (count > 0 && errors.complete) {
+        errors.squared[pixel] = errors.tileVariance[tileOf(x, y)] / count;
+      } else {
+        errors.complete = false;
+      }
+    }
+  }
+  return errors;
+}
+
+NoiseMeasurement AdaptivePlan::measureNoise(const SampleSums& sums,
+                                            const ToneMapping& mapping) const {
+  PixelErrors errors = pixelErrors(sums, mapping);
   NoiseMeasurement noise;
-  noise.tiles = dilatedTiles(variance);
-  if (everyPixel && regionPixels_ > 0) noise.rmse = std::sqrt(squaredSum / double(regionPixels_));
+  noise.tiles = dilatedTiles(errors.tileVariance);
+  if (!errors.complete || regionPixels_ == 0) return noise;
+  double squaredSum = 0;
+  for (uint32_t y = region_.y; y < region_.y + region_.height; ++y) {
+    for (uint32_t x = region_.x; x < region_.x + region_.width; ++x) {
+      squaredSum += errors.squared[size_t(y) * width_ + x];
+    }
+  }
+  noise.rmse = std::sqrt(squaredSum / double(regionPixels_));
   return noise;
+}
+
+std::vector<float> AdaptivePlan::errorImage(const SampleSums& sums,
+                                            const ToneMapping& mapping) const {
+  PixelErrors errors = pixelErrors(sums, mapping);
+  std::vector<float> image(errors.squared.size(), -1.0f);
+  for (size_t i = 0; i < image.size(); ++i) {
+    if (errors.squared[i] >= 0) image[i] = static_cast<float>(std::sqrt(errors.squared[i]));
+  }
+  return image;
 }
 
 std::vector<TileNoise> AdaptivePlan::dilatedTiles(const std::vector<double>& variance) const {
@@ -160,16 +224,16 @@ std::vector<TileNoise> AdaptivePlan::dilatedTiles(const std::vector<double>& var
       tile.samples = samples_[i];
       if (tile.pixels == 0) continue;
       // Every sample traces at least its camera ray.
-      const double samples = double(tile.pixels) * tile.samples;
+      const double samples = tileSamples(i);
       tile.cost = samples > 0 ? std::max(double(rays_[i]) / samples, 1.0) : 1.0;
-      double own = variance[i] / tile.pixels;
+      double own = variance[i];
       double neighbour = 0;
       for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
           int nx = tx + dx, ny = ty + dy;
           if (nx < 0 || ny < 0 || nx >= columns || ny >= rows) continue;
           const size_t j = size_t(ny) * tilesPerRow_ + nx;
-          if (pixels_[j] > 0) neighbour = std::max(neighbour, variance[j] / pixels_[j]);
+          if (pixels_[j] > 0) neighbour = std::max(neighbour, variance[j]);
         }
       }
       tile.variance = std::max(own, kNeighbourShare * neighbour);
@@ -178,23 +242,36 @@ std::vector<TileNoise> AdaptivePlan::dilatedTiles(const std::vector<double>& var
   return tiles;
 }
 
-void AdaptivePlan::addRound(const std::vector<uint32_t>& added, const std::vector<uint32_t>& rays) {
+void AdaptivePlan::addRound(const std::vector<uint32_t>& added, const std::vector<uint32_t>& rays,
+                            bool paired) {
   if (rays.size() != samples_.size()) throw Error("adaptive round: not one ray count per tile");
+  if (paired && pairsRendered_) throw Error("adaptive round: the pairs have their sample");
   for (size_t i = 0; i < samples_.size(); ++i) {
     samples_[i] += added[i];
     rays_[i] += rays[i];
   }
+  pairsRendered_ = pairsRendered_ || paired;
 }
 
-std::vector<glm::uvec2> AdaptivePlan::kernelRanges(const std::vector<uint32_t>& added) const {
-  std::vector<glm::uvec2> ranges(samples_.size());
-  for (size_t i = 0; i < ranges.size(); ++i) ranges[i] = {samples_[i], added[i]};
+std::vector<glm::uvec2> AdaptivePlan::kernelRanges(const std::vector<uint32_t>& added,
+                                                   bool paired) const {
+  std::vector<glm::uvec2> ranges(samples_.size(), glm::uvec2(0));
+  for (size_t i = 0; i < ranges.size(); ++i) {
+    if (pixels_[i] == 0) continue;
+    ranges[i] = {samples_[i], added[i]};
+    if (pairsRendered_) ranges[i].x |= RT_ADAPTIVE_PAIRED_FLAG;
+    if (paired) ranges[i].y |= RT_ADAPTIVE_PAIRED_FLAG;
+  }
   return ranges;
+}
+
+double AdaptivePlan::tileSamples(size_t tile) const {
+  return double(pixels_[tile]) * samples_[tile] + (pairsRendered_ ? paired_[tile] : 0);
 }
 
 uint64_t AdaptivePlan::pixelSamples() const {
   uint64_t total = 0;
-  for (size_t i = 0; i < samples_.size(); ++i) total += uint64_t(pixels_[i]) * samples_[i];
+  for (size_t i = 0; i < samples_.size(); ++i) total += static_cast<uint64_t>(tileSamples(i));
   return total;
 }
 
@@ -202,7 +279,8 @@ AdaptiveRounds::AdaptiveRounds(uint32_t width, uint32_t height, const PixelRegio
                                const Goal& goal)
     : plan_(width, height, region),
       goal_(goal),
-      round_(plan_.uniformRound(std::min(goal.meanSamples, kAdaptiveFirstPass))) {
+      round_(plan_.uniformRound(std::min(goal.meanSamples, kAdaptiveFirstPass))),
+      pairRound_(goal.meanSamples >= 2) {
   finished_ = goal.meanSamples == 0 || plan_.regionPixels() == 0;
 }
 
@@ -229,8 +307,10 @@ double AdaptiveRounds::rowWork(uint32_t y, uint32_t end) const {
     for (uint32_t tx = region.x / tile; tx * tile < region.x + region.width; ++tx) {
       uint32_t x0 = std::max(tx * tile, region.x);
       uint32_t x1 = std::min((tx + 1) * tile, region.x + region.width);
-      work +=
-          double(round_[size_t(row / tile) * plan_.tilesPerRow() + tx]) * (x1 - x0) * (next - row);
+      // The paired pixels' extra sample: one pixel in four.
+      const uint32_t samples = round_[size_t(row / tile) * plan_.tilesPerRow() + tx];
+      const double extra = pairRound_ && samples > 0 ? 0.25 : 0.0;
+      work += (samples + extra) * (x1 - x0) * (next - row);
     }
     row = next;
   }
@@ -239,7 +319,8 @@ double AdaptiveRounds::rowWork(uint32_t y, uint32_t end) const {
 
 void AdaptiveRounds::finishRound(const SampleSums& sums, const std::vector<uint32_t>& tileRays,
                                  const ToneMapping& mapping) {
-  plan_.addRound(round_, tileRays);
+  plan_.addRound(round_, tileRays, pairRound_);
+  pairRound_ = false;
   NoiseMeasurement noise = plan_.measureNoise(sums, mapping);
   estimate_ = noise.rmse;
   AllocationGoal next;

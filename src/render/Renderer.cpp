@@ -234,6 +234,9 @@ class AdaptiveLoop : SampleLoop {
       stats_.reachedTarget = rounds_.reachedTarget();
       report(rounds_.meanSamples(), options_.samplesPerPixel, stats_.rmseEstimate);
     }
+    // Pixels of one sample take their tile's noise (AdaptivePlan::errorImage).
+    if (options_.keepErrorImage && sums)
+      stats_.estimatedError = rounds_.errorImage(*sums, mapping_);
     return sums;
   }
 
@@ -287,7 +290,7 @@ void finishStats(ProgressiveRenderer& job, const RenderOptions& options, const T
   stats.meanSamples = total / (double(region.width) * region.height);
   stats.samplesDone = static_cast<uint32_t>(fewest);
   stats.maxSamples = static_cast<uint32_t>(most);
-  if (options.keepErrorImage && job.halvesIndependent()) {
+  if (options.keepErrorImage && job.halvesIndependent() && stats.estimatedError.empty()) {
     stats.estimatedError = estimatedErrorImage(sums, mapping);
   }
 }

@@ -37,11 +37,12 @@ struct RenderOptions : ImageSampling {
   bool estimateError = false;
   double targetRmse = 0;
   std::optional<ToneMapping> displayMapping;
-  // Adaptive sampling (render/AdaptiveSampling.hpp): after a uniform first
-  // pass of kAdaptiveFirstPass samples (AdaptiveSampling.hpp), rounds give more samples to the
-  // noisiest tiles. samplesPerPixel is then the budget of the mean count per
-  // pixel, targetRmse (if any) the goal; the estimate is always made. Cannot
-  // be combined with sample ranges (firstSample/endSample).
+  // Adaptive sampling (render/AdaptiveSampling.hpp): after a first pass of
+  // 1.25 samples a pixel (one, and one more on two 4x2 blocks of every 8x8
+  // tile), rounds give more samples to the noisiest tiles. samplesPerPixel
+  // is then the budget of the mean count per pixel, targetRmse (if any) the
+  // goal; the estimate is always made. Cannot be combined with sample
+  // ranges (firstSample/endSample).
   bool adaptive = false;
   // Fill RenderStats::estimatedError (needs estimateError or adaptive).
   bool keepErrorImage = false;

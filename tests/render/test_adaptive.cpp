@@ -168,6 +168,43 @@ TEST_SUITE("adaptive sampling") {
     CHECK(noise[2].cost == 1.0);
   }
 
+  TEST_CASE("the first pass pairs two 4x2 blocks of every tile, and the kernel pairs the same") {
+    // Each 4x2 block (one run of eight lanes, pixelInGroup in trace.comp) is
+    // paired as a whole, and two of a tile's eight are.
+    uint32_t splitBlocks = 0, wrongTiles = 0;
+    for (uint32_t tile = 0; tile < 256; ++tile) {
+      uint32_t paired = 0;
+      for (uint32_t block = 0; block < 8; ++block) {
+        uint32_t x0 = (tile % 16) * 8 + (block & 1) * 4, y0 = (tile / 16) * 8 + (block >> 1) * 2;
+        uint32_t first = gpu::adaptivePairedPixel(x0, y0);
+        for (uint32_t i = 0; i < 8; ++i) {
+          if (gpu::adaptivePairedPixel(x0 + i % 4, y0 + i / 4) != first) ++splitBlocks;
+        }
+        paired += first;
+      }
+      if (paired != 2) ++wrongTiles;
+    }
+    CHECK(splitBlocks == 0);
+    CHECK(wrongTiles == 0);
+    // End to end: a target the first pass meets ends the render after it.
+    Scene scene = test::projectScene("study-arealight.json");
+    RenderOptions options = adaptiveRender(16);
+    options.targetRmse = 1.0;
+    RenderStats stats;
+    ImageF image = test::render(scene, options, &stats);
+    uint32_t wrongCounts = 0;
+    for (uint32_t y = 0; y < image.height; ++y) {
+      for (uint32_t x = 0; x < image.width; ++x) {
+        float count = image.rgba[(size_t(y) * image.width + x) * 4 + 3];
+        if (count != 1.0f + float(gpu::adaptivePairedPixel(x, y))) ++wrongCounts;
+      }
+    }
+    CHECK(wrongCounts == 0);
+    CHECK(stats.meanSamples == 1.25);  // 12 x 9 whole tiles
+    REQUIRE(stats.rmseEstimate);
+    CHECK(stats.reachedTarget);
+  }
+
   TEST_CASE("adaptive renders are deterministic, within the budget, and sample the penumbrae") {
     Scene scene = test::projectScene("study-arealight.json");
     RenderStats first, second;
@@ -177,6 +214,9 @@ TEST_SUITE("adaptive sampling") {
     CHECK(first.meanSamples <= 32.0);
     CHECK(first.meanSamples > 16.0);
     CHECK(first.samplesDone >= kAdaptiveFirstPass);
+    // Every pixel has an estimate, those of one sample from their tile.
+    CHECK(std::all_of(first.estimatedError.begin(), first.estimatedError.end(),
+                      [](float e) { return e >= 0; }));
     CHECK(first.maxSamples >= 4 * first.samplesDone);  // the counts spread
     CHECK(first.estimatedError.size() == a.rgba.size() / 4);
     // Another seed decides differently.
