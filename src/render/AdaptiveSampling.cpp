@@ -145,31 +145,7 @@ AdaptivePlan::PixelErrors AdaptivePlan::pixelErrors(const SampleSums& sums,
       ++measured[tileOf(x, y)];
     }
   }
-  std::vector<double> own = errors.tileVariance;
-  for (size_t i = 0; i < own.size(); ++i) {
-    if (measured[i] > 0) own[i] /= measured[i];
-  }
-  const int rows = static_cast<int>(pixels_.size() / tilesPerRow_);
-  const int columns = static_cast<int>(tilesPerRow_);
-  for (int ty = 0; ty < rows; ++ty) {
-    for (int tx = 0; tx < columns; ++tx) {
-      const size_t i = size_t(ty) * tilesPerRow_ + tx;
-      errors.tileVariance[i] = own[i];
-      if (measured[i] > 0 || pixels_[i] == 0) continue;
-      // A tile at the image's edge whose blocks picked pixels outside it:
-      // its noisiest measured neighbour's noise.
-      bool found = false;
-      for (int ny = std::max(ty - 1, 0); ny <= std::min(ty + 1, rows - 1); ++ny) {
-        for (int nx = std::max(tx - 1, 0); nx <= std::min(tx + 1, columns - 1); ++nx) {
-          const size_t j = size_t(ny) * tilesPerRow_ + nx;
-          if (measured[j] == 0) continue;
-          errors.tileVariance[i] = found ? std::max(errors.tileVariance[i], own[j]) : own[j];
-          found = true;
-        }
-      }
-      if (!found) errors.complete = false;
-    }
-  }
+  errors.complete = poolTiles(errors.tileVariance, measured);
   // Pixels without both halves: their tile's noise over their count.
   for (uint32_t y = region_.y; y < region_.y + region_.height; ++y) {
     for (uint32_t x = region_.x; x < region_.x + region_.width; ++x) {
@@ -184,6 +160,40 @@ AdaptivePlan::PixelErrors AdaptivePlan::pixelErrors(const SampleSums& sums,
     }
   }
   return errors;
+}
+
+template <typename F>
+void AdaptivePlan::forEachNeighbour(size_t tile, F visit) const {
+  const size_t rows = pixels_.size() / tilesPerRow_;
+  const size_t ty = tile / tilesPerRow_, tx = tile % tilesPerRow_;
+  for (size_t ny = ty > 0 ? ty - 1 : 0; ny <= std::min(ty + 1, rows - 1); ++ny) {
+    for (size_t nx = tx > 0 ? tx - 1 : 0; nx <= std::min<size_t>(tx + 1, tilesPerRow_ - 1); ++nx) {
+      visit(ny * tilesPerRow_ + nx);
+    }
+  }
+}
+
+bool AdaptivePlan::poolTiles(std::vector<double>& variance,
+                             const std::vector<uint32_t>& measured) const {
+  std::vector<double> own = variance;
+  for (size_t i = 0; i < own.size(); ++i) {
+    if (measured[i] > 0) own[i] /= measured[i];
+  }
+  bool complete = true;
+  for (size_t i = 0; i < own.size(); ++i) {
+    variance[i] = own[i];
+    if (measured[i] > 0 || pixels_[i] == 0) continue;
+    // A tile at the image's edge whose paired blocks fall outside it: its
+    // noisiest measured neighbour's noise.
+    bool found = false;
+    forEachNeighbour(i, [&](size_t j) {
+      if (measured[j] == 0) return;
+      variance[i] = found ? std::max(variance[i], own[j]) : own[j];
+      found = true;
+    });
+    complete = complete && found;
+  }
+  return complete;
 }
 
 NoiseMeasurement AdaptivePlan::measureNoise(const SampleSums& sums,
@@ -214,30 +224,19 @@ std::vector<float> AdaptivePlan::errorImage(const SampleSums& sums,
 
 std::vector<TileNoise> AdaptivePlan::dilatedTiles(const std::vector<double>& variance) const {
   std::vector<TileNoise> tiles(pixels_.size());
-  const int rows = static_cast<int>(pixels_.size() / tilesPerRow_);
-  const int columns = static_cast<int>(tilesPerRow_);
-  for (int ty = 0; ty < rows; ++ty) {
-    for (int tx = 0; tx < columns; ++tx) {
-      const size_t i = size_t(ty) * tilesPerRow_ + tx;
-      TileNoise& tile = tiles[i];
-      tile.pixels = pixels_[i];
-      tile.samples = samples_[i];
-      if (tile.pixels == 0) continue;
-      // Every sample traces at least its camera ray.
-      const double samples = tileSamples(i);
-      tile.cost = samples > 0 ? std::max(double(rays_[i]) / samples, 1.0) : 1.0;
-      double own = variance[i];
-      double neighbour = 0;
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          int nx = tx + dx, ny = ty + dy;
-          if (nx < 0 || ny < 0 || nx >= columns || ny >= rows) continue;
-          const size_t j = size_t(ny) * tilesPerRow_ + nx;
-          if (pixels_[j] > 0) neighbour = std::max(neighbour, variance[j]);
-        }
-      }
-      tile.variance = std::max(own, kNeighbourShare * neighbour);
-    }
+  for (size_t i = 0; i < tiles.size(); ++i) {
+    TileNoise& tile = tiles[i];
+    tile.pixels = pixels_[i];
+    tile.samples = samples_[i];
+    if (tile.pixels == 0) continue;
+    // Every sample traces at least its camera ray.
+    const double samples = tileSamples(i);
+    tile.cost = samples > 0 ? std::max(double(rays_[i]) / samples, 1.0) : 1.0;
+    double neighbour = 0;
+    forEachNeighbour(i, [&](size_t j) {
+      if (pixels_[j] > 0) neighbour = std::max(neighbour, variance[j]);
+    });
+    tile.variance = std::max(variance[i], kNeighbourShare * neighbour);
   }
   return tiles;
 }

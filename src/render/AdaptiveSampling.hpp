@@ -127,6 +127,14 @@ class AdaptivePlan {
     bool complete = true;
   };
   PixelErrors pixelErrors(const SampleSums& sums, const ToneMapping& mapping) const;
+  // Turns per-tile sums of one sample's variance over `measured` pixels
+  // into means; a tile with no measured pixel takes its noisiest measured
+  // neighbour's. False if some tile of the region has neither.
+  bool poolTiles(std::vector<double>& variance, const std::vector<uint32_t>& measured) const;
+  // Calls visit(j) for the tiles j of the 3x3 block around `tile` (itself
+  // included) that lie in the image.
+  template <typename F>
+  void forEachNeighbour(size_t tile, F visit) const;
   // Tiles with noise v_i (one sample's, per tile) raised to a share of their
   // noisiest neighbour's, and the cost of a sample from the rays counted.
   std::vector<TileNoise> dilatedTiles(const std::vector<double>& variance) const;

@@ -205,6 +205,50 @@ TEST_SUITE("adaptive sampling") {
     CHECK(stats.reachedTarget);
   }
 
+  TEST_CASE(
+      "pixels of one sample take their tile's noise, an edge tile without pairs its neighbour's") {
+    // An image one column wider than k tiles, where the last column's tile
+    // has no paired pixel.
+    auto pairedInColumn = [](uint32_t x) {
+      uint32_t n = 0;
+      for (uint32_t y = 0; y < 8; ++y) n += gpu::adaptivePairedPixel(x, y);
+      return n;
+    };
+    uint32_t k = 1;
+    while (pairedInColumn(8 * k) > 0 && k < 1000) ++k;
+    REQUIRE(k < 1000);
+    const uint32_t width = 8 * k + 1, height = 8;
+    AdaptivePlan plan(width, height, {0, 0, width, height});
+    SampleSums sums{width, height, std::vector<glm::vec4>(width * height),
+                    std::vector<glm::vec4>(width * height)};
+    uint32_t paired = 0;
+    for (uint32_t y = 0; y < height; ++y) {
+      for (uint32_t x = 0; x < width; ++x) {
+        const size_t i = size_t(y) * width + x;
+        if (gpu::adaptivePairedPixel(x, y)) {
+          // Halves of one sample, 0.4 and 0.6: a squared error of the mean
+          // of 0.04 / 4, one sample's variance 0.02.
+          sums.odd[i] = glm::vec4(glm::vec3(0.6f), 1);
+          sums.all[i] = glm::vec4(glm::vec3(1.0f), 2);
+          ++paired;
+        } else {
+          sums.all[i] = glm::vec4(glm::vec3(0.5f), 1);
+        }
+      }
+    }
+    NoiseMeasurement measured = plan.measureNoise(sums, ToneMapping{});
+    REQUIRE(measured.rmse);
+    const double pixels = double(width) * height;
+    const double expected = std::sqrt((paired * 0.01 + (pixels - paired) * 0.02) / pixels);
+    CHECK(*measured.rmse == doctest::Approx(expected).epsilon(1e-4).scale(0));
+    std::vector<float> errors = plan.errorImage(sums, ToneMapping{});
+    for (uint32_t y = 0; y < height; ++y) {
+      CAPTURE(y);
+      CHECK(errors[size_t(y) * width + width - 1] ==
+            doctest::Approx(std::sqrt(0.02)).epsilon(1e-4).scale(0));
+    }
+  }
+
   TEST_CASE("adaptive renders are deterministic, within the budget, and sample the penumbrae") {
     Scene scene = test::projectScene("study-arealight.json");
     RenderStats first, second;
