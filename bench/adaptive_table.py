@@ -7,9 +7,10 @@ between the measured points around the crossing, '>' when the series never
 got there), the ratio to uniform jittered, and the RMSE each series had at the
 CPU time adaptive needed (interpolated the same way); for adaptive also the
 ratio to uniform Sobol, the sampler it draws its samples from. Standard
-library only.
+library only. --clock wall reads the wall-clock seconds instead: on a GPU the
+CPU time is the host's alone, not the renderer's work.
 
-Usage: adaptive_table.py OUT_DIR SCENE.json...
+Usage: adaptive_table.py [--clock cpu|wall] OUT_DIR SCENE.json...
 """
 import csv
 import math
@@ -20,12 +21,12 @@ TARGETS = [0.01, 0.003]
 SERIES = ["random", "jittered", "sobol", "adaptive"]
 
 
-def read_points(path):
+def read_points(path, column):
     points = {}
     with open(path, newline="") as f:
         for row in csv.DictReader(f):
             points.setdefault(row["sampler"], []).append(
-                (float(row["cpu_seconds"]), float(row["rmse"])))
+                (float(row[column]), float(row["rmse"])))
     return points
 
 
@@ -47,13 +48,14 @@ def rmse_at(points, seconds):
     return None
 
 
-def print_table(out, scenes, target):
-    print(f"\ntime to RMSE {target} (CPU s, whole image) and RMSE at adaptive's time")
-    print(f"{'scene':<16} {'series':<9} {'cpu_s':>9} {'vs jittered':>12} {'vs sobol':>9} "
+def print_table(out, scenes, target, clock):
+    column = "cpu_seconds" if clock == "cpu" else "seconds"
+    print(f"\ntime to RMSE {target} ({clock} s, whole image) and RMSE at adaptive's time")
+    print(f"{'scene':<16} {'series':<9} {clock + '_s':>9} {'vs jittered':>12} {'vs sobol':>9} "
           f"{'rmse@t_adaptive':>16}")
     for scene in scenes:
         name = os.path.splitext(os.path.basename(scene))[0]
-        points = read_points(os.path.join(out, name + ".csv"))
+        points = read_points(os.path.join(out, name + ".csv"), column)
         times = {s: seconds_to(points[s], target) for s in SERIES if s in points}
         pivot = times.get("adaptive")
         for series in SERIES:
@@ -61,7 +63,7 @@ def print_table(out, scenes, target):
                 continue
             t = times[series]
             last = points[series][-1][0]
-            shown = f"{t:.2f}" if t else f">{last:.2f}"
+            shown = f"{t:.3f}" if t else f">{last:.3f}"
             ratio = f"{t / times['jittered']:.2f}x" if t and times.get("jittered") else "-"
             to_sobol = "-"
             if series == "adaptive" and t and times.get("sobol"):
@@ -72,9 +74,15 @@ def print_table(out, scenes, target):
 
 
 def main():
-    out, scenes = sys.argv[1], sys.argv[2:]
+    args = sys.argv[1:]
+    clock = "cpu"
+    if args[:1] == ["--clock"]:
+        clock, args = args[1], args[2:]
+    if clock not in ("cpu", "wall") or not args:
+        sys.exit("usage: adaptive_table.py [--clock cpu|wall] OUT_DIR SCENE.json...")
+    out, scenes = args[0], args[1:]
     for target in TARGETS:
-        print_table(out, scenes, target)
+        print_table(out, scenes, target, clock)
 
 
 if __name__ == "__main__":

@@ -85,5 +85,26 @@ if [[ -n "$shared" ]]; then
   section "Meshes: rt-bench-bvh (BVH build, primary and diffuse rays)" \
     "$root/build/rt-bench-bvh" --bunny "$bunny" --plain
 fi
+# adaptive_sampling WIDTH HEIGHT: bench/run-adaptive.sh's comparison by wall
+# clock (on a GPU the CPU time is the host's alone), on the thin-lens study and
+# the common scene, against uniform jittered and Sobol.
+adaptive_sampling() {
+  local out=$root/build/adaptive-gpu scene name
+  mkdir -p "$out"
+  local studied=("$root/scenes/study-thinlens.json")
+  [[ -n "$shared" ]] && studied+=("$common/common_dof.json")
+  for scene in "${studied[@]}"; do
+    name=$(basename "$scene" .json)
+    "$root/build/raytracer" converge "$scene" --size "${1}x$2" --samplers jittered,sobol,adaptive \
+      --spp-list 2,3,4,6,8,11,16,23,32,45,64,91 --reference-spp 2048 --repeat 3 \
+      --out "$out/$name" -q >/dev/null || return 1
+  done
+  python3 "$root/bench/adaptive_table.py" --clock wall "$out" "${studied[@]}"
+}
+# On lavapipe the small size of bench/run-adaptive.sh.
+adaptive_size=(320 240)
+[[ $width == 1920 ]] && adaptive_size=(1920 1080)
+section "Adaptive sampling: time to RMSE (converge, wall clock, ${adaptive_size[0]}x${adaptive_size[1]})" \
+  adaptive_sampling "${adaptive_size[@]}"
 section "Test suite (ctest)" bash -c "cd '$root/build' && ctest --output-on-failure --parallel $(nproc) --timeout 600 -E '${RT_CTEST_EXCLUDE:-farm}'"
 echo "wrote $report"

@@ -21,19 +21,9 @@ layout(std430, set = 0, binding = RT_DISPLAY_BINDING_PIXELS) writeonly buffer Pi
   uint pixels[];
 };
 
-// rt::toneMap's quantize(applyCurve(v * exposure)): NaN and negatives go to 0.
+// rt::toneMap's quantize(displayValue(v)).
 uint toneMapChannel(float value) {
-  float exposed = value * params.exposure;
-  if (!(exposed > 0.0)) exposed = 0.0;
-  if (params.toneCurve == RT_TONE_CURVE_REINHARD) {
-    exposed = exposed / (1.0 + exposed);
-  } else if (params.toneCurve == RT_TONE_CURVE_ACES) {
-    exposed = exposed * (2.51 * exposed + 0.03) / (exposed * (2.43 * exposed + 0.59) + 0.14);
-  }
-  float unit = min(exposed, 1.0);
-  if (params.srgbEncode != 0u) {
-    unit = unit <= 0.0031308 ? 12.92 * unit : 1.055 * pow(unit, 1.0 / 2.4) - 0.055;
-  }
+  float unit = displayChannel(value, params.exposure, params.toneCurve, params.srgbEncode);
   return uint(floor(unit * 255.0 + (params.truncate != 0u ? 0.0 : 0.5)));
 }
 

@@ -3,7 +3,7 @@
 #ifndef RT_DISPLAY_TYPES_H
 #define RT_DISPLAY_TYPES_H
 
-#include "gpu_types.h"
+#include "tone_mapping.h"
 
 #ifdef __cplusplus
 namespace rt::gpu {
@@ -15,11 +15,6 @@ namespace rt::gpu {
 
 #define RT_DISPLAY_WORKGROUP_SIZE 16  // 16 x 16: measured faster than 8 x 8 on lavapipe
 
-// GpuDisplayParams::toneCurve: rt::ToneCurve's values.
-#define RT_TONE_CURVE_CLAMP 0u
-#define RT_TONE_CURVE_REINHARD 1u
-#define RT_TONE_CURVE_ACES 2u
-
 // Push constants of one display dispatch.
 struct GpuDisplayParams {
   uvec2 size;       // accumulation (and display image) size in pixels
@@ -27,7 +22,7 @@ struct GpuDisplayParams {
   uint firstRow;    // the dispatch covers rows firstRow.. (those that got samples)
   uint truncate;    // 1: bytes are floor(255 v) (rt::Quantization::Truncate); 0: rounded
   uint srgbEncode;  // 1: the sRGB transfer function after the curve (rt::ToneMapping)
-  uint toneCurve;   // RT_TONE_CURVE_*
+  uint toneCurve;   // RT_TONE_CURVE_* (tone_mapping.h)
   uint pad2;
 };
 RT_ASSERT_STD430_SIZE(GpuDisplayParams, 32);

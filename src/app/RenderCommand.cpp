@@ -381,11 +381,10 @@ int runRenderCommand(int argc, char** argv) {
                "Estimate the displayed image's RMSE while rendering (even and odd samples become "
                "independent halves, which costs jittered and sobol some accuracy)");
   app.add_flag("--adaptive", cli.adaptive,
-               "Adaptive sampling: after 2 samples per pixel, rounds give more samples to the "
-               "noisiest 8x8 tiles, weighed by the rays their samples trace; --spp is then the "
-               "budget of the mean count per pixel, "
-               "--target-rmse the goal (default sampler: sobol; cannot be split with --samples "
-               "or --region)");
+               "Adaptive sampling: after a first pass of 1.25 samples per pixel, rounds give "
+               "more samples to the noisiest 8x8 tiles, weighed by the rays their samples trace; "
+               "--spp is then the budget of the mean count per pixel, --target-rmse the goal "
+               "(default sampler: sobol; cannot be split with --samples or --region)");
   app.add_option("--sample-map", cli.sampleMapPath,
                  "Also write a .png of the samples each pixel got (false colour, log scale)");
   app.add_option("--error-map", cli.errorMapPath,

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "noise_types.h"
 #include "util/Error.hpp"
 
 namespace rt {
@@ -31,18 +32,11 @@ double displayRmse(const ImageF& image, const ImageF& reference, const ToneMappi
 
 std::optional<double> estimatePixelSquaredError(const SampleSums& sums, size_t pixel,
                                                 const ToneMapping& mapping) {
-  const glm::vec4 odd = sums.odd[pixel];
-  const glm::vec4 even = sums.all[pixel] - odd;
-  if (!(odd.w > 0.0f && even.w > 0.0f)) return std::nullopt;
-  const double n = double(even.w) + odd.w;
-  const double weight = double(even.w) * odd.w / (n * n);
-  double sum = 0;
-  for (int c = 0; c < 3; ++c) {
-    double d =
-        double(displayValue(even[c] / even.w, mapping)) - displayValue(odd[c] / odd.w, mapping);
-    sum += d * d * weight;
-  }
-  return sum / 3.0;
+  const float squared =
+      gpu::pixelSquaredError(sums.all[pixel], sums.odd[pixel], mapping.exposure,
+                             static_cast<uint32_t>(mapping.curve), mapping.srgbEncode ? 1u : 0u);
+  if (squared < 0.0f) return std::nullopt;
+  return squared;
 }
 
 std::optional<double> estimateDisplayRmse(const SampleSums& sums, const ToneMapping& mapping,

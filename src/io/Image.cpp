@@ -11,27 +11,16 @@
 #include <string>
 
 #include "io/AtomicFile.hpp"
+#include "tone_mapping.h"
 #include "util/Error.hpp"
 #include "util/Text.hpp"
 
+static_assert(static_cast<uint32_t>(rt::ToneCurve::Clamp) == RT_TONE_CURVE_CLAMP &&
+              static_cast<uint32_t>(rt::ToneCurve::Reinhard) == RT_TONE_CURVE_REINHARD &&
+              static_cast<uint32_t>(rt::ToneCurve::Aces) == RT_TONE_CURVE_ACES);
+
 namespace rt {
 namespace {
-
-float srgbEncode(float linear) {
-  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-}
-
-float applyCurve(float value, ToneCurve curve) {
-  if (!(value > 0.0f)) return 0.0f;  // also maps NaN to black
-  switch (curve) {
-    case ToneCurve::Reinhard: return value / (1.0f + value);
-    case ToneCurve::Aces:
-      value = value * (2.51f * value + 0.03f) / (value * (2.43f * value + 0.59f) + 0.14f);
-      break;
-    case ToneCurve::Clamp: break;
-  }
-  return std::min(value, 1.0f);
-}
 
 uint8_t quantize(float unit, Quantization quantization) {
   float scaled = std::clamp(unit, 0.0f, 1.0f) * 255.0f;
@@ -155,8 +144,8 @@ const char* toneCurveName(ToneCurve curve) {
 }
 
 float displayValue(float linear, const ToneMapping& mapping) {
-  float v = applyCurve(linear * mapping.exposure, mapping.curve);
-  return mapping.srgbEncode ? srgbEncode(v) : v;
+  return gpu::displayChannel(linear, mapping.exposure, static_cast<uint32_t>(mapping.curve),
+                             mapping.srgbEncode ? 1u : 0u);
 }
 
 Image8 toneMap(const ImageF& image, const ToneMapping& mapping) {

@@ -37,7 +37,7 @@ struct ImageRgba8 {
 // the ACES filmic curve, x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14),
 // clamped (students' renderers that tone-map use one of the two; README
 // "Student scenes", tone curve). The values are those of RT_TONE_CURVE_*
-// (display_types.h), which the viewer's display pass applies.
+// (tone_mapping.h, the one definition of the curves for the host and the shaders).
 enum class ToneCurve { Clamp = 0, Reinhard = 1, Aces = 2 };
 
 // "clamp" (also "none", "linear", "off"), "reinhard" or "aces" (any case).

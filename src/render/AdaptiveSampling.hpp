@@ -44,6 +44,7 @@
 #include "imaging/ImageError.hpp"
 #include "imaging/PixelRegion.hpp"
 #include "io/Image.hpp"
+#include "noise_types.h"
 
 namespace rt {
 
@@ -73,11 +74,15 @@ std::vector<uint32_t> allocateSamples(const std::vector<TileNoise>& tiles,
 // Image mean squared error predicted for the tiles (1/n noise).
 double predictedMse(const std::vector<TileNoise>& tiles);
 
-// One read of the accumulated sums: every tile's noise and the image's
-// estimated RMSE (estimateDisplayRmse over the region), which come from the
-// same per-pixel estimates.
+// One measurement of the accumulated sums (TileNoiseKernel's tiles): every
+// tile's noise and the image's estimated RMSE (estimateDisplayRmse over the
+// region), which come from the same per-pixel estimates.
 struct NoiseMeasurement {
-  std::vector<TileNoise> tiles;
+  std::vector<TileNoise> tiles;  // dilated: what the allocation plans with
+  // Per tile the variance of one sample, pooled over its pixels with both
+  // halves (or a neighbour's): the noise of its pixels with one sample.
+  // Empty when some tile has neither.
+  std::vector<double> sampleVariance;
   std::optional<double> rmse;  // nullopt when a pixel lacks one of its halves
 };
 
@@ -96,12 +101,14 @@ class AdaptivePlan {
 
   // `count` samples per pixel everywhere in the region.
   std::vector<uint32_t> uniformRound(uint32_t count) const;
-  // Each tile's noise from the accumulated sums (after dilation), and the
-  // region's estimated RMSE.
-  NoiseMeasurement measureNoise(const SampleSums& sums, const ToneMapping& mapping) const;
+  // Each tile's noise (after dilation) and the region's estimated RMSE from
+  // the device's per-tile sums (TileNoiseKernel::measure over the region).
+  NoiseMeasurement measureNoise(const std::vector<gpu::GpuTileNoise>& measured) const;
   // Each pixel's estimated RMS error (-1 outside the region or without an
-  // estimate): from its own halves, or its tile's pooled noise.
-  std::vector<float> errorImage(const SampleSums& sums, const ToneMapping& mapping) const;
+  // estimate): from its own halves, or else `sampleVariance` of its tile
+  // (NoiseMeasurement's) over its sample count.
+  std::vector<float> errorImage(const SampleSums& sums, const ToneMapping& mapping,
+                                const std::vector<double>& sampleVariance) const;
   // Records that `added` samples per pixel were rendered into each tile,
   // tracing `rays` rays there; `paired`: and the paired pixels' extra one
   // (the first round only).
@@ -119,14 +126,6 @@ class AdaptivePlan {
 
  private:
   size_t tileOf(uint32_t x, uint32_t y) const;
-  // Per image pixel the squared error of its mean (-1 outside the region),
-  // and whether every region pixel has one.
-  struct PixelErrors {
-    std::vector<double> squared;
-    std::vector<double> tileVariance;  // per tile: one sample's, pooled
-    bool complete = true;
-  };
-  PixelErrors pixelErrors(const SampleSums& sums, const ToneMapping& mapping) const;
   // Turns per-tile sums of one sample's variance over `measured` pixels
   // into means; a tile with no measured pixel takes its noisiest measured
   // neighbour's. False if some tile of the region has neither.
@@ -177,15 +176,17 @@ class AdaptiveRounds {
   // Pixel-samples this round adds to image rows [y, end).
   double rowWork(uint32_t y, uint32_t end) const;
 
-  // The round was rendered: `sums` holds every sample so far, `tileRays`
-  // the rays the round traced per tile (ProgressiveRenderer::takeTileRays).
-  void finishRound(const SampleSums& sums, const std::vector<uint32_t>& tileRays,
-                   const ToneMapping& mapping);
+  // The round was rendered: `noise` is every tile's noise over all samples
+  // so far (ProgressiveRenderer::tileNoise), `tileRays` the rays the round
+  // traced per tile (ProgressiveRenderer::takeTileRays).
+  void finishRound(const std::vector<gpu::GpuTileNoise>& noise,
+                   const std::vector<uint32_t>& tileRays);
 
   std::optional<double> rmseEstimate() const { return estimate_; }
-  // Each pixel's estimated RMS error after the last round (AdaptivePlan::errorImage).
+  // Each pixel's estimated RMS error (AdaptivePlan::errorImage, with the
+  // tiles' noise as the last round measured it).
   std::vector<float> errorImage(const SampleSums& sums, const ToneMapping& mapping) const {
-    return plan_.errorImage(sums, mapping);
+    return plan_.errorImage(sums, mapping, sampleVariance_);
   }
   bool reachedTarget() const;
   double meanSamples() const;  // per pixel of the region, rendered so far
@@ -196,6 +197,7 @@ class AdaptiveRounds {
   std::vector<uint32_t> round_;  // samples per pixel this round adds, per tile
   bool pairRound_ = false;       // and the paired pixels one more (the first round)
   std::optional<double> estimate_;
+  std::vector<double> sampleVariance_;  // NoiseMeasurement's, of the last round
   bool finished_ = false;
 };
 

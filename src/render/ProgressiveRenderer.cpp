@@ -28,8 +28,9 @@ uint32_t spreadingStride(uint32_t count) {
   }
 }
 
-// Accumulation buffers: texels to the render kernel, a storage buffer to the
-// viewer's display pass, and cleared and read back by transfers.
+// Accumulation buffers: texels to the render kernel, storage buffers to the
+// viewer's display pass and the noise measurement, and cleared and read back
+// by transfers.
 constexpr VkBufferUsageFlags kAccumulationUsage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;
 
@@ -118,6 +119,11 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
     tileRaysRead_.assign(tiles, 0);
   }
   kernel_ = buildKernel();
+  // Made now where the render will measure its noise, so that the pipeline's
+  // compile counts as setup, not rendering.
+  if (options.independentHalves) {
+    tileNoise_ = std::make_unique<TileNoiseKernel>(context, compiler, width_, height_);
+  }
 }
 
 std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(bool countRays, AccelKind accel,
@@ -253,7 +259,16 @@ bool ProgressiveRenderer::halvesIndependent() const {
 
 std::optional<double> ProgressiveRenderer::estimateRmse(const ToneMapping& mapping) {
   if (!halvesIndependent()) return std::nullopt;
-  return estimateDisplayRmse(sampleSums(), mapping, region_);
+  return estimatedRmse(tileNoise(mapping), uint64_t(region_.width) * region_.height);
+}
+
+std::vector<gpu::GpuTileNoise> ProgressiveRenderer::tileNoise(const ToneMapping& mapping) {
+  if (!halvesIndependent())
+    throw Error("tile noise: the halves of this render are not independent");
+  if (!tileNoise_) {
+    tileNoise_ = std::make_unique<TileNoiseKernel>(context_, compiler_, width_, height_);
+  }
+  return tileNoise_->measure(accumulation_, oddAccumulation_, region_, mapping);
 }
 
 std::vector<uint32_t> ProgressiveRenderer::takeTileRays() {

@@ -20,6 +20,7 @@
 #include "imaging/PixelRegion.hpp"
 #include "io/Image.hpp"
 #include "render/ImageSampling.hpp"
+#include "render/TileNoise.hpp"
 #include "scene/Scene.hpp"
 
 namespace rt {
@@ -89,10 +90,14 @@ class ProgressiveRenderer {
   ImageF resolve();
   // The accumulation sums of all and of the odd-indexed samples.
   SampleSums sampleSums();
-  // estimateDisplayRmse over the region, from the samples so far; nullopt
-  // unless the halves are independent (independentHalves, or the random
-  // sampler, whose samples always are).
+  // estimateDisplayRmse over the region, from the samples so far (measured
+  // on the device); nullopt unless the halves are independent
+  // (independentHalves, or the random sampler, whose samples always are).
   std::optional<double> estimateRmse(const ToneMapping& mapping);
+  // Per tile (row-major over the image) the noise of the region's pixels so
+  // far, measured on the device (TileNoiseKernel); needs halvesIndependent().
+  // No dispatch may be in flight.
+  std::vector<gpu::GpuTileNoise> tileNoise(const ToneMapping& mapping);
   bool halvesIndependent() const;
   // Adaptive kernels only: per tile, the rays traced since the last call (or
   // reset). No dispatch may be in flight.
@@ -122,6 +127,7 @@ class ProgressiveRenderer {
   std::vector<uint32_t> tileRaysRead_;  // the counters at the last takeTileRays()
   std::unique_ptr<ComputeKernel> kernel_;
   std::vector<std::unique_ptr<ComputeKernel>> retired_;
+  std::unique_ptr<TileNoiseKernel> tileNoise_;  // for halvesIndependent() renders
   uint32_t samplesDone_ = 0;
   uint64_t raysTraced_ = 0;
 };

@@ -219,26 +219,20 @@ class AdaptiveLoop : SampleLoop {
         rounds_(job.width(), job.height(), job.region(),
                 {options.samplesPerPixel, options.targetRmse, kMaxSamplesPerPixel}) {}
 
-  // The sums the last round was measured on: every sample of the render
-  // unless it stopped part way through a round (then nullopt).
-  std::optional<SampleSums> run() {
-    std::optional<SampleSums> sums;
+  void run() {
     while (!rounds_.finished()) {
       if (!renderRound()) {
         stats_.stoppedEarly = true;
-        return std::nullopt;
+        return;
       }
-      sums = job_.sampleSums();
-      rounds_.finishRound(*sums, job_.takeTileRays(), mapping_);
+      rounds_.finishRound(job_.tileNoise(mapping_), job_.takeTileRays());
       stats_.rmseEstimate = rounds_.rmseEstimate();
       stats_.reachedTarget = rounds_.reachedTarget();
       report(rounds_.meanSamples(), options_.samplesPerPixel, stats_.rmseEstimate);
     }
-    // Pixels of one sample take their tile's noise (AdaptivePlan::errorImage).
-    if (options_.keepErrorImage && sums)
-      stats_.estimatedError = rounds_.errorImage(*sums, mapping_);
-    return sums;
   }
+
+  const AdaptiveRounds& rounds() const { return rounds_; }
 
  private:
   // False if stopped part way.
@@ -262,11 +256,11 @@ class AdaptiveLoop : SampleLoop {
   AdaptiveRounds rounds_;
 };
 
-// Sample counts over the region from the accumulation (`known`: sums
-// already read back after the last sample), and the per-pixel error image
-// when asked for.
+// Sample counts over the region from the accumulation, and the per-pixel
+// error image when asked for (`adaptive`: the rounds of an adaptive render,
+// whose pixels of one sample take their tile's noise).
 void finishStats(ProgressiveRenderer& job, const RenderOptions& options, const ToneMapping& mapping,
-                 std::optional<SampleSums> known, RenderStats& stats) {
+                 const AdaptiveRounds* adaptive, RenderStats& stats) {
   const bool uniform = !options.adaptive && !stats.stoppedEarly;
   if (uniform && !options.keepErrorImage) {
     // Every pixel got every pass: no need to read the counts back.
@@ -275,7 +269,7 @@ void finishStats(ProgressiveRenderer& job, const RenderOptions& options, const T
     stats.maxSamples = stats.samplesDone;
     return;
   }
-  SampleSums sums = known ? std::move(*known) : job.sampleSums();
+  const SampleSums sums = job.sampleSums();
   const PixelRegion& region = job.region();
   double total = 0;
   float fewest = std::numeric_limits<float>::max(), most = 0;
@@ -290,8 +284,9 @@ void finishStats(ProgressiveRenderer& job, const RenderOptions& options, const T
   stats.meanSamples = total / (double(region.width) * region.height);
   stats.samplesDone = static_cast<uint32_t>(fewest);
   stats.maxSamples = static_cast<uint32_t>(most);
-  if (options.keepErrorImage && job.halvesIndependent() && stats.estimatedError.empty()) {
-    stats.estimatedError = estimatedErrorImage(sums, mapping);
+  if (options.keepErrorImage && job.halvesIndependent()) {
+    stats.estimatedError =
+        adaptive ? adaptive->errorImage(sums, mapping) : estimatedErrorImage(sums, mapping);
   }
 }
 
@@ -334,15 +329,16 @@ ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
   auto renderStart = Clock::now();
   double cpuStart = processCpuSeconds();
   const ToneMapping mapping = options.displayMapping.value_or(toneMappingFor(scene));
-  std::optional<SampleSums> finalSums;
+  std::optional<AdaptiveLoop> adaptive;
   if (options.adaptive) {
-    finalSums = AdaptiveLoop(context_, job, clamped, mapping, onProgress, s).run();
+    adaptive.emplace(context_, job, clamped, mapping, onProgress, s);
+    adaptive->run();
   } else {
     RenderLoop(context_, job, clamped, mapping, onProgress, s).run();
   }
   s.renderSeconds = secondsSince(renderStart);
   s.renderCpuSeconds = processCpuSeconds() - cpuStart;
-  finishStats(job, options, mapping, std::move(finalSums), s);
+  finishStats(job, options, mapping, adaptive ? &adaptive->rounds() : nullptr, s);
   return job.resolve();
 }
 

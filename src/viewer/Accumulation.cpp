@@ -65,8 +65,8 @@ std::vector<Band> Accumulation::planAdaptiveBands(const ToneMapping& mapping, bo
   const uint32_t height = renderer_->height();
   if (adaptiveRow_ >= height) {
     // The round's last band was in the frame just finished: with nothing
-    // in flight, read the sums back and plan the next round.
-    adaptive_->finishRound(renderer_->sampleSums(), renderer_->takeTileRays(), mapping);
+    // in flight, measure the tiles' noise and plan the next round.
+    adaptive_->finishRound(renderer_->tileNoise(mapping), renderer_->takeTileRays());
     adaptiveRow_ = 0;
     readBack = true;
   }

@@ -43,7 +43,7 @@ class Accumulation {
     uint32_t firstRow = 0;  // rows that got samples
     uint32_t rows = 0;
     uint64_t pixelSamples = 0;
-    bool readBack = false;  // the sums were read back (heavy host work)
+    bool readBack = false;  // a round was measured (a wait for the device, then host work)
   };
   // Between frames, nothing in flight: records this frame's dispatches.
   // `mapping` is the display's: adaptive rounds measure noise in it.

@@ -10,10 +10,6 @@
 #include "gpu/VulkanContext.hpp"
 #include "util/Error.hpp"
 
-static_assert(static_cast<uint32_t>(rt::ToneCurve::Clamp) == RT_TONE_CURVE_CLAMP &&
-              static_cast<uint32_t>(rt::ToneCurve::Reinhard) == RT_TONE_CURVE_REINHARD &&
-              static_cast<uint32_t>(rt::ToneCurve::Aces) == RT_TONE_CURVE_ACES);
-
 namespace rt::viewer {
 namespace {
 

@@ -15,6 +15,7 @@
 #include "imaging/ImageError.hpp"
 #include "render/AdaptiveSampling.hpp"
 #include "render/Renderer.hpp"
+#include "render/TileNoise.hpp"
 #include "support/TestSupport.hpp"
 #include "util/Error.hpp"
 
@@ -54,6 +55,22 @@ double squaredError(const ImageF& image, const ImageF& truth, size_t i, const To
 std::vector<TileNoise> syntheticTiles(const std::vector<double>& variances, uint32_t samples) {
   std::vector<TileNoise> tiles;
   for (double v : variances) tiles.push_back({64, samples, v});
+  return tiles;
+}
+
+// The tiles' noise sums of hand-made replicate sums, measured by the
+// device's kernel (TileNoiseKernel) as the renderer measures them.
+std::vector<gpu::GpuTileNoise> measureOnDevice(const SampleSums& sums,
+                                               const ToneMapping& mapping = {}) {
+  const VkDeviceSize bytes = sums.all.size() * sizeof(glm::vec4);
+  Buffer all(test::gpu(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  Buffer odd(test::gpu(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  all.upload(sums.all.data(), bytes);
+  odd.upload(sums.odd.data(), bytes);
+  TileNoiseKernel kernel(test::gpu(), test::shaderCompiler(), sums.width, sums.height);
+  std::vector<gpu::GpuTileNoise> tiles =
+      kernel.measure(all, odd, {0, 0, sums.width, sums.height}, mapping);
+  test::checkNoValidationMessages();
   return tiles;
 }
 
@@ -149,7 +166,16 @@ TEST_SUITE("adaptive sampling") {
         if (x >= 8) sums.all[i] = sums.odd[i] + glm::vec4(glm::vec3(2 * 0.5f), 2);
       }
     }
-    NoiseMeasurement measured = plan.measureNoise(sums, ToneMapping{});
+    std::vector<gpu::GpuTileNoise> sumsOnDevice = measureOnDevice(sums);
+    REQUIRE(sumsOnDevice.size() == 3);
+    // The kernel's sums over tile 0: 64 pixels of squared error 0.01 each.
+    CHECK(sumsOnDevice[0].squaredSum == doctest::Approx(64 * 0.01).epsilon(1e-4));
+    CHECK(sumsOnDevice[0].varianceSum == doctest::Approx(64 * 0.01 * 4).epsilon(1e-4));
+    CHECK(sumsOnDevice[0].measured == 64);
+    CHECK(sumsOnDevice[1].squaredSum == 0.0f);
+    CHECK(sumsOnDevice[2].inverseCountSum == 0.0f);
+    CHECK(sumsOnDevice[2].unsampled == 0);
+    NoiseMeasurement measured = plan.measureNoise(sumsOnDevice);
     // Squared error of the mean 0.04 * 4 / 16 in tile 0, none in the others
     // (before dilation, which only steers samples).
     REQUIRE(measured.rmse);
@@ -236,12 +262,22 @@ TEST_SUITE("adaptive sampling") {
         }
       }
     }
-    NoiseMeasurement measured = plan.measureNoise(sums, ToneMapping{});
+    std::vector<gpu::GpuTileNoise> sumsOnDevice = measureOnDevice(sums);
+    // Per tile: its paired pixels are measured, the others have one sample.
+    for (size_t tile = 0; tile < sumsOnDevice.size(); ++tile) {
+      CAPTURE(tile);
+      const double columns = tile + 1 < sumsOnDevice.size() ? 8 : 1;
+      CHECK(double(sumsOnDevice[tile].measured) + sumsOnDevice[tile].inverseCountSum ==
+            doctest::Approx(columns * 8));
+      CHECK(sumsOnDevice[tile].unsampled == 0);
+    }
+    CHECK(sumsOnDevice.back().measured == 0);
+    NoiseMeasurement measured = plan.measureNoise(sumsOnDevice);
     REQUIRE(measured.rmse);
     const double pixels = double(width) * height;
     const double expected = std::sqrt((paired * 0.01 + (pixels - paired) * 0.02) / pixels);
     CHECK(*measured.rmse == doctest::Approx(expected).epsilon(1e-4).scale(0));
-    std::vector<float> errors = plan.errorImage(sums, ToneMapping{});
+    std::vector<float> errors = plan.errorImage(sums, ToneMapping{}, measured.sampleVariance);
     for (uint32_t y = 0; y < height; ++y) {
       CAPTURE(y);
       CHECK(errors[size_t(y) * width + width - 1] ==

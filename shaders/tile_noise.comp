@@ -1,0 +1,61 @@
+#version 460
+// The noise of every adaptive tile (noise_types.h), its pixels summed in a
+// fixed order, so the sums (and the decisions the host makes from them) are
+// the same every run.
+#extension GL_GOOGLE_include_directive : require
+
+#include "noise_types.h"
+
+// One invocation per tile, summing its pixels in order: no shared memory and
+// no barriers, which llvmpipe runs slowly (a 64-invocation reduction in
+// shared memory made adaptive renders on lavapipe 1.1x slower than reading
+// the sums back to the CPU); neighbouring lanes take neighbouring tiles.
+layout(local_size_x = RT_NOISE_WORKGROUP_SIZE) in;
+
+layout(push_constant) uniform TileNoiseParamsBlock { GpuTileNoiseParams params; };
+
+layout(std430, set = 0, binding = RT_NOISE_BINDING_ACCUMULATION) readonly buffer Accumulation {
+  vec4 allSums[];
+};
+layout(std430, set = 0, binding = RT_NOISE_BINDING_ACCUMULATION_ODD) readonly buffer OddAccumulation {
+  vec4 oddSums[];
+};
+layout(std430, set = 0, binding = RT_NOISE_BINDING_TILES) writeonly buffer Tiles {
+  GpuTileNoise tiles[];
+};
+
+void main() {
+  uint tileRows = (params.size.y + RT_ADAPTIVE_TILE_SIZE - 1u) / RT_ADAPTIVE_TILE_SIZE;
+  uint index = gl_GlobalInvocationID.x;
+  if (index >= params.tilesPerRow * tileRows) return;
+  uvec2 corner = uvec2(index % params.tilesPerRow, index / params.tilesPerRow) * RT_ADAPTIVE_TILE_SIZE;
+  uvec2 start = max(corner, params.regionStart);
+  uvec2 end = min(corner + RT_ADAPTIVE_TILE_SIZE, params.regionEnd);
+  GpuTileNoise tile;
+  tile.varianceSum = 0.0;
+  tile.squaredSum = 0.0;
+  tile.inverseCountSum = 0.0;
+  tile.measured = 0u;
+  tile.unsampled = 0u;
+  tile.pad0 = 0u;
+  tile.pad1 = 0u;
+  tile.pad2 = 0u;
+  for (uint y = start.y; y < end.y; ++y) {
+    for (uint x = start.x; x < end.x; ++x) {
+      uint pixel = y * params.size.x + x;
+      vec4 sum = allSums[pixel];
+      float squared = pixelSquaredError(sum, oddSums[pixel], params.exposure, params.toneCurve,
+                                        params.srgbEncode);
+      if (squared >= 0.0) {
+        tile.varianceSum += squared * sum.w;
+        tile.squaredSum += squared;
+        tile.measured += 1u;
+      } else if (sum.w > 0.0) {
+        tile.inverseCountSum += 1.0 / sum.w;
+      } else {
+        tile.unsampled += 1u;
+      }
+    }
+  }
+  tiles[index] = tile;
+}

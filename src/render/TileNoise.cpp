@@ -1,0 +1,64 @@
+#include "render/TileNoise.hpp"
+
+#include <cmath>
+
+#include "gpu/ShaderCompiler.hpp"
+#include "gpu/VulkanContext.hpp"
+
+namespace rt {
+namespace {
+
+uint32_t divideRoundUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
+
+}  // namespace
+
+TileNoiseKernel::TileNoiseKernel(VulkanContext& context, const ShaderCompiler& compiler,
+                                 uint32_t width, uint32_t height)
+    : context_(context),
+      width_(width),
+      height_(height),
+      tilesPerRow_(divideRoundUp(width, RT_ADAPTIVE_TILE_SIZE)),
+      tileRows_(divideRoundUp(height, RT_ADAPTIVE_TILE_SIZE)),
+      kernel_(context, compiler.compile("tile_noise.comp", {}),
+              std::vector<uint32_t>{RT_NOISE_BINDING_ACCUMULATION,
+                                    RT_NOISE_BINDING_ACCUMULATION_ODD, RT_NOISE_BINDING_TILES},
+              sizeof(gpu::GpuTileNoiseParams)),
+      tiles_(context, VkDeviceSize(tilesPerRow_) * tileRows_ * sizeof(gpu::GpuTileNoise),
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {}
+
+std::vector<gpu::GpuTileNoise> TileNoiseKernel::measure(const Buffer& all, const Buffer& odd,
+                                                        const PixelRegion& region,
+                                                        const ToneMapping& mapping) {
+  const PixelRegion r = resolveRegion(region, width_, height_);
+  gpu::GpuTileNoiseParams params{};
+  params.size = {width_, height_};
+  params.regionStart = {r.x, r.y};
+  params.regionEnd = {r.x + r.width, r.y + r.height};
+  params.tilesPerRow = tilesPerRow_;
+  params.exposure = mapping.exposure;
+  params.toneCurve = static_cast<uint32_t>(mapping.curve);
+  params.srgbEncode = mapping.srgbEncode ? 1u : 0u;
+  kernel_.bind(RT_NOISE_BINDING_ACCUMULATION, all);
+  kernel_.bind(RT_NOISE_BINDING_ACCUMULATION_ODD, odd);
+  kernel_.bind(RT_NOISE_BINDING_TILES, tiles_);
+  context_.submitAndWait([&](VkCommandBuffer commands) {
+    kernel_.recordDispatch(commands, &params,
+                           divideRoundUp(tilesPerRow_ * tileRows_, RT_NOISE_WORKGROUP_SIZE));
+  });
+  std::vector<gpu::GpuTileNoise> tiles(size_t(tilesPerRow_) * tileRows_);
+  tiles_.download(tiles.data(), tiles.size() * sizeof(gpu::GpuTileNoise));
+  return tiles;
+}
+
+std::optional<double> estimatedRmse(const std::vector<gpu::GpuTileNoise>& tiles, uint64_t pixels) {
+  double squared = 0;
+  uint64_t measured = 0;
+  for (const gpu::GpuTileNoise& tile : tiles) {
+    squared += tile.squaredSum;
+    measured += tile.measured;
+  }
+  if (pixels == 0 || measured != pixels) return std::nullopt;
+  return std::sqrt(squared / double(pixels));
+}
+
+}  // namespace rt

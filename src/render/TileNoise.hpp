@@ -1,0 +1,51 @@
+// The noise of the replicate sums measured on the device: for every tile of
+// RT_ADAPTIVE_TILE_SIZE^2 pixels, the sums of its pixels' estimated squared
+// errors (shaders/tile_noise.comp, noise_types.h). Adaptive sampling plans
+// its rounds from them and the --target-rmse checkpoints read the image's
+// estimate from them, so neither reads the accumulation buffers back (at
+// 1920x1080 that was 66 MB and 2 million pixels measured on the CPU a round:
+// about 0.25 s on the H200's host, where a round renders in milliseconds).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "gpu/Buffer.hpp"
+#include "gpu/ComputeKernel.hpp"
+#include "imaging/PixelRegion.hpp"
+#include "io/Image.hpp"
+#include "noise_types.h"
+
+namespace rt {
+
+class ShaderCompiler;
+class VulkanContext;
+
+class TileNoiseKernel {
+ public:
+  // For accumulation buffers of width x height pixels.
+  TileNoiseKernel(VulkanContext& context, const ShaderCompiler& compiler, uint32_t width,
+                  uint32_t height);
+
+  // Per tile, row-major over the whole image, the sums over its pixels in
+  // `region` (resolved) of the sums in `all` and `odd` (one vec4 per
+  // pixel). Submits and waits: no dispatch may be in flight on the buffers.
+  std::vector<gpu::GpuTileNoise> measure(const Buffer& all, const Buffer& odd,
+                                         const PixelRegion& region, const ToneMapping& mapping);
+
+ private:
+  VulkanContext& context_;
+  uint32_t width_;
+  uint32_t height_;
+  uint32_t tilesPerRow_;
+  uint32_t tileRows_;
+  ComputeKernel kernel_;
+  Buffer tiles_;
+};
+
+// The image's estimated RMSE (estimateDisplayRmse's figure) from its tiles,
+// `pixels` the measured region's: nullopt unless every pixel has both halves.
+std::optional<double> estimatedRmse(const std::vector<gpu::GpuTileNoise>& tiles, uint64_t pixels);
+
+}  // namespace rt
