@@ -14,9 +14,10 @@ namespace {
 constexpr double kTargetMargin = 0.9 * 0.9;
 // A tile's noise is raised to this fraction of its noisiest neighbour's.
 constexpr double kNeighbourShare = 0.25;
-// A round costs a dispatch and a read-back of the sums whatever its size
-// (about 3.5 ms on lavapipe at 320x240, measured: 1-2 ms reading the sums,
-// 1.5 ms measuring them): the last rounds of a render, which add a few
+// A round costs a dispatch, the tiles' noise measurement and the allocation
+// whatever its size (about 3.5 ms on lavapipe at 320x240, measured when the
+// sums were still read back and measured on the host; the device's
+// measurement costs about the same there): the last rounds of a render, which add a few
 // samples to a few tiles, cost more time than their samples. A round adding
 // under this share of the samples so far ends the render instead (with
 // 0.5%, a render to a mean of 4 took 5 rounds and 1.2x the time of a
