@@ -73,6 +73,9 @@ using uint = uint32_t;
 // (they hold the tile's noise estimate); in later rounds' first sample, "one
 // later" (they already have that extra sample).
 #define RT_ADAPTIVE_PAIRED_FLAG 0x80000000u
+// adaptivePairedPixel picks blocks of a tile this size.
+#define RT_ADAPTIVE_PAIR_BLOCK_WIDTH 4
+#define RT_ADAPTIVE_PAIR_BLOCK_HEIGHT 2
 
 // The BVH builder never exceeds this depth, so traversal needs no more stack.
 #define RT_BVH_MAX_DEPTH 48
@@ -398,13 +401,15 @@ RT_ASSERT_STD430_SIZE(GpuBatchParams, 16);
 // is a hash of the tile, so no pattern repeats with the tiles. 1 for a pixel
 // of a picked block, else 0; the host and the kernel share this definition.
 RT_SHARED_FUNCTION uint adaptivePairedPixel(uint x, uint y) {
-  uint h = (x >> 3u) * 0x9E3779B1u ^ (y >> 3u) * 0x85EBCA77u;
+  uint h = (x / RT_ADAPTIVE_TILE_SIZE) * 0x9E3779B1u ^ (y / RT_ADAPTIVE_TILE_SIZE) * 0x85EBCA77u;
   h ^= h >> 15u;
   h *= 0x2C1B3C6Du;
   h ^= h >> 13u;
   uint first = h >> 29u;
   uint second = first ^ (1u + ((h >> 26u) & 3u));
-  uint block = ((y & 7u) >> 1u) * 2u + ((x & 7u) >> 2u);
+  const uint blocksPerRow = RT_ADAPTIVE_TILE_SIZE / RT_ADAPTIVE_PAIR_BLOCK_WIDTH;
+  uint block = (y % RT_ADAPTIVE_TILE_SIZE) / RT_ADAPTIVE_PAIR_BLOCK_HEIGHT * blocksPerRow +
+               (x % RT_ADAPTIVE_TILE_SIZE) / RT_ADAPTIVE_PAIR_BLOCK_WIDTH;
   return (block == first || block == second) ? 1u : 0u;
 }
 

@@ -151,6 +151,41 @@ TEST_SUITE("adaptive sampling") {
     CHECK(std::all_of(added.begin(), added.end(), [](uint32_t n) { return n == 0; }));
   }
 
+  TEST_CASE("one round spends the budget on n = c * sqrt(v), clamped to the tiles' bounds") {
+    // Rates sqrt(v) 0.1, 0.2 and 0.3 from 4 samples, at most 12: a budget of
+    // 15.3 samples per tile solves to c = 51, where the tiles plan 5.1, 10.2
+    // and 15.3 (clamped to 12) samples: the rounded-down counts add 1, 6, 8.
+    std::vector<TileNoise> tiles = syntheticTiles({0.01, 0.04, 0.09, 0.0}, 4);
+    AllocationGoal goal;
+    goal.sampleBudget = 64.0 * 15.3;
+    goal.maxSamples = 12;
+    std::vector<uint32_t> added = allocateSamples(tiles, goal);
+    CHECK(added == std::vector<uint32_t>{1, 6, 8, 0});
+    // A target between: the smallest c whose plan predicts it. At c = 51
+    // the prediction is (0.01 / 5.1 + 0.04 / 10.2 + 0.09 / 12) / 4.
+    const double atC51 = (0.01 / 5.1 + 0.04 / 10.2 + 0.09 / 12) / 4;
+    goal.sampleBudget = 1e12;
+    goal.targetMse = atC51 / (0.9 * 0.9);  // the allocation aims 0.81x below its target
+    added = allocateSamples(tiles, goal);
+    CHECK(added == std::vector<uint32_t>{1, 6, 8, 0});
+  }
+
+  TEST_CASE("the plan counts a region's pixels and paired pixels per tile as a pixel walk does") {
+    // A region that starts and ends inside tiles and inside 4x2 blocks.
+    const PixelRegion region{3, 5, 30, 21};
+    AdaptivePlan plan(37, 29, region);
+    uint64_t paired = 0;
+    for (uint32_t y = region.y; y < region.y + region.height; ++y) {
+      for (uint32_t x = region.x; x < region.x + region.width; ++x) {
+        paired += gpu::adaptivePairedPixel(x, y);
+      }
+    }
+    REQUIRE(paired > 0);
+    CHECK(plan.regionPixels() == 30 * 21);
+    plan.addRound(plan.uniformRound(1), std::vector<uint32_t>(plan.tileCount(), 0), true);
+    CHECK(plan.pixelSamples() == 30 * 21 + paired);
+  }
+
   TEST_CASE("a tile beside a noisy one keeps a share of its noise") {
     AdaptivePlan plan(24, 8, {0, 0, 24, 8});  // three tiles in a row
     // Rays: 3 a sample in tile 0, none counted in tile 1, 1 a sample in tile 2.
