@@ -398,19 +398,25 @@ RT_ASSERT_STD430_SIZE(GpuBatchParams, 16);
 // in trace.comp), one SIMD vector on lavapipe, which runs its loop until its
 // slowest lane is done; one pixel in four of every vector with two samples
 // made the first round as slow as two samples everywhere. Which two blocks
-// is a hash of the tile, so no pattern repeats with the tiles. 1 for a pixel
-// of a picked block, else 0; the host and the kernel share this definition.
-RT_SHARED_FUNCTION uint adaptivePairedPixel(uint x, uint y) {
-  uint h = (x / RT_ADAPTIVE_TILE_SIZE) * 0x9E3779B1u ^ (y / RT_ADAPTIVE_TILE_SIZE) * 0x85EBCA77u;
+// is a hash of the tile, so no pattern repeats with the tiles: their
+// indices, row-major over the tile's blocks. The host and the kernel share
+// this definition.
+RT_SHARED_FUNCTION uvec2 adaptivePairedBlocks(uint tileX, uint tileY) {
+  uint h = tileX * 0x9E3779B1u ^ tileY * 0x85EBCA77u;
   h ^= h >> 15u;
   h *= 0x2C1B3C6Du;
   h ^= h >> 13u;
   uint first = h >> 29u;
-  uint second = first ^ (1u + ((h >> 26u) & 3u));
+  return uvec2(first, first ^ (1u + ((h >> 26u) & 3u)));
+}
+
+// 1 for a pixel of one of its tile's paired blocks, else 0.
+RT_SHARED_FUNCTION uint adaptivePairedPixel(uint x, uint y) {
+  uvec2 paired = adaptivePairedBlocks(x / RT_ADAPTIVE_TILE_SIZE, y / RT_ADAPTIVE_TILE_SIZE);
   const uint blocksPerRow = RT_ADAPTIVE_TILE_SIZE / RT_ADAPTIVE_PAIR_BLOCK_WIDTH;
   uint block = (y % RT_ADAPTIVE_TILE_SIZE) / RT_ADAPTIVE_PAIR_BLOCK_HEIGHT * blocksPerRow +
                (x % RT_ADAPTIVE_TILE_SIZE) / RT_ADAPTIVE_PAIR_BLOCK_WIDTH;
-  return (block == first || block == second) ? 1u : 0u;
+  return (block == paired.x || block == paired.y) ? 1u : 0u;
 }
 
 #ifdef __cplusplus

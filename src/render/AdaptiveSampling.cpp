@@ -188,16 +188,19 @@ AdaptivePlan::AdaptivePlan(uint32_t width, uint32_t height, const PixelRegion& r
   paired_.assign(pixels_.size(), 0);
   samples_.assign(pixels_.size(), 0);
   rays_.assign(pixels_.size(), 0);
-  // Per tile and per 4x2 block, not per pixel: the pairs are picked by block.
+  // Per tile and paired block, not per pixel (a walk over 2 million pixels
+  // cost 5 ms at 1920x1080).
+  const uint32_t blocksPerRow = kTileSize / kPairBlockWidth;
   for (uint32_t ty = 0; ty < rows; ++ty) {
     for (uint32_t tx = 0; tx < tilesPerRow_; ++tx) {
       const size_t tile = size_t(ty) * tilesPerRow_ + tx;
       pixels_[tile] = overlap(region, tx * kTileSize, ty * kTileSize, kTileSize, kTileSize);
-      for (uint32_t by = ty * kTileSize; by < (ty + 1) * kTileSize; by += kPairBlockHeight) {
-        for (uint32_t bx = tx * kTileSize; bx < (tx + 1) * kTileSize; bx += kPairBlockWidth) {
-          if (gpu::adaptivePairedPixel(bx, by) == 0) continue;
-          paired_[tile] += overlap(region, bx, by, kPairBlockWidth, kPairBlockHeight);
-        }
+      if (pixels_[tile] == 0) continue;
+      const glm::uvec2 blocks = gpu::adaptivePairedBlocks(tx, ty);
+      for (uint32_t block : {blocks.x, blocks.y}) {
+        paired_[tile] += overlap(region, tx * kTileSize + block % blocksPerRow * kPairBlockWidth,
+                                 ty * kTileSize + block / blocksPerRow * kPairBlockHeight,
+                                 kPairBlockWidth, kPairBlockHeight);
       }
     }
   }
