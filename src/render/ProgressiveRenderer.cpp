@@ -224,9 +224,16 @@ void ProgressiveRenderer::setCamera(const Camera& camera) {
 }
 
 void ProgressiveRenderer::reloadShaders() {
-  std::unique_ptr<ComputeKernel> fresh = buildKernel();  // throws, leaving kernel_ as it was
+  // Both compile before either is replaced: an error leaves both as they were.
+  std::unique_ptr<ComputeKernel> fresh = buildKernel();
+  std::unique_ptr<TileNoiseKernel> freshNoise;
+  if (tileNoise_) {
+    freshNoise = std::make_unique<TileNoiseKernel>(context_, compiler_, width_, height_);
+  }
   retired_.push_back(std::move(kernel_));
   kernel_ = std::move(fresh);
+  // The noise kernel runs only between dispatches (measure waits): no frame uses it now.
+  if (freshNoise) tileNoise_ = std::move(freshNoise);
 }
 
 ImageF ProgressiveRenderer::resolve() {

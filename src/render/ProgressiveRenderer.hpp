@@ -75,9 +75,10 @@ class ProgressiveRenderer {
   // New camera: uploads the scene constants and resets. No dispatch may be in flight.
   void setCamera(const Camera& camera);
 
-  // Recompiles the kernel from the shader files. On a compile or pipeline
-  // error it throws and the current kernel stays; on success the old kernel
-  // is kept until releaseRetiredKernels(), to be called once no frame uses it.
+  // Recompiles the render kernel (and the noise kernel, when the render has
+  // one) from the shader files. On a compile or pipeline error it throws and
+  // the current kernels stay; on success the old render kernel is kept until
+  // releaseRetiredKernels(), to be called once no frame uses it.
   void reloadShaders();
   void releaseRetiredKernels() { retired_.clear(); }
 

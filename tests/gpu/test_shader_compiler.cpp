@@ -2,11 +2,13 @@
 
 #include <fstream>
 
+#include "encode/Conventions.hpp"
 #include "encode/Features.hpp"
 #include "encode/SceneBuffers.hpp"
 #include "gpu/ComputeKernel.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu_types.h"
+#include "noise_types.h"
 #include "render/ProgressiveRenderer.hpp"
 #include "support/TestSupport.hpp"
 
@@ -123,6 +125,49 @@ TEST_SUITE("shader-compiler") {
       CHECK(message.find("shading.glsl:" + std::to_string(line) + ":") != std::string::npos);
       CHECK(message.find("undefinedThing") != std::string::npos);
     }
+  }
+
+  TEST_CASE("a shader reload rebuilds the noise kernel too, and a broken one keeps both") {
+    // The viewer's hot reload (ProgressiveRenderer::reloadShaders) covers
+    // tile_noise.comp: an edit that doubles each tile's variance sum shows in
+    // the next measurement, a broken edit is reported with file:line.
+    auto dir = test::scratchShaderDir("reload-noise");
+    ShaderCompiler compiler(dir, "");
+    Scene scene = test::projectScene("study-arealight.json");
+    ProgressiveOptions options;
+    options.width = 32;
+    options.height = 24;
+    options.samplesTotal = 8;
+    options.sampler = SamplerKind::Sobol;
+    options.independentHalves = true;
+    ProgressiveRenderer job(test::gpu(), compiler, scene, options);
+    job.addSamples(8);
+    const ToneMapping mapping = toneMappingFor(scene);
+    auto varianceSum = [&] {
+      double sum = 0;
+      for (const gpu::GpuTileNoise& tile : job.tileNoise(mapping)) sum += tile.varianceSum;
+      return sum;
+    };
+    const double before = varianceSum();
+    REQUIRE(before > 0);
+    const std::string statement = "tile.varianceSum += squared * sum.w;";
+    const int line = lineOf(dir / "tile_noise.comp", statement);
+    REQUIRE(line > 0);
+    replaceInFile(dir / "tile_noise.comp", statement, "tile.varianceSum += 2.0 * squared * sum.w;");
+    job.reloadShaders();
+    CHECK(varianceSum() == doctest::Approx(2 * before).epsilon(1e-5));
+    replaceInFile(dir / "tile_noise.comp", "tile.varianceSum += 2.0 * squared * sum.w;",
+                  "tile.varianceSum += undefinedThing;");
+    try {
+      job.reloadShaders();
+      FAIL("the broken noise kernel compiled");
+    } catch (const ShaderCompileError& e) {
+      std::string message = e.what();
+      CAPTURE(message);
+      CHECK(message.find("tile_noise.comp:" + std::to_string(line) + ":") != std::string::npos);
+    }
+    CHECK(varianceSum() == doctest::Approx(2 * before).epsilon(1e-5));
+    test::checkNoValidationMessages();
   }
 
   TEST_CASE("the cache returns the same SPIR-V and follows source edits") {
