@@ -106,5 +106,7 @@ adaptive_size=(320 240)
 [[ $width == 1920 ]] && adaptive_size=(1920 1080)
 section "Adaptive sampling: time to RMSE (converge, wall clock, ${adaptive_size[0]}x${adaptive_size[1]})" \
   adaptive_sampling "${adaptive_size[@]}"
+section "Adaptive sampling: the host's work per round (rt-bench-adaptive)" \
+  "$root/build/rt-bench-adaptive"
 section "Test suite (ctest)" bash -c "cd '$root/build' && ctest --output-on-failure --parallel $(nproc) --timeout 600 -E '${RT_CTEST_EXCLUDE:-farm}'"
 echo "wrote $report"
