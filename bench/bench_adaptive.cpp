@@ -51,7 +51,7 @@ Timing timeRounds(uint32_t width, uint32_t height, int repeats) {
   const uint32_t tilesPerRow = (width + tile - 1) / tile, rows = (height + tile - 1) / tile;
   const std::vector<rt::gpu::GpuTileNoise> noise = syntheticNoise(tilesPerRow, rows);
   const std::vector<uint32_t> rays(noise.size(), 2 * tile * tile);  // 2 rays a sample
-  const rt::AdaptiveRounds::Goal goal{4, 0.003, 4096};  // the budget binds
+  const rt::AdaptiveRounds::Goal goal{4, 0.003, 4096};              // the budget binds
   Timing timing;
   timing.tiles = static_cast<uint32_t>(noise.size());
   for (int i = 0; i < repeats; ++i) {

@@ -408,6 +408,16 @@ void AdaptiveRounds::finishRound(const std::vector<gpu::GpuTileNoise>& measured,
   finished_ = work < kMinRoundShare * double(plan_.pixelSamples());
 }
 
+void AdaptiveRounds::measureStop(const std::vector<gpu::GpuTileNoise>& measured) {
+  // The pooled noise and the estimate come from the device's sums alone, so
+  // they hold for a round rendered in part; the plan's counts do not.
+  NoiseMeasurement noise = plan_.measureNoise(measured);
+  estimate_ = noise.rmse;
+  sampleVariance_ = std::move(noise.sampleVariance);
+  round_.assign(round_.size(), 0);
+  finished_ = true;
+}
+
 bool AdaptiveRounds::reachedTarget() const {
   return goal_.targetRmse > 0 && estimate_ && *estimate_ <= goal_.targetRmse;
 }

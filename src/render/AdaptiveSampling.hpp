@@ -181,6 +181,9 @@ class AdaptiveRounds {
   // traced per tile (ProgressiveRenderer::takeTileRays).
   void finishRound(const std::vector<gpu::GpuTileNoise>& noise,
                    const std::vector<uint32_t>& tileRays);
+  // The render stopped part way through the round: the estimate and the
+  // tiles' noise from `noise` (over the samples it has), and no more rounds.
+  void measureStop(const std::vector<gpu::GpuTileNoise>& noise);
 
   std::optional<double> rmseEstimate() const { return estimate_; }
   // Each pixel's estimated RMS error (AdaptivePlan::errorImage, with the

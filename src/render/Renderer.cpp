@@ -223,6 +223,10 @@ class AdaptiveLoop : SampleLoop {
     while (!rounds_.finished()) {
       if (!renderRound()) {
         stats_.stoppedEarly = true;
+        // The estimate and the error layer from the samples the stop left.
+        rounds_.measureStop(job_.tileNoise(mapping_));
+        stats_.rmseEstimate = rounds_.rmseEstimate();
+        stats_.reachedTarget = rounds_.reachedTarget();
         return;
       }
       rounds_.finishRound(job_.tileNoise(mapping_), job_.takeTileRays());

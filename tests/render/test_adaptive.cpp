@@ -405,6 +405,32 @@ TEST_SUITE("adaptive sampling") {
     }
   }
 
+  TEST_CASE("an adaptive render stopped inside a round measures the samples it has") {
+    // The estimate and the error layer come from the sums at the stop, not
+    // from the last finished round (whose estimate, over fewer samples, was
+    // 1.3x the true error here, and whose pooled noise the error layer's
+    // single-sample pixels took).
+    const char* name = "study-thinlens.json";
+    Scene scene = test::projectScene(name);
+    ToneMapping mapping = toneMappingFor(scene);
+    RenderOptions options = adaptiveRender(16);
+    options.secondsPerDispatch = 1e-9;  // one tile row (8 image rows) a dispatch: 9 a round
+    int polls = 0;
+    options.shouldStop = [&] { return ++polls > 17; };
+    RenderStats stats;
+    ImageF image = test::render(scene, options, &stats);
+    REQUIRE(stats.stoppedEarly);
+    CHECK(stats.meanSamples > 1.5);  // past the first round
+    REQUIRE(stats.rmseEstimate);
+    const double trueRmse = displayRmse(image, studyTruth(name), mapping);
+    CAPTURE(trueRmse);
+    CHECK(*stats.rmseEstimate == doctest::Approx(trueRmse).epsilon(0.25).scale(0));
+    double estimated = 0;
+    for (float e : stats.estimatedError) estimated += double(e) * e;
+    CHECK(std::sqrt(estimated / double(stats.estimatedError.size())) ==
+          doctest::Approx(*stats.rmseEstimate).epsilon(0.01).scale(0));
+  }
+
   TEST_CASE("--target-rmse with adaptive sampling stops once the estimate reaches it") {
     Scene scene = test::projectScene("study-thinlens.json");
     RenderOptions options = adaptiveRender(4096);
