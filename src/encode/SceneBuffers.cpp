@@ -21,8 +21,8 @@ Buffer makeRows(VulkanContext& context, SceneArrays arrays, const SceneBufferLim
   VkDeviceSize rows = std::max<VkDeviceSize>(1, items.size()) * (sizeof(T) / RowBytes);
   const bool storage = arrays == SceneArrays::StorageBuffers;
   VkDeviceSize limit = limits.rows ? limits.rows
-                       : storage     ? context.limits().maxStorageBufferRange / RowBytes
-                                     : context.limits().maxTexelBufferElements;
+                       : storage   ? context.limits().maxStorageBufferRange / RowBytes
+                                   : context.limits().maxTexelBufferElements;
   if (rows > limit) {
     throw Error(fmt::format("scene too large: {} need {} {}, the device allows {}", what, rows,
                             storage ? "storage buffer rows" : "texels", limit));
