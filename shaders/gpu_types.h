@@ -391,6 +391,13 @@ struct GpuBatchParams {
 };
 RT_ASSERT_STD430_SIZE(GpuBatchParams, 16);
 
+// The adaptive tiles covering an image of `size` pixels: (tiles per row,
+// rows); tiles are numbered row-major over the whole image.
+RT_SHARED_FUNCTION uvec2 adaptiveTileGrid(uvec2 size) {
+  const uint tile = uint(RT_ADAPTIVE_TILE_SIZE);
+  return (size + uvec2(tile - 1u)) / tile;
+}
+
 // Adaptive sampling's first round gives a second sample to two of the eight
 // 4x2 blocks of every 8x8 tile, so that each tile's noise is measured from
 // 16 pairs at 1.25 samples a pixel (AdaptiveSampling.hpp). Blocks, not

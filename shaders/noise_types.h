@@ -32,17 +32,17 @@ struct GpuTileNoise {
 };
 RT_ASSERT_STD430_SIZE(GpuTileNoise, 32);
 
-// Push constants of one tile_noise.comp dispatch (one workgroup per tile).
+// Push constants of one tile_noise.comp dispatch (one invocation per tile).
 struct GpuTileNoiseParams {
   uvec2 size;         // image size in pixels
   uvec2 regionStart;  // first pixel of the measured region
   uvec2 regionEnd;    // one past its last pixel
-  uint tilesPerRow;
-  float exposure;  // the display mapping (tone_mapping.h)
+  float exposure;     // the display mapping (tone_mapping.h)
   uint toneCurve;
   uint srgbEncode;
   uint pad0;
   uint pad1;
+  uint pad2;
 };
 RT_ASSERT_STD430_SIZE(GpuTileNoiseParams, 48);
 

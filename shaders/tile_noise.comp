@@ -25,10 +25,10 @@ layout(std430, set = 0, binding = RT_NOISE_BINDING_TILES) writeonly buffer Tiles
 };
 
 void main() {
-  uint tileRows = (params.size.y + RT_ADAPTIVE_TILE_SIZE - 1u) / RT_ADAPTIVE_TILE_SIZE;
+  uvec2 grid = adaptiveTileGrid(params.size);
   uint index = gl_GlobalInvocationID.x;
-  if (index >= params.tilesPerRow * tileRows) return;
-  uvec2 corner = uvec2(index % params.tilesPerRow, index / params.tilesPerRow) * RT_ADAPTIVE_TILE_SIZE;
+  if (index >= grid.x * grid.y) return;
+  uvec2 corner = uvec2(index % grid.x, index / grid.x) * RT_ADAPTIVE_TILE_SIZE;
   uvec2 start = max(corner, params.regionStart);
   uvec2 end = min(corner + RT_ADAPTIVE_TILE_SIZE, params.regionEnd);
   GpuTileNoise tile;

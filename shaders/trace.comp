@@ -63,7 +63,7 @@ void main() {
   uvec2 pixel = frame.tileOrigin + local;
   uint pixelIndex = pixel.y * sceneInfo.width + pixel.x;
 #ifdef RT_ADAPTIVE_SAMPLING
-  uint tilesPerRow = (sceneInfo.width + RT_ADAPTIVE_TILE_SIZE - 1u) / RT_ADAPTIVE_TILE_SIZE;
+  uint tilesPerRow = adaptiveTileGrid(uvec2(sceneInfo.width, 0u)).x;
   uint tile = (pixel.y / RT_ADAPTIVE_TILE_SIZE) * tilesPerRow + pixel.x / RT_ADAPTIVE_TILE_SIZE;
   // The paired pixels' extra first-round sample (RT_ADAPTIVE_PAIRED_FLAG).
   uvec2 planned = samplePlan[tile];

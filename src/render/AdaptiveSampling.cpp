@@ -30,8 +30,6 @@ constexpr double kMinRoundShare = 0.01;
 // 64-pixel tile is steady enough to allow four times.
 constexpr double kGrowth = 4;
 
-uint32_t divideRoundUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
-
 constexpr uint32_t kPairBlockWidth = RT_ADAPTIVE_PAIR_BLOCK_WIDTH;
 constexpr uint32_t kPairBlockHeight = RT_ADAPTIVE_PAIR_BLOCK_HEIGHT;
 
@@ -182,8 +180,8 @@ std::vector<uint32_t> allocateSamples(const std::vector<TileNoise>& tiles,
 }
 
 AdaptivePlan::AdaptivePlan(uint32_t width, uint32_t height, const PixelRegion& region)
-    : tilesPerRow_(divideRoundUp(width, kTileSize)), width_(width), region_(region) {
-  const uint32_t rows = divideRoundUp(height, kTileSize);
+    : tilesPerRow_(gpu::adaptiveTileGrid({width, height}).x), width_(width), region_(region) {
+  const uint32_t rows = gpu::adaptiveTileGrid({width, height}).y;
   pixels_.assign(size_t(tilesPerRow_) * rows, 0);
   paired_.assign(pixels_.size(), 0);
   samples_.assign(pixels_.size(), 0);

@@ -8,12 +8,11 @@
 
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
+#include "util/Arithmetic.hpp"
 #include "util/Error.hpp"
 
 namespace rt {
 namespace {
-
-uint32_t divideRoundUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 
 // A stride coprime with `count` near count / golden ratio: g -> g * stride
 // mod count is a permutation that sends any run of consecutive g to blocks
@@ -108,8 +107,8 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
     rayCounter_->fillZero();
   }
   if (options.adaptive) {
-    const uint32_t tiles = divideRoundUp(width_, RT_ADAPTIVE_TILE_SIZE) *
-                           divideRoundUp(height_, RT_ADAPTIVE_TILE_SIZE);
+    const glm::uvec2 grid = gpu::adaptiveTileGrid({width_, height_});
+    const uint32_t tiles = grid.x * grid.y;
     samplePlan_.emplace(context, VkDeviceSize(tiles) * sizeof(glm::uvec2),
                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     samplePlan_->fillZero();

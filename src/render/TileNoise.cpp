@@ -4,11 +4,15 @@
 
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
+#include "util/Arithmetic.hpp"
 
 namespace rt {
 namespace {
 
-uint32_t divideRoundUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
+uint32_t tileCount(uint32_t width, uint32_t height) {
+  const glm::uvec2 grid = gpu::adaptiveTileGrid({width, height});
+  return grid.x * grid.y;
+}
 
 }  // namespace
 
@@ -17,13 +21,12 @@ TileNoiseKernel::TileNoiseKernel(VulkanContext& context, const ShaderCompiler& c
     : context_(context),
       width_(width),
       height_(height),
-      tilesPerRow_(divideRoundUp(width, RT_ADAPTIVE_TILE_SIZE)),
-      tileRows_(divideRoundUp(height, RT_ADAPTIVE_TILE_SIZE)),
+      tileCount_(tileCount(width, height)),
       kernel_(context, compiler.compile("tile_noise.comp", {}),
               std::vector<uint32_t>{RT_NOISE_BINDING_ACCUMULATION,
                                     RT_NOISE_BINDING_ACCUMULATION_ODD, RT_NOISE_BINDING_TILES},
               sizeof(gpu::GpuTileNoiseParams)),
-      tiles_(context, VkDeviceSize(tilesPerRow_) * tileRows_ * sizeof(gpu::GpuTileNoise),
+      tiles_(context, VkDeviceSize(tileCount_) * sizeof(gpu::GpuTileNoise),
              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {}
 
 std::vector<gpu::GpuTileNoise> TileNoiseKernel::measure(const Buffer& all, const Buffer& odd,
@@ -34,7 +37,6 @@ std::vector<gpu::GpuTileNoise> TileNoiseKernel::measure(const Buffer& all, const
   params.size = {width_, height_};
   params.regionStart = {r.x, r.y};
   params.regionEnd = {r.x + r.width, r.y + r.height};
-  params.tilesPerRow = tilesPerRow_;
   params.exposure = mapping.exposure;
   params.toneCurve = static_cast<uint32_t>(mapping.curve);
   params.srgbEncode = mapping.srgbEncode ? 1u : 0u;
@@ -42,10 +44,9 @@ std::vector<gpu::GpuTileNoise> TileNoiseKernel::measure(const Buffer& all, const
   kernel_.bind(RT_NOISE_BINDING_ACCUMULATION_ODD, odd);
   kernel_.bind(RT_NOISE_BINDING_TILES, tiles_);
   context_.submitAndWait([&](VkCommandBuffer commands) {
-    kernel_.recordDispatch(commands, &params,
-                           divideRoundUp(tilesPerRow_ * tileRows_, RT_NOISE_WORKGROUP_SIZE));
+    kernel_.recordDispatch(commands, &params, divideRoundUp(tileCount_, RT_NOISE_WORKGROUP_SIZE));
   });
-  std::vector<gpu::GpuTileNoise> tiles(size_t(tilesPerRow_) * tileRows_);
+  std::vector<gpu::GpuTileNoise> tiles(tileCount_);
   tiles_.download(tiles.data(), tiles.size() * sizeof(gpu::GpuTileNoise));
   return tiles;
 }

@@ -38,8 +38,7 @@ class TileNoiseKernel {
   VulkanContext& context_;
   uint32_t width_;
   uint32_t height_;
-  uint32_t tilesPerRow_;
-  uint32_t tileRows_;
+  uint32_t tileCount_;  // gpu::adaptiveTileGrid's, row-major
   ComputeKernel kernel_;
   Buffer tiles_;
 };

@@ -8,14 +8,13 @@
 #include "gpu/ComputeKernel.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
+#include "util/Arithmetic.hpp"
 #include "util/Error.hpp"
 
 namespace rt::viewer {
 namespace {
 
 constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;
-
-uint32_t divideRoundUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 
 VkImageMemoryBarrier imageBarrier(VkImage image, VkImageLayout oldLayout, VkImageLayout newLayout,
                                   VkAccessFlags srcAccess, VkAccessFlags dstAccess) {
