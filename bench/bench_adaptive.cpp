@@ -5,7 +5,10 @@
 // adaptive sampling can keep up (README "Adaptive sampling", "On a GPU").
 // Synthetic tile noise after the first pass, at three image sizes: the set-up
 // (AdaptiveRounds: the plan's per-tile counts) and one round's decisions
-// (finishRound: pooling, dilation, the allocation; kernelRanges), best of N.
+// (finishRound: pooling, dilation, the allocation; kernelRanges), and the
+// edge round's work after the first pass (neighbourContrast over a synthetic
+// first-pass image and AdaptivePlan::edgeRound, its allocation over every
+// pixel; the read-back of the sums is not included), best of N.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -24,6 +27,7 @@ rt::gpu::GpuTileNoise firstPassTile(double v) {
   tile.squaredSum = float(16 * v / 2);
   tile.inverseCountSum = 48;
   tile.measured = 16;
+  tile.pooled = 16;
   return tile;
 }
 
@@ -40,9 +44,28 @@ std::vector<rt::gpu::GpuTileNoise> syntheticNoise(uint32_t tilesPerRow, uint32_t
   return tiles;
 }
 
+// A first-pass image of one sample a pixel: a smooth gradient crossed by
+// the outlines of discs, so that about one pixel in twenty has a contrast.
+rt::SampleSums firstPassImage(uint32_t width, uint32_t height) {
+  rt::SampleSums sums;
+  sums.width = width;
+  sums.height = height;
+  sums.all.resize(size_t(width) * height);
+  sums.odd.assign(sums.all.size(), glm::vec4(0.0f));
+  for (uint32_t y = 0; y < height; ++y) {
+    for (uint32_t x = 0; x < width; ++x) {
+      const float u = float(x % 97) / 97.0f - 0.5f, v = float(y % 89) / 89.0f - 0.5f;
+      const float inside = u * u + v * v < 0.1f ? 0.6f : 0.0f;
+      sums.all[size_t(y) * width + x] =
+          glm::vec4(0.2f + 0.3f * float(x) / float(width) + inside, 0.3f, 0.4f + inside, 1.0f);
+    }
+  }
+  return sums;
+}
+
 struct Timing {
   uint32_t tiles = 0;
-  double setupMs = 1e30, roundMs = 1e30;
+  double setupMs = 1e30, roundMs = 1e30, edgeMs = 1e30;
   uint64_t added = 0;
 };
 
@@ -65,6 +88,20 @@ Timing timeRounds(uint32_t width, uint32_t height, int repeats) {
     timing.added = 0;
     for (const glm::uvec2& range : ranges) timing.added += range.y;
   }
+  const rt::PixelRegion region{0, 0, width, height};
+  rt::AdaptivePlan plan(width, height, region);
+  plan.addRound(plan.uniformRound(1), rays, true);
+  const rt::NoiseMeasurement measured = plan.measureNoise(noise);
+  const rt::SampleSums image = firstPassImage(width, height);
+  rt::AllocationGoal next;
+  next.sampleBudget = double(goal.meanSamples) * width * height - double(plan.pixelSamples());
+  next.maxSamples = goal.maxSamples;
+  for (int i = 0; i < repeats; ++i) {
+    auto start = bench::Clock::now();
+    const rt::EdgeRound edges =
+        plan.edgeRound(measured.tiles, rt::neighbourContrast(image, {}, region), next);
+    timing.edgeMs = std::min(timing.edgeMs, bench::secondsSince(start) * 1e3);
+  }
   return timing;
 }
 
@@ -76,13 +113,14 @@ int main(int argc, char** argv) {
   app.add_option("--repeat", repeats, "Best of this many")->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
   std::printf(
-      "| image | tiles | set-up ms | one round's decisions ms | samples added per tile |\n");
-  std::printf("|---|---|---|---|---|\n");
+      "| image | tiles | set-up ms | one round's decisions ms | samples added per tile | edge "
+      "round ms |\n");
+  std::printf("|---|---|---|---|---|---|\n");
   const std::pair<uint32_t, uint32_t> sizes[] = {{640, 480}, {1920, 1080}, {3840, 2160}};
   for (auto [width, height] : sizes) {
     Timing t = timeRounds(width, height, repeats);
-    std::printf("| %ux%u | %u | %.3f | %.3f | %.2f |\n", width, height, t.tiles, t.setupMs,
-                t.roundMs, double(t.added) / t.tiles);
+    std::printf("| %ux%u | %u | %.3f | %.3f | %.2f | %.1f |\n", width, height, t.tiles, t.setupMs,
+                t.roundMs, double(t.added) / t.tiles, t.edgeMs);
   }
   return 0;
 }

@@ -61,6 +61,9 @@ using uint = uint32_t;
 // Adaptive sampling's per-tile count of the rays traced since the host last
 // read it: the cost of a tile's samples (RT_ADAPTIVE_SAMPLING only).
 #define RT_BINDING_TILE_RAYS 18
+// Adaptive sampling's per-pixel edge samples: what the edge round adds to
+// each pixel beyond its tile's count (RT_ADAPTIVE_SAMPLING only).
+#define RT_BINDING_PIXEL_EXTRAS 19
 
 #define RT_WORKGROUP_SIZE_X 8
 #define RT_WORKGROUP_SIZE_Y 8
@@ -73,6 +76,11 @@ using uint = uint32_t;
 // (they hold the tile's noise estimate); in later rounds' first sample, "one
 // later" (they already have that extra sample).
 #define RT_ADAPTIVE_PAIRED_FLAG 0x80000000u
+// A second flag for the edge round (AdaptiveSampling.hpp): in its count,
+// "plus the pixel's extras" (RT_BINDING_PIXEL_EXTRAS); in later rounds' first
+// sample, "later by the pixel's extras".
+#define RT_ADAPTIVE_EXTRAS_FLAG 0x40000000u
+#define RT_ADAPTIVE_PLAN_FLAGS (RT_ADAPTIVE_PAIRED_FLAG | RT_ADAPTIVE_EXTRAS_FLAG)
 // adaptivePairedPixel picks blocks of a tile this size.
 #define RT_ADAPTIVE_PAIR_BLOCK_WIDTH 4
 #define RT_ADAPTIVE_PAIR_BLOCK_HEIGHT 2

@@ -16,19 +16,24 @@ namespace rt::gpu {
 #define RT_NOISE_BINDING_ACCUMULATION 0      // vec4 per pixel: rgb sum, a = sample count
 #define RT_NOISE_BINDING_ACCUMULATION_ODD 1  // the same over the odd sample indices
 #define RT_NOISE_BINDING_TILES 2             // GpuTileNoise per tile, row-major
+#define RT_NOISE_BINDING_PIXEL_EXTRAS 3      // uint per pixel: its edge-round samples
 
 #define RT_NOISE_WORKGROUP_SIZE 64  // tiles a workgroup measures, one an invocation
 
 // One tile of RT_ADAPTIVE_TILE_SIZE^2 pixels, over its pixels in the region.
+// The pixels the edge round picked are measured apart: they were picked for
+// their contrast, so pooled with the others they would raise the noise that
+// the tile's pixels of one sample take from the pool.
 struct GpuTileNoise {
-  float varianceSum;      // sum of pixelSquaredError * samples: one sample's variance
-  float squaredSum;       // sum of pixelSquaredError
+  float varianceSum;      // sum of pixelSquaredError * samples: one sample's variance,
+                          // over the pooled pixels (both halves, no edge samples)
+  float squaredSum;       // sum of pixelSquaredError over all pixels with both halves
   float inverseCountSum;  // sum of 1 / samples over pixels with samples but one half empty
   uint measured;          // pixels with both halves
   uint unsampled;         // pixels without any sample
+  uint pooled;            // pixels in varianceSum
+  float edgeVarianceSum;  // varianceSum's sum over the measured pixels with edge samples
   uint pad0;
-  uint pad1;
-  uint pad2;
 };
 RT_ASSERT_STD430_SIZE(GpuTileNoise, 32);
 
@@ -40,9 +45,9 @@ struct GpuTileNoiseParams {
   float exposure;     // the display mapping (tone_mapping.h)
   uint toneCurve;
   uint srgbEncode;
+  uint edges;  // 1: the pixel extras hold an edge round's samples (else unread)
   uint pad0;
   uint pad1;
-  uint pad2;
 };
 RT_ASSERT_STD430_SIZE(GpuTileNoiseParams, 48);
 

@@ -23,6 +23,9 @@ layout(std430, set = 0, binding = RT_NOISE_BINDING_ACCUMULATION_ODD) readonly bu
 layout(std430, set = 0, binding = RT_NOISE_BINDING_TILES) writeonly buffer Tiles {
   GpuTileNoise tiles[];
 };
+layout(std430, set = 0, binding = RT_NOISE_BINDING_PIXEL_EXTRAS) readonly buffer PixelExtras {
+  uint pixelExtras[];
+};
 
 void main() {
   uvec2 grid = adaptiveTileGrid(params.size);
@@ -37,9 +40,9 @@ void main() {
   tile.inverseCountSum = 0.0;
   tile.measured = 0u;
   tile.unsampled = 0u;
+  tile.pooled = 0u;
+  tile.edgeVarianceSum = 0.0;
   tile.pad0 = 0u;
-  tile.pad1 = 0u;
-  tile.pad2 = 0u;
   for (uint y = start.y; y < end.y; ++y) {
     for (uint x = start.x; x < end.x; ++x) {
       uint pixel = y * params.size.x + x;
@@ -47,7 +50,12 @@ void main() {
       float squared = pixelSquaredError(sum, oddSums[pixel], params.exposure, params.toneCurve,
                                         params.srgbEncode);
       if (squared >= 0.0) {
-        tile.varianceSum += squared * sum.w;
+        if (params.edges != 0u && pixelExtras[pixel] > 0u) {
+          tile.edgeVarianceSum += squared * sum.w;
+        } else {
+          tile.varianceSum += squared * sum.w;
+          tile.pooled += 1u;
+        }
         tile.squaredSum += squared;
         tile.measured += 1u;
       } else if (sum.w > 0.0) {

@@ -24,6 +24,20 @@ layout(std430, set = 0, binding = RT_BINDING_SAMPLE_PLAN) restrict readonly buff
 layout(std430, set = 0, binding = RT_BINDING_TILE_RAYS) restrict buffer TileRaysBuffer {
   uint tileRays[];
 };
+layout(std430, set = 0, binding = RT_BINDING_PIXEL_EXTRAS) restrict readonly buffer PixelExtrasBuffer {
+  uint pixelExtras[];
+};
+
+// This dispatch's (first sample index, count) of the pixel from its tile's
+// plan: the paired pixels' extra first-round sample (RT_ADAPTIVE_PAIRED_FLAG)
+// and the edge round's per-pixel samples (RT_ADAPTIVE_EXTRAS_FLAG).
+uvec2 plannedRange(uvec2 planned, uvec2 pixel, uint pixelIndex) {
+  uint paired = adaptivePairedPixel(pixel.x, pixel.y);
+  bool extras = ((planned.x | planned.y) & RT_ADAPTIVE_EXTRAS_FLAG) != 0u;
+  uint extra = extras ? pixelExtras[pixelIndex] : 0u;
+  uvec2 range = (planned & ~RT_ADAPTIVE_PLAN_FLAGS) + (planned >> 31u) * paired;
+  return range + ((planned >> 30u) & 1u) * extra;
+}
 #endif
 
 #ifdef RT_COUNT_RAYS
@@ -65,10 +79,7 @@ void main() {
 #ifdef RT_ADAPTIVE_SAMPLING
   uint tilesPerRow = adaptiveTileGrid(uvec2(sceneInfo.width, 0u)).x;
   uint tile = (pixel.y / RT_ADAPTIVE_TILE_SIZE) * tilesPerRow + pixel.x / RT_ADAPTIVE_TILE_SIZE;
-  // The paired pixels' extra first-round sample (RT_ADAPTIVE_PAIRED_FLAG).
-  uvec2 planned = samplePlan[tile];
-  uvec2 range = (planned & ~RT_ADAPTIVE_PAIRED_FLAG) +
-                (planned >> 31u) * adaptivePairedPixel(pixel.x, pixel.y);
+  uvec2 range = plannedRange(samplePlan[tile], pixel, pixelIndex);
   if (range.y == 0u) return;
 #else
   uvec2 range = uvec2(frame.sampleBegin, frame.sampleCount);

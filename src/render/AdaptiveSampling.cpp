@@ -1,6 +1,7 @@
 #include "render/AdaptiveSampling.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -29,6 +30,12 @@ constexpr double kMinRoundShare = 0.01;
 // doubling (2, 4, 8, 16, 27 samples: 5 rounds); the pooled estimate of a
 // 64-pixel tile is steady enough to allow four times.
 constexpr double kGrowth = 4;
+// The edge round counts this share of a pixel's neighbour contrast as noise:
+// a pixel that an edge crosses at coverage p has a one-sample variance of
+// p (1 - p) times the squared contrast, at most a quarter of it; the pixel's
+// mean after one sample differs from one neighbour by the whole contrast.
+// A half simulated better than a quarter (bench/adaptive_bound.py).
+constexpr double kContrastShare = 0.5;
 
 constexpr uint32_t kPairBlockWidth = RT_ADAPTIVE_PAIR_BLOCK_WIDTH;
 constexpr uint32_t kPairBlockHeight = RT_ADAPTIVE_PAIR_BLOCK_HEIGHT;
@@ -159,6 +166,35 @@ double multiplierForMse(const std::vector<TilePlan>& plans, double mse) {
 
 double predictedMse(const std::vector<TileNoise>& tiles) { return mseAt(tilePlans(tiles, 0), 0); }
 
+std::vector<float> neighbourContrast(const SampleSums& sums, const ToneMapping& mapping,
+                                     const PixelRegion& region) {
+  std::vector<glm::vec3> shown(sums.all.size());
+  for (uint32_t y = region.y; y < region.y + region.height; ++y) {
+    for (uint32_t x = region.x; x < region.x + region.width; ++x) {
+      const glm::vec4 sum = sums.all[size_t(y) * sums.width + x];
+      for (int c = 0; c < 3; ++c) {
+        shown[size_t(y) * sums.width + x][c] =
+            sum.w > 0 ? displayValue(sum[c] / sum.w, mapping) : 0.0f;
+      }
+    }
+  }
+  std::vector<float> contrast(sums.all.size(), 0.0f);
+  auto compare = [&](size_t a, size_t b) {
+    const glm::vec3 d = shown[a] - shown[b];
+    const float squared = glm::dot(d, d) / 3.0f;
+    contrast[a] = std::max(contrast[a], squared);
+    contrast[b] = std::max(contrast[b], squared);
+  };
+  for (uint32_t y = region.y; y < region.y + region.height; ++y) {
+    for (uint32_t x = region.x; x < region.x + region.width; ++x) {
+      const size_t pixel = size_t(y) * sums.width + x;
+      if (x + 1 < region.x + region.width) compare(pixel, pixel + 1);
+      if (y + 1 < region.y + region.height) compare(pixel, pixel + sums.width);
+    }
+  }
+  return contrast;
+}
+
 std::vector<uint32_t> allocateSamples(const std::vector<TileNoise>& tiles,
                                       const AllocationGoal& goal) {
   std::vector<uint32_t> added(tiles.size(), 0);
@@ -185,6 +221,7 @@ AdaptivePlan::AdaptivePlan(uint32_t width, uint32_t height, const PixelRegion& r
   pixels_.assign(size_t(tilesPerRow_) * rows, 0);
   paired_.assign(pixels_.size(), 0);
   samples_.assign(pixels_.size(), 0);
+  edgeSamples_.assign(pixels_.size(), 0);
   rays_.assign(pixels_.size(), 0);
   // Per tile and paired block, not per pixel (a walk over 2 million pixels
   // cost 5 ms at 1920x1080).
@@ -207,6 +244,86 @@ AdaptivePlan::AdaptivePlan(uint32_t width, uint32_t height, const PixelRegion& r
 
 size_t AdaptivePlan::tileOf(uint32_t x, uint32_t y) const {
   return size_t(y / kTileSize) * tilesPerRow_ + x / kTileSize;
+}
+
+// The edge round's pixels are grouped by their tile and their contrast's
+// power of two: one unit of the allocation per group (pixels of a group get
+// the same count), not one per pixel. At 1920x1080 the allocation over every
+// pixel took 190 ms of host time (rt-bench-adaptive).
+constexpr int kContrastLevels = 22;  // 0: below 2^-20; then one per power of two to 1
+
+int contrastLevel(float contrast) {
+  if (!(contrast >= 0x1p-20f)) return 0;
+  int exponent = 0;
+  std::frexp(contrast, &exponent);
+  return std::clamp(exponent + 20, 1, kContrastLevels - 1);
+}
+
+EdgeRound AdaptivePlan::edgeRound(const std::vector<TileNoise>& tiles,
+                                  const std::vector<float>& contrast,
+                                  const AllocationGoal& goal) const {
+  // Per tile, its pixels' levels and each level's unit.
+  struct Group {
+    uint32_t pixels = 0;
+    double contrastSum = 0;
+    size_t unit = 0;
+  };
+  std::vector<TileNoise> units;
+  std::vector<std::array<Group, kContrastLevels>> groups(pixels_.size());
+  auto forEachPixel = [&](size_t tile, auto visit) {
+    const uint32_t tx = uint32_t(tile % tilesPerRow_) * kTileSize;
+    const uint32_t ty = uint32_t(tile / tilesPerRow_) * kTileSize;
+    const uint32_t x0 = std::max(tx, region_.x),
+                   x1 = std::min(tx + kTileSize, region_.x + region_.width);
+    const uint32_t y0 = std::max(ty, region_.y),
+                   y1 = std::min(ty + kTileSize, region_.y + region_.height);
+    for (uint32_t y = y0; y < y1; ++y) {
+      for (uint32_t x = x0; x < x1; ++x) visit(size_t(y) * width_ + x);
+    }
+  };
+  for (size_t tile = 0; tile < pixels_.size(); ++tile) {
+    if (pixels_[tile] == 0) continue;
+    forEachPixel(tile, [&](size_t pixel) {
+      Group& group = groups[tile][contrastLevel(contrast[pixel])];
+      group.pixels += 1;
+      group.contrastSum += contrast[pixel];
+    });
+    // A paired pixel's extra first-round sample stays on top of its count,
+    // as in the rounds per tile.
+    for (Group& group : groups[tile]) {
+      if (group.pixels == 0) continue;
+      group.unit = units.size();
+      const double meanContrast = group.contrastSum / group.pixels;
+      units.push_back({group.pixels, tiles[tile].samples,
+                       tiles[tile].variance + kContrastShare * meanContrast, tiles[tile].cost});
+    }
+  }
+  const std::vector<uint32_t> added = allocateSamples(units, goal);
+  EdgeRound round;
+  round.common.assign(pixels_.size(), 0);
+  round.pixels.assign(contrast.size(), 0);
+  round.extraSums.assign(pixels_.size(), 0);
+  for (size_t tile = 0; tile < pixels_.size(); ++tile) {
+    if (pixels_[tile] == 0) continue;
+    uint32_t common = std::numeric_limits<uint32_t>::max();
+    for (const Group& group : groups[tile]) {
+      if (group.pixels > 0) common = std::min(common, added[group.unit]);
+    }
+    round.common[tile] = common;
+    forEachPixel(tile, [&](size_t pixel) {
+      const uint32_t extra = added[groups[tile][contrastLevel(contrast[pixel])].unit] - common;
+      round.pixels[pixel] = extra;
+      round.extraSums[tile] += extra;
+    });
+  }
+  return round;
+}
+
+void AdaptivePlan::addEdgeRound(const EdgeRound& round, const std::vector<uint32_t>& rays) {
+  if (edgesRendered_) throw Error("adaptive round: the edges have their samples");
+  addRound(round.common, rays);
+  for (size_t i = 0; i < samples_.size(); ++i) edgeSamples_[i] += round.extraSums[i];
+  edgesRendered_ = true;
 }
 
 std::vector<uint32_t> AdaptivePlan::uniformRound(uint32_t count) const {
@@ -256,12 +373,27 @@ NoiseMeasurement AdaptivePlan::measureNoise(const std::vector<gpu::GpuTileNoise>
   bool complete = true;
   for (size_t i = 0; i < measured.size(); ++i) {
     variance[i] = measured[i].varianceSum;
-    counts[i] = measured[i].measured;
+    counts[i] = measured[i].pooled;
+    if (counts[i] == 0) {
+      // Every measured pixel has edge samples: their noise, which is the
+      // larger, for the others too.
+      variance[i] = measured[i].edgeVarianceSum;
+      counts[i] = measured[i].measured;
+    }
     complete = complete && measured[i].unsampled == 0;
   }
   complete = poolTiles(variance, counts) && complete;
+  // The allocation plans with the mean over all of a tile's pixels: the
+  // pooled noise for the pixels without edge samples, their own for those with.
+  std::vector<double> tileVariance = variance;
+  for (size_t i = 0; i < measured.size(); ++i) {
+    if (pixels_[i] == 0) continue;
+    const uint32_t edges = measured[i].measured - measured[i].pooled;
+    tileVariance[i] =
+        (variance[i] * (pixels_[i] - edges) + measured[i].edgeVarianceSum) / double(pixels_[i]);
+  }
   NoiseMeasurement noise;
-  noise.tiles = dilatedTiles(variance);
+  noise.tiles = dilatedTiles(tileVariance);
   if (!complete || regionPixels_ == 0) return noise;
   // Pixels with both halves count their own error; the others their tile's
   // noise over their sample count.
@@ -323,20 +455,23 @@ void AdaptivePlan::addRound(const std::vector<uint32_t>& added, const std::vecto
   pairsRendered_ = pairsRendered_ || paired;
 }
 
-std::vector<glm::uvec2> AdaptivePlan::kernelRanges(const std::vector<uint32_t>& added,
-                                                   bool paired) const {
+std::vector<glm::uvec2> AdaptivePlan::kernelRanges(const std::vector<uint32_t>& added, bool paired,
+                                                   bool edge) const {
   std::vector<glm::uvec2> ranges(samples_.size(), glm::uvec2(0));
   for (size_t i = 0; i < ranges.size(); ++i) {
     if (pixels_[i] == 0) continue;
     ranges[i] = {samples_[i], added[i]};
     if (pairsRendered_) ranges[i].x |= RT_ADAPTIVE_PAIRED_FLAG;
+    if (edgesRendered_) ranges[i].x |= RT_ADAPTIVE_EXTRAS_FLAG;
     if (paired) ranges[i].y |= RT_ADAPTIVE_PAIRED_FLAG;
+    if (edge) ranges[i].y |= RT_ADAPTIVE_EXTRAS_FLAG;
   }
   return ranges;
 }
 
 double AdaptivePlan::tileSamples(size_t tile) const {
-  return double(pixels_[tile]) * samples_[tile] + (pairsRendered_ ? paired_[tile] : 0);
+  return double(pixels_[tile]) * samples_[tile] + (pairsRendered_ ? paired_[tile] : 0) +
+         double(edgeSamples_[tile]);
 }
 
 uint64_t AdaptivePlan::pixelSamples() const {
@@ -377,20 +512,36 @@ double AdaptiveRounds::rowWork(uint32_t y, uint32_t end) const {
     for (uint32_t tx = region.x / tile; tx * tile < region.x + region.width; ++tx) {
       uint32_t x0 = std::max(tx * tile, region.x);
       uint32_t x1 = std::min((tx + 1) * tile, region.x + region.width);
+      const size_t index = size_t(row / tile) * plan_.tilesPerRow() + tx;
       // The paired pixels' extra sample: one pixel in four.
-      const uint32_t samples = round_[size_t(row / tile) * plan_.tilesPerRow() + tx];
-      const double extra = pairRound_ && samples > 0 ? 0.25 : 0.0;
-      work += (samples + extra) * (x1 - x0) * (next - row);
+      const uint32_t samples = round_[index];
+      double perPixel = samples + (pairRound_ && samples > 0 ? 0.25 : 0.0);
+      if (edgeRound_ && plan_.tilePixels(index) > 0) {
+        perPixel = edgeRound_->common[index] +
+                   double(edgeRound_->extraSums[index]) / plan_.tilePixels(index);
+      }
+      work += perPixel * (x1 - x0) * (next - row);
     }
     row = next;
   }
   return work;
 }
 
+const std::vector<uint32_t>& AdaptiveRounds::pixelExtras() const {
+  static const std::vector<uint32_t> none;
+  return edgeRound_ ? edgeRound_->pixels : none;
+}
+
 void AdaptiveRounds::finishRound(const std::vector<gpu::GpuTileNoise>& measured,
-                                 const std::vector<uint32_t>& tileRays) {
-  plan_.addRound(round_, tileRays, pairRound_);
+                                 const std::vector<uint32_t>& tileRays, const ImageReader* image) {
+  if (edgeRound_) {
+    plan_.addEdgeRound(*edgeRound_, tileRays);
+  } else {
+    plan_.addRound(round_, tileRays, pairRound_);
+  }
+  const bool firstRound = pairRound_;
   pairRound_ = false;
+  edgeRound_.reset();
   NoiseMeasurement noise = plan_.measureNoise(measured);
   estimate_ = noise.rmse;
   sampleVariance_ = std::move(noise.sampleVariance);
@@ -399,8 +550,13 @@ void AdaptiveRounds::finishRound(const std::vector<gpu::GpuTileNoise>& measured,
   next.sampleBudget =
       double(goal_.meanSamples) * double(plan_.regionPixels()) - double(plan_.pixelSamples());
   next.maxSamples = goal_.maxSamples;
-  round_ = reachedTarget() ? std::vector<uint32_t>(round_.size(), 0)
-                           : allocateSamples(noise.tiles, next);
+  round_.assign(round_.size(), 0);
+  if (!reachedTarget() && firstRound && image) {
+    edgeRound_ = plan_.edgeRound(
+        noise.tiles, neighbourContrast(image->read(), image->mapping, plan_.region()), next);
+  } else if (!reachedTarget()) {
+    round_ = allocateSamples(noise.tiles, next);
+  }
   const PixelRegion& region = plan_.region();
   const double work = rowWork(region.y, region.y + region.height);
   finished_ = work < kMinRoundShare * double(plan_.pixelSamples());
@@ -413,6 +569,7 @@ void AdaptiveRounds::measureStop(const std::vector<gpu::GpuTileNoise>& measured)
   estimate_ = noise.rmse;
   sampleVariance_ = std::move(noise.sampleVariance);
   round_.assign(round_.size(), 0);
+  edgeRound_.reset();
   finished_ = true;
 }
 

@@ -116,6 +116,9 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     tileRays_->fillZero();
     tileRaysRead_.assign(tiles, 0);
+    pixelExtras_.emplace(context, VkDeviceSize(width_) * height_ * sizeof(uint32_t),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    pixelExtras_->fillZero();
   }
   kernel_ = buildKernel();
   // Made now where the render will measure its noise, so that the pipeline's
@@ -134,6 +137,7 @@ std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(bool countRays, A
   if (adaptive) {
     bindings.push_back({RT_BINDING_SAMPLE_PLAN});
     bindings.push_back({RT_BINDING_TILE_RAYS});
+    bindings.push_back({RT_BINDING_PIXEL_EXTRAS});
   }
   return bindings;
 }
@@ -150,6 +154,7 @@ std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
   if (rayCounter_) kernel->bind(RT_BINDING_RAY_COUNTER, *rayCounter_);
   if (samplePlan_) kernel->bind(RT_BINDING_SAMPLE_PLAN, *samplePlan_);
   if (tileRays_) kernel->bind(RT_BINDING_TILE_RAYS, *tileRays_);
+  if (pixelExtras_) kernel->bind(RT_BINDING_PIXEL_EXTRAS, *pixelExtras_);
   return kernel;
 }
 
@@ -159,11 +164,17 @@ void ProgressiveRenderer::recordSamples(VkCommandBuffer commands, uint32_t row, 
   recordRange(commands, row, rows, samplesDone_, count);
 }
 
-void ProgressiveRenderer::setSamplePlan(const std::vector<glm::uvec2>& ranges) {
+void ProgressiveRenderer::setSamplePlan(const std::vector<glm::uvec2>& ranges,
+                                        const std::vector<uint32_t>& pixelExtras) {
   if (!samplePlan_ || ranges.size() * sizeof(glm::uvec2) != samplePlan_->size()) {
     throw Error("sample plan: not an adaptive render, or not one range per tile");
   }
   samplePlan_->upload(ranges.data(), samplePlan_->size());
+  if (pixelExtras.empty()) return;
+  if (pixelExtras.size() * sizeof(uint32_t) != pixelExtras_->size()) {
+    throw Error("sample plan: not one edge count per pixel");
+  }
+  pixelExtras_->upload(pixelExtras.data(), pixelExtras_->size());
 }
 
 void ProgressiveRenderer::recordPlannedSamples(VkCommandBuffer commands, uint32_t row,
@@ -268,13 +279,16 @@ std::optional<double> ProgressiveRenderer::estimateRmse(const ToneMapping& mappi
   return estimatedRmse(tileNoise(mapping), uint64_t(region_.width) * region_.height);
 }
 
-std::vector<gpu::GpuTileNoise> ProgressiveRenderer::tileNoise(const ToneMapping& mapping) {
+std::vector<gpu::GpuTileNoise> ProgressiveRenderer::tileNoise(const ToneMapping& mapping,
+                                                              bool edges) {
   if (!halvesIndependent())
     throw Error("tile noise: the halves of this render are not independent");
   if (!tileNoise_) {
     tileNoise_ = std::make_unique<TileNoiseKernel>(context_, compiler_, width_, height_);
   }
-  return tileNoise_->measure(accumulation_, oddAccumulation_, region_, mapping);
+  if (edges && !pixelExtras_) throw Error("tile noise: not an adaptive render");
+  return tileNoise_->measure(accumulation_, oddAccumulation_, edges ? &*pixelExtras_ : nullptr,
+                             region_, mapping);
 }
 
 std::vector<uint32_t> ProgressiveRenderer::takeTileRays() {

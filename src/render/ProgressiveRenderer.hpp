@@ -63,9 +63,11 @@ class ProgressiveRenderer {
 
   // Adaptive kernels only: per tile of RT_ADAPTIVE_TILE_SIZE^2 pixels (row-
   // major over the image), the first sample index and the count the next
-  // planned dispatches add. recordPlannedSamples records them for rows
+  // planned dispatches add, and (when not empty) every pixel's edge samples
+  // (AdaptiveRounds::pixelExtras). recordPlannedSamples records them for rows
   // [row, row + rows) of the region.
-  void setSamplePlan(const std::vector<glm::uvec2>& ranges);
+  void setSamplePlan(const std::vector<glm::uvec2>& ranges,
+                     const std::vector<uint32_t>& pixelExtras = {});
   void recordPlannedSamples(VkCommandBuffer commands, uint32_t row, uint32_t rows) const;
 
   // Back to zero samples (e.g. after a camera move).
@@ -97,8 +99,10 @@ class ProgressiveRenderer {
   std::optional<double> estimateRmse(const ToneMapping& mapping);
   // Per tile (row-major over the image) the noise of the region's pixels so
   // far, measured on the device (TileNoiseKernel); needs halvesIndependent().
+  // `edges`: the pixel extras hold the samples of an adaptive edge round
+  // (AdaptiveRounds::hasEdgeSamples), whose pixels are measured apart.
   // No dispatch may be in flight.
-  std::vector<gpu::GpuTileNoise> tileNoise(const ToneMapping& mapping);
+  std::vector<gpu::GpuTileNoise> tileNoise(const ToneMapping& mapping, bool edges = false);
   bool halvesIndependent() const;
   // Adaptive kernels only: per tile, the rays traced since the last call (or
   // reset). No dispatch may be in flight.
@@ -126,6 +130,7 @@ class ProgressiveRenderer {
   std::optional<Buffer> samplePlan_;    // adaptive only
   std::optional<Buffer> tileRays_;      // adaptive only: running counters
   std::vector<uint32_t> tileRaysRead_;  // the counters at the last takeTileRays()
+  std::optional<Buffer> pixelExtras_;   // adaptive only: the edge round's counts
   std::unique_ptr<ComputeKernel> kernel_;
   std::vector<std::unique_ptr<ComputeKernel>> retired_;
   std::unique_ptr<TileNoiseKernel> tileNoise_;  // for halvesIndependent() renders

@@ -224,12 +224,14 @@ class AdaptiveLoop : SampleLoop {
       if (!renderRound()) {
         stats_.stoppedEarly = true;
         // The estimate and the error layer from the samples the stop left.
-        rounds_.measureStop(job_.tileNoise(mapping_));
+        rounds_.measureStop(job_.tileNoise(mapping_, rounds_.hasEdgeSamples()));
         stats_.rmseEstimate = rounds_.rmseEstimate();
         stats_.reachedTarget = rounds_.reachedTarget();
         return;
       }
-      rounds_.finishRound(job_.tileNoise(mapping_), job_.takeTileRays());
+      const AdaptiveRounds::ImageReader image{[this] { return job_.sampleSums(); }, mapping_};
+      rounds_.finishRound(job_.tileNoise(mapping_, rounds_.hasEdgeSamples()), job_.takeTileRays(),
+                          &image);
       stats_.rmseEstimate = rounds_.rmseEstimate();
       stats_.reachedTarget = rounds_.reachedTarget();
       report(rounds_.meanSamples(), options_.samplesPerPixel, stats_.rmseEstimate);
@@ -241,7 +243,7 @@ class AdaptiveLoop : SampleLoop {
  private:
   // False if stopped part way.
   bool renderRound() {
-    job_.setSamplePlan(rounds_.kernelRanges());
+    job_.setSamplePlan(rounds_.kernelRanges(), rounds_.pixelExtras());
     const PixelRegion& region = job_.region();
     for (uint32_t y = region.y; y < region.y + region.height;) {
       if (stopRequested()) return false;

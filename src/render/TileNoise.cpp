@@ -22,14 +22,17 @@ TileNoiseKernel::TileNoiseKernel(VulkanContext& context, const ShaderCompiler& c
       width_(width),
       height_(height),
       tileCount_(tileCount(width, height)),
-      kernel_(context, compiler.compile("tile_noise.comp", {}),
-              std::vector<uint32_t>{RT_NOISE_BINDING_ACCUMULATION,
-                                    RT_NOISE_BINDING_ACCUMULATION_ODD, RT_NOISE_BINDING_TILES},
-              sizeof(gpu::GpuTileNoiseParams)),
+      kernel_(
+          context, compiler.compile("tile_noise.comp", {}),
+          std::vector<uint32_t>{RT_NOISE_BINDING_ACCUMULATION, RT_NOISE_BINDING_ACCUMULATION_ODD,
+                                RT_NOISE_BINDING_TILES, RT_NOISE_BINDING_PIXEL_EXTRAS},
+          sizeof(gpu::GpuTileNoiseParams)),
       tiles_(context, VkDeviceSize(tileCount_) * sizeof(gpu::GpuTileNoise),
-             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {}
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
+      noExtras_(context, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {}
 
 std::vector<gpu::GpuTileNoise> TileNoiseKernel::measure(const Buffer& all, const Buffer& odd,
+                                                        const Buffer* pixelExtras,
                                                         const PixelRegion& region,
                                                         const ToneMapping& mapping) {
   const PixelRegion r = resolveRegion(region, width_, height_);
@@ -40,9 +43,11 @@ std::vector<gpu::GpuTileNoise> TileNoiseKernel::measure(const Buffer& all, const
   params.exposure = mapping.exposure;
   params.toneCurve = static_cast<uint32_t>(mapping.curve);
   params.srgbEncode = mapping.srgbEncode ? 1u : 0u;
+  params.edges = pixelExtras ? 1u : 0u;
   kernel_.bind(RT_NOISE_BINDING_ACCUMULATION, all);
   kernel_.bind(RT_NOISE_BINDING_ACCUMULATION_ODD, odd);
   kernel_.bind(RT_NOISE_BINDING_TILES, tiles_);
+  kernel_.bind(RT_NOISE_BINDING_PIXEL_EXTRAS, pixelExtras ? *pixelExtras : noExtras_);
   context_.submitAndWait([&](VkCommandBuffer commands) {
     kernel_.recordDispatch(commands, &params, divideRoundUp(tileCount_, RT_NOISE_WORKGROUP_SIZE));
   });

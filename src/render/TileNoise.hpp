@@ -30,9 +30,12 @@ class TileNoiseKernel {
 
   // Per tile, row-major over the whole image, the sums over its pixels in
   // `region` (resolved) of the sums in `all` and `odd` (one vec4 per
-  // pixel). Submits and waits: no dispatch may be in flight on the buffers.
+  // pixel); `pixelExtras` (one uint per pixel, or null): the edge round's
+  // samples, whose pixels are measured apart. Submits and waits: no dispatch
+  // may be in flight on the buffers.
   std::vector<gpu::GpuTileNoise> measure(const Buffer& all, const Buffer& odd,
-                                         const PixelRegion& region, const ToneMapping& mapping);
+                                         const Buffer* pixelExtras, const PixelRegion& region,
+                                         const ToneMapping& mapping);
 
  private:
   VulkanContext& context_;
@@ -41,6 +44,7 @@ class TileNoiseKernel {
   uint32_t tileCount_;  // gpu::adaptiveTileGrid's, row-major
   ComputeKernel kernel_;
   Buffer tiles_;
+  Buffer noExtras_;  // bound when there are no pixel extras (never read then)
 };
 
 // The image's estimated RMSE (estimateDisplayRmse's figure) from its tiles,

@@ -66,12 +66,16 @@ std::vector<Band> Accumulation::planAdaptiveBands(const ToneMapping& mapping, bo
   if (adaptiveRow_ >= height) {
     // The round's last band was in the frame just finished: with nothing
     // in flight, measure the tiles' noise and plan the next round.
-    adaptive_->finishRound(renderer_->tileNoise(mapping), renderer_->takeTileRays());
+    const AdaptiveRounds::ImageReader image{[this] { return renderer_->sampleSums(); }, mapping};
+    adaptive_->finishRound(renderer_->tileNoise(mapping, adaptive_->hasEdgeSamples()),
+                           renderer_->takeTileRays(), &image);
     adaptiveRow_ = 0;
     readBack = true;
   }
   if (adaptive_->finished()) return {};
-  if (adaptiveRow_ == 0) renderer_->setSamplePlan(adaptive_->kernelRanges());
+  if (adaptiveRow_ == 0) {
+    renderer_->setSamplePlan(adaptive_->kernelRanges(), adaptive_->pixelExtras());
+  }
   // Scripted runs with fixed samples per frame render a whole round a frame.
   double budget = fixedPerFrame_ ? std::numeric_limits<double>::infinity() : planner_.budget();
   uint32_t end = adaptive_->bandEnd(adaptiveRow_, budget);
