@@ -32,6 +32,8 @@ def read_points(path, column):
 
 def seconds_to(points, target):
     """Log-log interpolated time of the first crossing below target, or None."""
+    if points and points[0][1] <= target:
+        return None
     for (t0, e0), (t1, e1) in zip(points, points[1:]):
         if e0 > target >= e1:
             f = (math.log(e0) - math.log(target)) / (math.log(e0) - math.log(e1))
@@ -63,7 +65,13 @@ def print_table(out, scenes, target, clock):
                 continue
             t = times[series]
             last = points[series][-1][0]
-            shown = f"{t:.3f}" if t else f">{last:.3f}"
+            first, first_error = points[series][0]
+            if t:
+                shown = f"{t:.3f}"
+            elif first_error <= target:
+                shown = f"<{first:.3f}"  # below the target at its first point already
+            else:
+                shown = f">{last:.3f}"
             ratio = f"{t / times['jittered']:.2f}x" if t and times.get("jittered") else "-"
             to_sobol = "-"
             if series == "adaptive" and t and times.get("sobol"):
