@@ -33,10 +33,11 @@
 //   tile's paired blocks see a quarter of its pixels and miss most edges
 //   (silhouettes, reflected and refracted outlines, thin features), whose
 //   pixels hold most of a sharp image's error at a few samples. Each pixel
-//   of the region is then a unit of the allocation with its tile's noise
-//   plus half the largest squared difference between its mean and a
-//   neighbour's (an edge pixel's one-sample variance is at most a quarter of
-//   the contrast across the edge). Simulated on measured per-pixel errors
+//   of the region then counts with its tile's noise plus half the largest
+//   squared difference between its mean and a neighbour's (an edge pixel's
+//   one-sample variance is at most a quarter of the contrast across the
+//   edge), and the allocation runs over the pixels, grouped per tile by
+//   their contrast's power of two. Simulated on measured per-pixel errors
 //   (bench/adaptive_bound.py) it took default.json's RMSE at a mean of 2
 //   samples from 0.0109 (tiles alone) to 0.0039. Later rounds are per tile
 //   again: contrast does not fall with samples, noise does.
