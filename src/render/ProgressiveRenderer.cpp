@@ -8,6 +8,7 @@
 
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
+#include "render/AdaptiveSampling.hpp"
 #include "util/Arithmetic.hpp"
 #include "util/Error.hpp"
 
@@ -289,6 +290,15 @@ std::vector<gpu::GpuTileNoise> ProgressiveRenderer::tileNoise(const ToneMapping&
   if (edges && !pixelExtras_) throw Error("tile noise: not an adaptive render");
   return tileNoise_->measure(accumulation_, oddAccumulation_, edges ? &*pixelExtras_ : nullptr,
                              region_, mapping);
+}
+
+void ProgressiveRenderer::finishAdaptiveRound(AdaptiveRounds& rounds, const ToneMapping& mapping) {
+  const AdaptiveRounds::ImageReader image{[this] { return sampleSums(); }, mapping};
+  rounds.finishRound(tileNoise(mapping, rounds.hasEdgeSamples()), takeTileRays(), &image);
+}
+
+void ProgressiveRenderer::stopAdaptiveRound(AdaptiveRounds& rounds, const ToneMapping& mapping) {
+  rounds.measureStop(tileNoise(mapping, rounds.hasEdgeSamples()));
 }
 
 std::vector<uint32_t> ProgressiveRenderer::takeTileRays() {

@@ -25,6 +25,7 @@
 
 namespace rt {
 
+class AdaptiveRounds;
 class ShaderCompiler;
 class VulkanContext;
 
@@ -107,6 +108,13 @@ class ProgressiveRenderer {
   // Adaptive kernels only: per tile, the rays traced since the last call (or
   // reset). No dispatch may be in flight.
   std::vector<uint32_t> takeTileRays();
+  // Adaptive renders (AdaptiveSampling.hpp): measures the round just
+  // rendered (the tiles' noise, the edge round's pixels apart once it has
+  // run; the rays it traced; after the first round the image, for the edge
+  // round) and has `rounds` plan the next. No dispatch may be in flight.
+  void finishAdaptiveRound(AdaptiveRounds& rounds, const ToneMapping& mapping);
+  // The render stopped inside a round: `rounds` measures the samples it has.
+  void stopAdaptiveRound(AdaptiveRounds& rounds, const ToneMapping& mapping);
   // Rays traced so far (only with ProgressiveOptions::countRays).
   uint64_t raysTraced();
 

@@ -224,14 +224,12 @@ class AdaptiveLoop : SampleLoop {
       if (!renderRound()) {
         stats_.stoppedEarly = true;
         // The estimate and the error layer from the samples the stop left.
-        rounds_.measureStop(job_.tileNoise(mapping_, rounds_.hasEdgeSamples()));
+        job_.stopAdaptiveRound(rounds_, mapping_);
         stats_.rmseEstimate = rounds_.rmseEstimate();
         stats_.reachedTarget = rounds_.reachedTarget();
         return;
       }
-      const AdaptiveRounds::ImageReader image{[this] { return job_.sampleSums(); }, mapping_};
-      rounds_.finishRound(job_.tileNoise(mapping_, rounds_.hasEdgeSamples()), job_.takeTileRays(),
-                          &image);
+      job_.finishAdaptiveRound(rounds_, mapping_);
       stats_.rmseEstimate = rounds_.rmseEstimate();
       stats_.reachedTarget = rounds_.reachedTarget();
       report(rounds_.meanSamples(), options_.samplesPerPixel, stats_.rmseEstimate);

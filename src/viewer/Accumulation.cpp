@@ -66,9 +66,7 @@ std::vector<Band> Accumulation::planAdaptiveBands(const ToneMapping& mapping, bo
   if (adaptiveRow_ >= height) {
     // The round's last band was in the frame just finished: with nothing
     // in flight, measure the tiles' noise and plan the next round.
-    const AdaptiveRounds::ImageReader image{[this] { return renderer_->sampleSums(); }, mapping};
-    adaptive_->finishRound(renderer_->tileNoise(mapping, adaptive_->hasEdgeSamples()),
-                           renderer_->takeTileRays(), &image);
+    renderer_->finishAdaptiveRound(*adaptive_, mapping);
     adaptiveRow_ = 0;
     readBack = true;
   }
