@@ -585,13 +585,8 @@ TEST_SUITE("adaptive sampling") {
     Scene scene = test::frontStage(96, 72, {0, 0, 50}, 0.8f);
     const glm::vec3 centres[] = {{-1.1f, 0.3f, 0}, {0.2f, -0.4f, 0}, {1.2f, 0.5f, 0.3f}};
     const glm::vec3 colours[] = {{0.9f, 0.3f, 0.2f}, {0.3f, 0.8f, 0.4f}, {0.9f, 0.9f, 0.9f}};
-    for (int i = 0; i < 3; ++i) {
-      scene.materials.push_back(test::diffuse(colours[i]));
-      Shape shape;
-      shape.geometry = Sphere{WorldPoint(centres[i]), 0.55f};
-      shape.material = uint32_t(scene.materials.size() - 1);
-      scene.shapes.push_back(std::move(shape));
-    }
+    for (int i = 0; i < 3; ++i)
+      test::addSphere(scene, test::diffuse(colours[i]), centres[i], 0.55f);
     const ToneMapping mapping = toneMappingFor(scene);
     RenderOptions reference;
     reference.sampler = SamplerKind::Sobol;

@@ -21,14 +21,6 @@ Scene baseScene(uint32_t width, uint32_t height) {
   return test::frontStage(width, height, {0, 0, 50}, 0.8f);
 }
 
-void addSphere(Scene& scene, Material material, glm::vec3 center = {0, 0, 0}, float radius = 1) {
-  scene.materials.push_back(material);
-  Shape shape;
-  shape.geometry = Sphere{WorldPoint(center), radius};
-  shape.material = uint32_t(scene.materials.size() - 1);
-  scene.shapes.push_back(std::move(shape));
-}
-
 glm::vec3 pixel(const ImageF& image, uint32_t x, uint32_t y) {
   const float* p = image.pixel(x, y);
   return {p[0], p[1], p[2]};
@@ -53,7 +45,7 @@ TEST_SUITE("render") {
     // Light and eye on the axis: n.l = n.h = 1 at the centre pixel, so
     // L = kd * Cd * I + ks * Cs * I exactly.
     Scene scene = baseScene(101, 101);
-    addSphere(scene, test::diffuse({0.5f, 0.25f, 1.0f}, 0.6f, 0.3f));
+    test::addSphere(scene, test::diffuse({0.5f, 0.25f, 1.0f}, 0.6f, 0.3f));
     RenderOptions options;
     options.samplesPerPixel = 1;
     ImageF image = test::render(scene, options);
@@ -69,7 +61,7 @@ TEST_SUITE("render") {
     // Light and eye on the axis, the light 4 units in front of the sphere:
     // the centre's radiance is (kd Cd + ks Cs) I / (4 pi 4^2).
     Scene scene = test::frontStage(101, 101, {0, 0, 5}, 50.0f);
-    addSphere(scene, test::diffuse({0.5f, 0.25f, 1.0f}, 0.6f, 0.3f));
+    test::addSphere(scene, test::diffuse({0.5f, 0.25f, 1.0f}, 0.6f, 0.3f));
     setConventions(scene, Conventions::Physical, "test");
     RenderOptions options;
     options.samplesPerPixel = 1;
@@ -88,7 +80,7 @@ TEST_SUITE("render") {
     Scene scene = baseScene(32, 32);
     Material mirror = test::diffuse(glm::vec3(0), 0, 0);
     mirror.reflectivity = 1;
-    addSphere(scene, mirror);
+    test::addSphere(scene, mirror);
     scene.settings.maxBounces = 3;
     RenderOptions options;
     options.samplesPerPixel = 4;
@@ -105,7 +97,7 @@ TEST_SUITE("render") {
       setConventions(scene, conventions, "test");
       Material material = test::diffuse({1.0f, 0.5f, 0.5f}, 0.9f, 0.5f);
       material.reflectivity = reflectivity;
-      addSphere(scene, material);
+      test::addSphere(scene, material);
       scene.settings.maxBounces = 3;
       return scene;
     };
@@ -131,7 +123,7 @@ TEST_SUITE("render") {
   TEST_CASE("a scene's ambient light is its colour times the diffuse colour, shadows or not") {
     Scene scene = baseScene(32, 32);
     scene.pointLights.clear();  // ambient light alone
-    addSphere(scene, test::diffuse({1.0f, 0.5f, 0.0f}, 0.9f, 0.5f));
+    test::addSphere(scene, test::diffuse({1.0f, 0.5f, 0.0f}, 0.9f, 0.5f));
     RenderOptions options;
     options.samplesPerPixel = 1;
     CHECK(pixel(test::render(scene, options), 16, 16) == glm::vec3(0.0f));
@@ -146,12 +138,12 @@ TEST_SUITE("render") {
 
   TEST_CASE("glass with the index of the surrounding air is invisible") {
     Scene scene = baseScene(40, 30);
-    addSphere(scene, test::diffuse({1, 1, 0}), {0, 0, -3}, 1.5f);
+    test::addSphere(scene, test::diffuse({1, 1, 0}), {0, 0, -3}, 1.5f);
     Scene withGlass = scene;
     Material glass = test::diffuse(glm::vec3(0), 0, 0);
     glass.transmission = 1;
     glass.ior = 1;
-    addSphere(withGlass, glass, {0, 0, 0}, 1.0f);
+    test::addSphere(withGlass, glass, {0, 0, 0}, 1.0f);
     withGlass.settings.maxBounces = 4;
     RenderOptions options;
     options.samplesPerPixel = 2;
@@ -202,7 +194,7 @@ TEST_SUITE("render") {
     scene.backgroundColor = glm::vec3(1.0f);
     Material faintMirror = test::diffuse(glm::vec3(0), 0, 0);
     faintMirror.reflectivity = 0.02f;
-    addSphere(scene, faintMirror);
+    test::addSphere(scene, faintMirror);
     RenderOptions options;
     options.samplesPerPixel = 64;
     options.sampler = SamplerKind::Sobol;
@@ -219,7 +211,7 @@ TEST_SUITE("render") {
   TEST_CASE("Russian roulette is compiled only where mirror or glass rays branch") {
     Scene scene = baseScene(16, 12);
     scene.settings.rouletteWeight = 0.03f;
-    addSphere(scene, test::diffuse({1, 1, 0}), {0, 0, -3}, 1.5f);
+    test::addSphere(scene, test::diffuse({1, 1, 0}), {0, 0, -3}, 1.5f);
     RenderOptions options;
     options.samplesPerPixel = 1;
     RenderStats matte;
@@ -229,7 +221,7 @@ TEST_SUITE("render") {
     Material glass = test::diffuse(glm::vec3(0), 0, 0);
     glass.transmission = 1;
     glass.ior = 1.5f;
-    addSphere(scene, glass, {0, 0, 0}, 1.0f);
+    test::addSphere(scene, glass, {0, 0, 0}, 1.0f);
     RenderStats pathTraced;
     test::render(scene, options, &pathTraced);
     CHECK(pathTraced.features.rouletteWeight == 0.0f);  // it follows one branch anyway
@@ -238,7 +230,7 @@ TEST_SUITE("render") {
   TEST_CASE("binary mode paints hits in one colour and misses in the background colour") {
     Scene scene = baseScene(32, 32);
     scene.settings.mode = RenderMode::Binary;
-    addSphere(scene, test::diffuse({0.3f, 0.3f, 0.3f}));
+    test::addSphere(scene, test::diffuse({0.3f, 0.3f, 0.3f}));
     RenderOptions options;
     options.samplesPerPixel = 1;
     ImageF image = test::render(scene, options);
@@ -248,8 +240,8 @@ TEST_SUITE("render") {
 
   TEST_CASE("renders are reproducible and do not depend on how samples are split") {
     Scene scene = baseScene(48, 40);
-    addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
-    addSphere(scene, test::diffuse({0.2f, 0.5f, 0.9f}), {1.2f, 0.5f, -1}, 0.7f);
+    test::addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
+    test::addSphere(scene, test::diffuse({0.2f, 0.5f, 0.9f}), {1.2f, 0.5f, -1}, 0.7f);
     RenderOptions options;
     options.samplesPerPixel = 7;
     options.seed = 42;
@@ -264,7 +256,7 @@ TEST_SUITE("render") {
 
   TEST_CASE("renders of split sample ranges merge into the whole render") {
     Scene scene = baseScene(40, 30);
-    addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
+    test::addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
     RenderOptions options;
     options.samplesPerPixel = 7;
     ImageF whole = test::render(scene, options);
@@ -287,7 +279,7 @@ TEST_SUITE("render") {
 
   TEST_CASE("a render can be stopped between dispatches and keeps its samples") {
     Scene scene = baseScene(40, 30);
-    addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}));
+    test::addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}));
     RenderOptions options;
     options.samplesPerPixel = 50;
     options.secondsPerDispatch = 1e-9;  // many small dispatches
@@ -307,7 +299,7 @@ TEST_SUITE("render") {
 
   TEST_CASE("a render stopped with passes of one sample keeps pixels within one sample") {
     Scene scene = baseScene(40, 30);
-    addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}));
+    test::addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}));
     RenderOptions options;
     options.samplesPerPixel = 50;
     options.secondsPerDispatch = 1e-9;
@@ -322,7 +314,7 @@ TEST_SUITE("render") {
 
   TEST_CASE("the image does not depend on how many samples a pass adds") {
     Scene scene = baseScene(40, 30);
-    addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
+    test::addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
     RenderOptions options;
     options.samplesPerPixel = 23;
     options.secondsPerDispatch = 1e-9;  // bands of rows, passes 1, 1, 2, 4, 8, 7
@@ -336,8 +328,9 @@ TEST_SUITE("render") {
 
   TEST_CASE("thin lens: aperture 0 is the pinhole image; an open lens blurs off the focal plane") {
     Scene scene = baseScene(48, 36);
-    addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}));                          // at distance 5
-    addSphere(scene, test::diffuse({0.2f, 0.5f, 0.9f}), {1.5f, 0.5f, -5}, 1.0f);  // at distance 10
+    test::addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}));  // at distance 5
+    test::addSphere(scene, test::diffuse({0.2f, 0.5f, 0.9f}), {1.5f, 0.5f, -5},
+                    1.0f);  // at distance 10
     RenderOptions options;
     options.samplesPerPixel = 16;
     ImageF pinhole = test::render(scene, options);
@@ -361,7 +354,7 @@ TEST_SUITE("render") {
 
   TEST_CASE("both samplers converge to the same image") {
     Scene scene = baseScene(24, 24);
-    addSphere(scene, test::diffuse({0.9f, 0.9f, 0.9f}));
+    test::addSphere(scene, test::diffuse({0.9f, 0.9f, 0.9f}));
     RenderOptions options;
     options.samplesPerPixel = 64;
     options.sampler = SamplerKind::Random;

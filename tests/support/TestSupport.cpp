@@ -119,6 +119,14 @@ Material diffuse(glm::vec3 color, float kd, float ks) {
   return m;
 }
 
+void addSphere(Scene& scene, Material material, glm::vec3 center, float radius) {
+  scene.materials.push_back(material);
+  Shape shape;
+  shape.geometry = Sphere{WorldPoint(center), radius};
+  shape.material = uint32_t(scene.materials.size() - 1);
+  scene.shapes.push_back(std::move(shape));
+}
+
 ImageF render(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
   Renderer renderer(gpu(), shaderCompiler());
   ImageF image = renderer.render(scene, options, {}, stats);

@@ -69,6 +69,9 @@ void checkNoValidationMessages();
 // weighted ks (exponent 20), nothing reflected or refracted.
 Material diffuse(glm::vec3 color, float kd = 1.0f, float ks = 0.0f);
 
+// Adds `material` to the scene and a sphere made of it.
+void addSphere(Scene& scene, Material material, glm::vec3 center = {0, 0, 0}, float radius = 1);
+
 // Renders `scene` with a fresh Renderer on the test context; fails the
 // current test on any validation message the render caused.
 ImageF render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr);
