@@ -30,6 +30,8 @@ import os
 import subprocess
 import sys
 
+from adaptive_table import seconds_to  # bench/, beside this script
+
 COUNTS = [1, 2, 3, 4, 6, 8, 12, 16]
 MEANS = [1, 1.25, 1.5, 2, 3, 4, 6, 8]
 TARGETS = [0.01, 0.005]
@@ -220,11 +222,8 @@ def mean_to(curve, target):
     """The mean count where an RMSE curve [(mean, rmse)] crosses the target, log-log."""
     if curve[0][1] <= target:
         return f"<={curve[0][0]}"
-    for (n0, e0), (n1, e1) in zip(curve, curve[1:]):
-        if e0 > target >= e1:
-            f = math.log(e0 / target) / math.log(e0 / e1)
-            return f"{math.exp(math.log(n0) + f * math.log(n1 / n0)):.2f}"
-    return f">{curve[-1][0]}"
+    crossing = seconds_to(curve, target)  # the same interpolation over counts
+    return f"{crossing:.2f}" if crossing else f">{curve[-1][0]}"
 
 
 def main():
