@@ -72,6 +72,10 @@ struct TileNoise {
   uint32_t samples = 0;  // samples per pixel so far (the paired pixels have one more)
   double variance = 0;   // display-space variance of one sample, mean over its pixels
   double cost = 1;       // what one sample costs: rays it traces, on average over the tile
+  // When above 0, what the samples are spread by in place of `variance`,
+  // which still predicts the error (the edge round's contrast steers samples
+  // but is no measured noise).
+  double weight = 0;
 };
 
 struct AllocationGoal {
