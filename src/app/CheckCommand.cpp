@@ -137,12 +137,11 @@ int run(const CommandLine& cli) {
   std::printf("conventions: %s (%s)\n", rt::conventionsName(scene.conventions),
               scene.conventionsReason.c_str());
   const rt::RenderSettings& s = scene.settings;
-  std::printf(
-      "mode: %s, %u bounces, %s, sampler %s%s\n", modeName(s.mode), s.maxBounces,
-      s.samplesPerPixel ? fmt::format("{} samples per pixel", s.samplesPerPixel).c_str()
-                        : "samples per pixel not given (16 unless --spp)",
-      rt::samplerKindName(s.adaptive && !s.samplerGiven ? rt::SamplerKind::Sobol : s.sampler),
-      s.adaptive ? ", adaptive sampling" : "");
+  std::printf("mode: %s, %u bounces, %s, sampler %s%s\n", modeName(s.mode), s.maxBounces,
+              s.samplesPerPixel ? fmt::format("{} samples per pixel", s.samplesPerPixel).c_str()
+                                : "samples per pixel not given (16 unless --spp)",
+              rt::samplerKindName(rt::samplerUnlessAsked(s, s.adaptive)),
+              s.adaptive ? ", adaptive sampling" : "");
   std::printf("background: %s\n", vec(scene.backgroundColor).c_str());
   if (scene.ambientLight) {
     std::printf("ambient light: %s times each hit's diffuse colour\n",

@@ -18,6 +18,7 @@
 #include "app/Progress.hpp"
 #include "encode/Conventions.hpp"
 #include "formats/SceneFile.hpp"
+#include "formats/json/JsonSceneLoader.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
 #include "imaging/SampleMaps.hpp"
@@ -164,11 +165,8 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
   // A time budget stops part way through a pass: one sample a pass keeps
   // every pixel within one sample of the others.
   if (cli.timeBudget) options.maxPassSamples = 1;
-  // Adaptive rounds add samples past any fixed count: Sobol, unless asked.
-  const rt::SamplerKind fallback = options.adaptive && !scene.settings.samplerGiven
-                                       ? rt::SamplerKind::Sobol
-                                       : scene.settings.sampler;
-  options.sampler = rt::cli::samplerNamed(cli.sampler, fallback);
+  options.sampler =
+      rt::cli::samplerNamed(cli.sampler, rt::samplerUnlessAsked(scene.settings, options.adaptive));
   options.shading = rt::cli::shadingNamed(cli.shading);
   options.accel = rt::cli::accelNamed(cli.accel);
   options.sceneArrays = rt::cli::sceneArraysNamed(cli.sceneArrays);
@@ -268,6 +266,13 @@ int run(const CommandLine& cli) {
   if (cli.indirectClamp) scene.settings.indirectClamp = *cli.indirectClamp;
   if (cli.roulette) scene.settings.rouletteWeight = *cli.roulette;
   rt::RenderOptions options = renderOptions(cli, scene);
+  if (options.adaptive && cli.sampler.empty() && scene.settings.samplerGiven &&
+      scene.settings.sampler != options.sampler) {
+    std::fprintf(stderr,
+                 "warning: the scene's sampler (%s) is for uniform renders: adaptive ones sample "
+                 "with %s (--sampler chooses)\n",
+                 rt::samplerKindName(scene.settings.sampler), rt::samplerKindName(options.sampler));
+  }
   applyPathFrame(cli, scene, options);
   applyRegion(cli, scene, options);
   if (auto curve = rt::cli::toneCurveOption(cli.toneCurve)) scene.camera.toneCurve = *curve;
@@ -384,7 +389,8 @@ int runRenderCommand(int argc, char** argv) {
                "Adaptive sampling: after a first pass of 1.25 samples per pixel, rounds give "
                "more samples to the noisiest 8x8 tiles, weighed by the rays their samples trace; "
                "--spp is then the budget of the mean count per pixel, --target-rmse the goal "
-               "(default sampler: sobol; cannot be split with --samples or --region)");
+               "(sampler: sobol unless --sampler names another, whatever the scene names; "
+               "cannot be split with --samples or --region)");
   app.add_option("--sample-map", cli.sampleMapPath,
                  "Also write a .png of the samples each pixel got (false colour, log scale)");
   app.add_option("--error-map", cli.errorMapPath,

@@ -51,4 +51,8 @@ const char* conventionsName(Conventions conventions) {
   return "unknown";
 }
 
+SamplerKind samplerUnlessAsked(const RenderSettings& settings, bool adaptive) {
+  return adaptive ? SamplerKind::Sobol : settings.sampler;
+}
+
 }  // namespace rt

@@ -195,9 +195,16 @@ struct RenderSettings {
   float rouletteWeight = 0.0f;
   uint32_t samplesPerPixel = 0;  // 0: not given in the file
   SamplerKind sampler = SamplerKind::Jittered;
-  bool samplerGiven = false;  // the file names a sampler (else adaptive renders pick Sobol)
+  bool samplerGiven = false;  // the file names a sampler (see samplerUnlessAsked)
   bool adaptive = false;      // `adaptive`: adaptive sampling (render/AdaptiveSampling.hpp)
 };
+
+// The sampler of a render whose command line or viewer names none: the
+// file's, but Sobol for adaptive renders whatever the file names. Their
+// counts vary per pixel, and jittered strata are laid out for one count:
+// study-thinlens.json (which names jittered) adaptive at a mean of 6 had an
+// RMSE of 0.0128 with jittered, 0.0083 with Sobol, 0.0118 uniform jittered.
+SamplerKind samplerUnlessAsked(const RenderSettings& settings, bool adaptive);
 
 struct Scene {
   std::filesystem::path sourcePath;

@@ -121,10 +121,8 @@ void Viewer::initialiseSettings() {
   values.bounces = static_cast<int>(scene_.settings.maxBounces);
   values.indirectClamp = scene_.settings.indirectClamp;
   values.adaptive = options_.adaptive || scene_.settings.adaptive;
-  // As the render command: adaptive renders default to Sobol.
-  SamplerKind fallback = values.adaptive && !scene_.settings.samplerGiven ? SamplerKind::Sobol
-                                                                          : scene_.settings.sampler;
-  SamplerKind sampler = options_.sampler.value_or(fallback);
+  SamplerKind sampler =
+      options_.sampler.value_or(samplerUnlessAsked(scene_.settings, values.adaptive));
   values.sampler = static_cast<int>(sampler);
   values.exposure = toneMappingFor(scene_).exposure * options_.exposure;
   values.lensScale = static_cast<float>(bounds.radius);

@@ -79,6 +79,12 @@ expect_error "scene key adaptive with --samples" 'cannot be combined with adapti
   "$SCRATCH/adaptive.json" "$SCRATCH/out.png" --spp 8 --samples 0:4
 "$RAYTRACER" check "$SCRATCH/adaptive.json" 2>/dev/null | grep -q "sampler sobol, adaptive sampling" &&
   pass || fail "check: adaptive scene key"
+# A scene's jittered sampler is for uniform renders: adaptive ones take Sobol and say so.
+write adaptive-jittered.json "${GOOD/\"nbounces\":2,/\"nbounces\":2,\"adaptive\":true,\"sampler\":\"jittered\",}"
+"$RAYTRACER" check "$SCRATCH/adaptive-jittered.json" 2>/dev/null | grep -q "sampler sobol, adaptive sampling" &&
+  "$RAYTRACER" "$SCRATCH/adaptive-jittered.json" "$SCRATCH/out.png" --spp 2 -q 2>"$SCRATCH/stderr" &&
+  grep -q "the scene's sampler (jittered) is for uniform renders: adaptive ones sample with sobol" "$SCRATCH/stderr" &&
+  pass || fail "adaptive render of a scene naming jittered"
 expect_error "merge of a missing file" 'nope\.exr' merge "$SCRATCH/nope.exr" "$SCRATCH/a.exr" "$SCRATCH/out.png"
 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/timed.png" --spp 1000000 --time 1 -q 2>"$SCRATCH/stderr" &&
   grep -q "time budget reached" "$SCRATCH/stderr" && [[ -s "$SCRATCH/timed.png" ]] && pass || fail "--time"
