@@ -98,7 +98,7 @@ uint32_t allocateUntilDone(std::vector<TileNoise>& tiles, const AllocationGoal& 
 // The allocation's rule by brute force, for random tiles: each tile ends
 // with n_i(c) = clamp(c * sqrt(v / cost), samples, max(cap, samples)); c is
 // the largest multiplier within the budget and, with a target, at most the
-// smallest whose predicted MSE is 0.81x the target; then rounded down and at
+// smallest whose predicted MSE is 0.9x the target; then rounded down and at
 // most quadrupled. Bisection over 400 steps, independent of the renderer's
 // exact solve.
 std::vector<uint32_t> allocateByBisection(const std::vector<TileNoise>& tiles,
@@ -132,7 +132,7 @@ std::vector<uint32_t> allocateByBisection(const std::vector<TileNoise>& tiles,
   if (goal.targetMse > 0 && mse(0) <= goal.targetMse) return added;
   double c = bisect([&](double m) { return spend(m) <= goal.sampleBudget; }, true);
   if (goal.targetMse > 0) {
-    c = std::min(c, bisect([&](double m) { return mse(m) <= goal.targetMse * 0.81; }, false));
+    c = std::min(c, bisect([&](double m) { return mse(m) <= goal.targetMse * 0.9; }, false));
   }
   for (size_t i = 0; i < tiles.size(); ++i) {
     const double wanted = std::floor(planned(tiles[i], c)) - tiles[i].samples;
@@ -212,7 +212,7 @@ TEST_SUITE("adaptive sampling") {
     // the prediction is (0.01 / 5.1 + 0.04 / 10.2 + 0.09 / 12) / 4.
     const double atC51 = (0.01 / 5.1 + 0.04 / 10.2 + 0.09 / 12) / 4;
     goal.sampleBudget = 1e12;
-    goal.targetMse = atC51 / (0.9 * 0.9);  // the allocation aims 0.81x below its target
+    goal.targetMse = atC51 / 0.9;  // the allocation aims at 0.9x its target MSE
     added = allocateSamples(tiles, goal);
     CHECK(added == std::vector<uint32_t>{1, 6, 8, 0});
   }
@@ -523,15 +523,23 @@ TEST_SUITE("adaptive sampling") {
   }
 
   TEST_CASE("--target-rmse with adaptive sampling stops once the estimate reaches it") {
+    // And not far below it: the plans aim at the target through their
+    // prediction calibrated to the estimate (predictionBias). Aimed at 0.81x
+    // the MSE by the uncalibrated prediction, these renders ended at 0.72x
+    // and 0.68x the target RMSE; now 0.80x and 0.82x.
     Scene scene = test::projectScene("study-thinlens.json");
-    RenderOptions options = adaptiveRender(4096);
-    options.targetRmse = 0.012;
-    RenderStats stats;
-    test::render(scene, options, &stats);
-    REQUIRE(stats.rmseEstimate);
-    CHECK(stats.reachedTarget);
-    CHECK(*stats.rmseEstimate <= 0.012);
-    CHECK(stats.meanSamples < 512);
+    for (double target : {0.012, 0.006}) {
+      CAPTURE(target);
+      RenderOptions options = adaptiveRender(4096);
+      options.targetRmse = target;
+      RenderStats stats;
+      test::render(scene, options, &stats);
+      REQUIRE(stats.rmseEstimate);
+      CHECK(stats.reachedTarget);
+      CHECK(*stats.rmseEstimate <= target);
+      CHECK(*stats.rmseEstimate > 0.76 * target);
+      CHECK(stats.meanSamples < 512);
+    }
   }
 
   TEST_CASE("neighbour contrast: the largest squared display step between first samples") {
