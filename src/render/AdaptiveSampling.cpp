@@ -273,9 +273,32 @@ int contrastLevel(float contrast) {
   return std::clamp(exponent + 20, 1, kContrastLevels - 1);
 }
 
+std::vector<float> AdaptivePlan::blockMeans(const std::vector<float>& values) const {
+  std::vector<float> means(values.size(), 0.0f);
+  const uint32_t right = region_.x + region_.width, bottom = region_.y + region_.height;
+  for (uint32_t by = region_.y / kPairBlockHeight * kPairBlockHeight; by < bottom;
+       by += kPairBlockHeight) {
+    for (uint32_t bx = region_.x / kPairBlockWidth * kPairBlockWidth; bx < right;
+         bx += kPairBlockWidth) {
+      const uint32_t x0 = std::max(bx, region_.x), x1 = std::min(bx + kPairBlockWidth, right);
+      const uint32_t y0 = std::max(by, region_.y), y1 = std::min(by + kPairBlockHeight, bottom);
+      double sum = 0;
+      for (uint32_t y = y0; y < y1; ++y) {
+        for (uint32_t x = x0; x < x1; ++x) sum += values[size_t(y) * width_ + x];
+      }
+      const float mean = static_cast<float>(sum / double((x1 - x0) * (y1 - y0)));
+      for (uint32_t y = y0; y < y1; ++y) {
+        for (uint32_t x = x0; x < x1; ++x) means[size_t(y) * width_ + x] = mean;
+      }
+    }
+  }
+  return means;
+}
+
 EdgeRound AdaptivePlan::edgeRound(const std::vector<TileNoise>& tiles,
-                                  const std::vector<float>& contrast,
+                                  const std::vector<float>& pixelContrast,
                                   const AllocationGoal& goal) const {
+  const std::vector<float> contrast = blockMeans(pixelContrast);
   // Per tile, its pixels' levels and each level's unit.
   struct Group {
     uint32_t pixels = 0;
