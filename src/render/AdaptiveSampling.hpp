@@ -93,6 +93,9 @@ struct AllocationGoal {
   // per doubling (2, 4, 8, 16, 27 samples: 5 rounds); the pooled estimate of
   // a 64-pixel tile is steady enough to allow four times.
   double growth = 4;
+  // With a target: spend at least this many pixel-samples (within the
+  // budget) even when the prediction says fewer reach it.
+  double minimumSpend = 0;
 };
 
 // Samples per pixel to add to each tile this round (0: none). All zero when
