@@ -13,7 +13,7 @@ namespace {
 // Tiles aim a little below the target (MSE 0.9x, RMSE 0.95x), so that the
 // round after a plan usually reaches it instead of falling just short. The
 // plans aimed at 0.81x the MSE before their prediction was calibrated
-// (AdaptiveRounds::finishRound), and ended at 0.75-0.8x the target RMSE.
+// (predictionBias), and ended at 0.75-0.8x the target RMSE.
 constexpr double kTargetMargin = 0.9;
 // A tile's noise is raised to this fraction of its noisiest neighbour's.
 constexpr double kNeighbourShare = 0.25;
