@@ -281,23 +281,29 @@ int contrastLevel(float contrast) {
   return std::clamp(exponent + 20, 1, kContrastLevels - 1);
 }
 
+template <typename F>
+void AdaptivePlan::forEachPixelIn(uint32_t x, uint32_t y, uint32_t width, uint32_t height,
+                                  F visit) const {
+  const uint32_t x0 = std::max(x, region_.x), x1 = std::min(x + width, region_.x + region_.width);
+  const uint32_t y0 = std::max(y, region_.y), y1 = std::min(y + height, region_.y + region_.height);
+  for (uint32_t py = y0; py < y1; ++py) {
+    for (uint32_t px = x0; px < x1; ++px) visit(size_t(py) * width_ + px);
+  }
+}
+
 std::vector<float> AdaptivePlan::blockMeans(const std::vector<float>& values) const {
   std::vector<float> means(values.size(), 0.0f);
-  const uint32_t right = region_.x + region_.width, bottom = region_.y + region_.height;
-  for (uint32_t by = region_.y / kPairBlockHeight * kPairBlockHeight; by < bottom;
-       by += kPairBlockHeight) {
-    for (uint32_t bx = region_.x / kPairBlockWidth * kPairBlockWidth; bx < right;
-         bx += kPairBlockWidth) {
-      const uint32_t x0 = std::max(bx, region_.x), x1 = std::min(bx + kPairBlockWidth, right);
-      const uint32_t y0 = std::max(by, region_.y), y1 = std::min(by + kPairBlockHeight, bottom);
+  for (uint32_t by = region_.y / kPairBlockHeight * kPairBlockHeight;
+       by < region_.y + region_.height; by += kPairBlockHeight) {
+    for (uint32_t bx = region_.x / kPairBlockWidth * kPairBlockWidth;
+         bx < region_.x + region_.width; bx += kPairBlockWidth) {
+      const uint32_t pixels = overlap(region_, bx, by, kPairBlockWidth, kPairBlockHeight);
       double sum = 0;
-      for (uint32_t y = y0; y < y1; ++y) {
-        for (uint32_t x = x0; x < x1; ++x) sum += values[size_t(y) * width_ + x];
-      }
-      const float mean = static_cast<float>(sum / double((x1 - x0) * (y1 - y0)));
-      for (uint32_t y = y0; y < y1; ++y) {
-        for (uint32_t x = x0; x < x1; ++x) means[size_t(y) * width_ + x] = mean;
-      }
+      forEachPixelIn(bx, by, kPairBlockWidth, kPairBlockHeight,
+                     [&](size_t pixel) { sum += values[pixel]; });
+      const float mean = static_cast<float>(sum / double(pixels));
+      forEachPixelIn(bx, by, kPairBlockWidth, kPairBlockHeight,
+                     [&](size_t pixel) { means[pixel] = mean; });
     }
   }
   return means;
@@ -316,15 +322,8 @@ EdgeRound AdaptivePlan::edgeRound(const std::vector<TileNoise>& tiles,
   std::vector<TileNoise> units;
   std::vector<std::array<Group, kContrastLevels>> groups(pixels_.size());
   auto forEachPixel = [&](size_t tile, auto visit) {
-    const uint32_t tx = uint32_t(tile % tilesPerRow_) * kTileSize;
-    const uint32_t ty = uint32_t(tile / tilesPerRow_) * kTileSize;
-    const uint32_t x0 = std::max(tx, region_.x),
-                   x1 = std::min(tx + kTileSize, region_.x + region_.width);
-    const uint32_t y0 = std::max(ty, region_.y),
-                   y1 = std::min(ty + kTileSize, region_.y + region_.height);
-    for (uint32_t y = y0; y < y1; ++y) {
-      for (uint32_t x = x0; x < x1; ++x) visit(size_t(y) * width_ + x);
-    }
+    forEachPixelIn(uint32_t(tile % tilesPerRow_) * kTileSize,
+                   uint32_t(tile / tilesPerRow_) * kTileSize, kTileSize, kTileSize, visit);
   };
   for (size_t tile = 0; tile < pixels_.size(); ++tile) {
     if (pixels_[tile] == 0) continue;

@@ -203,6 +203,10 @@ class AdaptivePlan {
   // noisiest neighbour's, and the cost of a sample from the rays counted.
   std::vector<TileNoise> dilatedTiles(const std::vector<double>& variance) const;
   double tileSamples(size_t tile) const;  // pixel-samples rendered in it
+  // Calls visit(pixel index) for the pixels of the rectangle at (x, y) that
+  // lie in the region.
+  template <typename F>
+  void forEachPixelIn(uint32_t x, uint32_t y, uint32_t width, uint32_t height, F visit) const;
   // Per pixel the mean of `values` over its 4x2 block (RT_ADAPTIVE_PAIR_BLOCK_*)
   // in the region: one run of eight invocations, one SIMD vector on lavapipe.
   std::vector<float> blockMeans(const std::vector<float>& values) const;
