@@ -73,19 +73,45 @@ void rouletteContinuations(inout Continuations next, float u) {
 }
 #endif
 
-// Pushes every continuation when the stack has room; otherwise follows one
-// of them, chosen with probability proportional to its weight and
-// reweighted, which keeps the estimate unbiased at any depth.
-void pushContinuations(inout RayStack stack, Continuations next, float choice) {
-  if (next.count == 0u) return;
+// The vertex's pair of lobe numbers: x picks the continuation a full stack
+// follows, y the Fresnel branch of the path tracer (and drives roulette).
+// The path tracer and roulette read them at every hit; a Whitted tree only
+// where a full stack must choose (nextContinuation), which is rare: drawn at
+// every hit, the stratified samplers cost 3-9% of a Whitted render (README
+// "Benchmarks").
+#if defined(RT_FEATURE_PATH_TRACER) || defined(RT_ROULETTE_WEIGHT)
+#define RT_LOBE_AT_EVERY_HIT
+#endif
+vec2 lobeChoice(uvec2 pixelSample, uint vertex) {
+  return samplePair(frame.samplerKind, pixelSample.x, pixelSample.y, frame.samplesTotal,
+                    vertexDimension(vertex, RT_VERTEX_DIM_LOBE), frame.seed);
+}
+
+// Hands the walk its next ray: the last continuation is followed at once
+// (`follow`) and the others wait on the stack, the order in which popping
+// them all would have taken them. Without room for all of them it follows
+// one, chosen with probability proportional to its weight and reweighted,
+// which keeps the estimate unbiased at any depth. A SIMD driver writes a
+// per-lane stack slot lane by lane (a ray is twelve scalars), so the ray a
+// walk goes on with never passes through the stack: a mirror bounce touches
+// it not at all. Returns false when the walk has no continuation here.
+bool nextContinuation(inout RayStack stack, Continuations next, vec2 choice, uvec2 pixelSample,
+                      uint vertex, out PendingRay follow) {
+  follow = next.rays[0];
+  if (next.count == 0u) return false;
   if (stack.size + next.count <= RT_WHITTED_STACK_SIZE) {
-    for (uint i = 0u; i < next.count; ++i) stack.entries[stack.size++] = next.rays[i];
-    return;
+    for (uint i = 0u; i + 1u < next.count; ++i) stack.entries[stack.size++] = next.rays[i];
+    follow = next.rays[next.count - 1u];
+    return true;
   }
   float total = 0.0;
   for (uint i = 0u; i < next.count; ++i) total += maxComponent(next.rays[i].weight);
-  if (!(total > 0.0) || stack.size >= RT_WHITTED_STACK_SIZE) return;
-  float threshold = choice * total;
+  if (!(total > 0.0) || stack.size >= RT_WHITTED_STACK_SIZE) return false;
+#ifdef RT_LOBE_AT_EVERY_HIT
+  float threshold = choice.x * total;
+#else
+  float threshold = lobeChoice(pixelSample, vertex).x * total;
+#endif
   uint chosen = next.count - 1u;
   float running = 0.0;
   for (uint i = 0u; i < next.count; ++i) {
@@ -95,9 +121,9 @@ void pushContinuations(inout RayStack stack, Continuations next, float choice) {
       break;
     }
   }
-  PendingRay ray = next.rays[chosen];
-  ray.weight *= total / maxComponent(ray.weight);
-  stack.entries[stack.size++] = ray;
+  follow = next.rays[chosen];
+  follow.weight *= total / maxComponent(follow.weight);
+  return true;
 }
 
 PendingRay childRay(SurfacePoint surface, vec3 direction, vec3 weight, PendingRay parent,
@@ -215,7 +241,8 @@ vec3 localLight(ShadingContext context, vec3 direct) {
 }
 
 // Everything a path does at a hit: emitted and direct light, continuations.
-void shadeHit(inout RayStack stack, inout vec3 radiance, PendingRay job, SurfaceHit hit,
+// Returns true with `job` set to the ray the walk goes on with.
+bool shadeHit(inout RayStack stack, inout vec3 radiance, inout PendingRay job, SurfaceHit hit,
               uvec2 pixelSample, DepthLimits limits) {
   GpuMaterial material = loadMaterial(hitMaterial(hit));
   SurfacePoint surface = surfaceAt(job.ray, hit);
@@ -237,9 +264,12 @@ void shadeHit(inout RayStack stack, inout vec3 radiance, PendingRay job, Surface
   radiance += clampedContribution(job.weight * local, job);
 #if defined(RT_FEATURE_REFLECTION) || defined(RT_FEATURE_REFRACTION) || \
     defined(RT_FEATURE_DIFFUSE_BOUNCES)
-  if (job.depth >= limits.total) return;
-  vec2 choice = samplePair(frame.samplerKind, pixelSample.x, pixelSample.y, frame.samplesTotal,
-                           vertexDimension(vertex, RT_VERTEX_DIM_LOBE), frame.seed);
+  if (job.depth >= limits.total) return false;
+#ifdef RT_LOBE_AT_EVERY_HIT
+  vec2 choice = lobeChoice(pixelSample, vertex);
+#else
+  const vec2 choice = vec2(0.0);  // not read: nextContinuation draws it if needed
+#endif
   Continuations next;
   next.count = 0u;
 #if defined(RT_FEATURE_REFLECTION) || defined(RT_FEATURE_REFRACTION)
@@ -258,7 +288,9 @@ void shadeHit(inout RayStack stack, inout vec3 radiance, PendingRay job, Surface
   // choice.y picks by Fresnel only in the path tracer, which has no roulette.
   rouletteContinuations(next, choice.y);
 #endif
-  pushContinuations(stack, next, choice.x);
+  return nextContinuation(stack, next, choice, pixelSample, vertex, job);
+#else
+  return false;
 #endif
 }
 
@@ -266,22 +298,25 @@ void shadeHit(inout RayStack stack, inout vec3 radiance, PendingRay job, Surface
 // pixelSample.x.
 vec3 traceRadiance(Ray primary, uvec2 pixelSample) {
   RayStack stack;
-  stack.size = 1u;
-  stack.entries[0] = PendingRay(primary, vec3(1.0), 0u, 0u, true);
+  stack.size = 0u;
+  PendingRay job = PendingRay(primary, vec3(1.0), 0u, 0u, true);
   DepthLimits limits = depthLimits();
   vec3 radiance = vec3(0.0);
-  while (stack.size > 0u) {
-    PendingRay job = stack.entries[--stack.size];
+  bool pending = true;
+  while (pending) {
     SurfaceHit hit;
+    bool follows = false;
     if (!closestHit(job.ray, 0.0, RT_FAR, hit)) {
       radiance += clampedContribution(job.weight * sceneInfo.backgroundColor, job);
-      continue;
-    }
-    if (sceneInfo.renderMode == RT_MODE_BINARY) {
+    } else if (sceneInfo.renderMode == RT_MODE_BINARY) {
       radiance += job.weight * sceneInfo.binaryHitColor;
-      continue;
+    } else {
+      follows = shadeHit(stack, radiance, job, hit, pixelSample, limits);
     }
-    shadeHit(stack, radiance, job, hit, pixelSample, limits);
+    if (!follows) {
+      pending = stack.size > 0u;
+      if (pending) job = stack.entries[--stack.size];
+    }
   }
   return radiance;
 }
