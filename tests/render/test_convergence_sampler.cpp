@@ -255,6 +255,35 @@ TEST_SUITE("convergence sampler") {
     CHECK_FALSE(isNet(points, 1));
   }
 
+  TEST_CASE("a power-of-two jittered count fills an exact grid, and both projections") {
+    // 2^k samples: 2^ceil(k/2) x 2^floor(k/2) cells, one sample each (no cell
+    // left out), and n strata of width 1/n along each axis, one sample each.
+    for (uint32_t count : {8u, 32u, 128u}) {
+      const uint32_t k = uint32_t(std::log2(double(count)));
+      const uint32_t columns = 1u << ((k + 1) / 2), rows = 1u << (k / 2);
+      for (uint32_t pixel = 0; pixel < 16; ++pixel) {
+        ProbeParams params;
+        params.samplerKind = RT_SAMPLER_JITTERED;
+        params.pixel = pixel;
+        params.count = count;
+        params.samplesTotal = count;
+        std::vector<glm::vec2> points = probe(params);
+        REQUIRE(inUnitSquare(points));
+        std::set<uint32_t> cells, xStrata, yStrata;
+        for (glm::vec2 p : points) {
+          cells.insert(uint32_t(p.x * float(columns)) + columns * uint32_t(p.y * float(rows)));
+          xStrata.insert(uint32_t(p.x * float(count)));
+          yStrata.insert(uint32_t(p.y * float(count)));
+        }
+        CAPTURE(count);
+        CAPTURE(pixel);
+        CHECK(cells.size() == count);
+        CHECK(xStrata.size() == count);
+        CHECK(yStrata.size() == count);
+      }
+    }
+  }
+
   TEST_CASE("jittered replicates each take their own strata of their own count") {
     ProbeParams params;
     params.samplerKind = RT_SAMPLER_JITTERED | RT_SAMPLER_REPLICATES;
