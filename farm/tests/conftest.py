@@ -72,7 +72,11 @@ def assert_same_image(farm_exr, single_exr, samples: int) -> None:
     scale = np.abs(single[..., :3]).max()
     assert scale > 0, "a black reference proves nothing"
     error = np.abs(farm[..., :3] - single[..., :3]).max() / scale
-    assert error <= 1e-5, f"farm and single render differ by {error:.3g} (relative)"
+    # Parts sum their samples apart and the merge adds the sums: another order
+    # of float32 additions, whose rounding can grow with the count (n units in
+    # the last place at most; 1920 samples differed by 1.1e-5).
+    tolerance = max(1e-5, samples * 2.0**-24)
+    assert error <= tolerance, f"farm and single render differ by {error:.3g} (relative)"
 
 
 def one_error_line(stderr: str) -> str:

@@ -20,8 +20,12 @@ from conftest import (
 )
 from rtfarm.localcluster import LocalCluster
 
-# Parts of a few seconds each on one CPU, so that a kill lands mid-part.
-LONG_RENDER = ["--size", "64x48", "--spp", "480", "--tasks", "4"]
+# Parts of a second or more each on one CPU, so that a kill lands mid-part
+# (kill_mid_part waits until a part has run for half a second). At 480
+# samples a part rendered in 0.31 s on one lavapipe thread (2026-12-05),
+# too close to that wait: the test failed when the part was quick.
+LONG_SPP = 1920
+LONG_RENDER = ["--size", "64x48", "--spp", str(LONG_SPP), "--tasks", "4"]
 
 
 def raytracers_on(node):
@@ -125,7 +129,7 @@ def test_a_worker_killed_mid_render(cluster, long_reference, tmp_path):
     assert ended(killed[1]), "the raytracer outlived its worker"
     assert previewed, "no preview while parts arrived"
     assert not preview.exists(), "the preview is removed at the end"
-    assert_same_image(output, long_reference, 480)
+    assert_same_image(output, long_reference, LONG_SPP)
 
 
 @pytest.fixture
@@ -153,7 +157,7 @@ def test_a_node_killed_mid_render(quickly_failing_cluster, long_reference, tmp_p
     finish(farm)
     assert killed, "no part ran on the second node"
     assert second.processes() == []
-    assert_same_image(output, long_reference, 480)
+    assert_same_image(output, long_reference, LONG_SPP)
 
 
 def test_a_broken_scene_stops_the_render_with_its_error(cluster, tmp_path):
