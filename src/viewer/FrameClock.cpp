@@ -4,12 +4,29 @@ namespace rt::viewer {
 namespace {
 // Without --verbose, a progress line at most this often.
 constexpr std::chrono::seconds kLogInterval(1);
+// The rate is measured over windows of this much rendering...
+constexpr double kRateWindowSeconds = 1.0;
+// ...or over a shorter one that idle frames end, if it lasted this long.
+constexpr double kShortestRateWindowSeconds = 0.05;
+
+double secondsBetween(RateMeter::Clock::time_point from, RateMeter::Clock::time_point to) {
+  return std::chrono::duration<double>(to - from).count();
+}
 }  // namespace
 
 void RateMeter::add(double samples, Clock::time_point now) {
+  if (samples <= 0.0) {
+    double busy = secondsBetween(start_, lastWork_);
+    if (samples_ > 0.0 && busy >= kShortestRateWindowSeconds) rate_ = samples_ / busy;
+    samples_ = 0.0;
+    start_ = now;
+    lastWork_ = now;
+    return;
+  }
   samples_ += samples;
-  double seconds = std::chrono::duration<double>(now - start_).count();
-  if (seconds < 1.0) return;
+  lastWork_ = now;
+  double seconds = secondsBetween(start_, now);
+  if (seconds < kRateWindowSeconds) return;
   rate_ = samples_ / seconds;
   samples_ = 0.0;
   start_ = now;

@@ -7,15 +7,20 @@
 
 namespace rt::viewer {
 
-// Samples per second over the last second or so.
+// Samples per second over the last second or so of rendering. Frames that
+// add no samples (the render is done, or paused) are not time spent
+// rendering: a finished render keeps showing the rate it ran at, not zero.
 class RateMeter {
  public:
   using Clock = std::chrono::steady_clock;
+  explicit RateMeter(Clock::time_point start = Clock::now()) : start_(start), lastWork_(start) {}
+  // A frame that finished at `now` and added `samples`.
   void add(double samples, Clock::time_point now);
   double perSecond() const { return rate_; }
 
  private:
-  Clock::time_point start_ = Clock::now();
+  Clock::time_point start_;     // of the window being counted
+  Clock::time_point lastWork_;  // the last frame in it that added samples
   double samples_ = 0.0;
   double rate_ = 0.0;
 };
