@@ -92,9 +92,9 @@ uint quotientOfSmall(uint a, uint b) {
 // cells, about square. A power of two 2^k gets exactly 2^ceil(k/2) x
 // 2^floor(k/2) cells (8 samples 4 x 2, not 3 x 3 with one left out): every
 // permutation below is then over a power of two and needs no walk, which
-// on a SIMD driver runs until its slowest lane has found its value (32
-// samples a pixel: 6 x 6 cells took the sampler from 1.09x to 1.23x of the
-// random one's render time; README "Benchmarks").
+// on a SIMD driver runs until its slowest lane has found its value (the
+// common scene at 32 samples a pixel on 6 x 6 cells took 1.23x the random
+// sampler's render time, at 64 on 8 x 8 1.09x; README "Benchmarks").
 uvec2 jitteredGrid(uint count) {
   uint columns = uint(ceil(sqrt(float(count))));
   uint rows = quotientOfSmall(count + columns - 1u, columns);
