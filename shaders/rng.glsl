@@ -98,8 +98,7 @@ uint quotientOfSmall(uint a, uint b) {
 uvec2 jitteredGrid(uint count) {
   uint columns = uint(ceil(sqrt(float(count))));
   uint rows = quotientOfSmall(count + columns - 1u, columns);
-  // float(2^k) holds k in its exponent bits, exactly.
-  uint exponent = (floatBitsToUint(float(count)) >> 23u) - 127u;
+  uint exponent = uint(findMSB(count));  // k, when count is 2^k
   bool powerOfTwo = count != 0u && (count & (count - 1u)) == 0u;
   return powerOfTwo ? uvec2(1u << ((exponent + 1u) / 2u), 1u << (exponent / 2u))
                     : uvec2(columns, rows);
