@@ -313,6 +313,9 @@ RT_ASSERT_TEXELS(GpuPointLight, RT_TEXELS_PER_POINT_LIGHT);
 // assume no infinities in arithmetic (fast-math).
 #define RT_FAR_VALUE 3.0e38f
 
+// GpuSceneInfo::soleInstance when the top level is not a lone mesh instance.
+#define RT_NO_INSTANCE 0xffffffffu
+
 struct GpuSceneInfo {
   vec3 cameraPosition;
   float tanHalfFovY;
@@ -348,8 +351,14 @@ struct GpuSceneInfo {
   // 1 - reflectivity - transmission (family B); 0: added to the reflection.
   uint mirrorsReplaceLocalLight;
   uint areaLightSamples;  // shadow rays per hit to all area lights together
-  uint pad0;
-  uint pad1;
+  // When the whole top level is one mesh instance (a model file rendered
+  // alone): that instance, whose root copy (node 1 + it) every walk starts
+  // at, skipping a top-level node and leaf; RT_NO_INSTANCE otherwise
+  // (traverse_bvh.glsl).
+  uint soleInstance;
+  // Ray-tree branches lighter than this are not traced (RenderSettings::
+  // branchBailout; integrator.glsl addContinuation).
+  float branchBailout;
 };
 RT_ASSERT_STD430_SIZE(GpuSceneInfo, 176);
 

@@ -2,7 +2,9 @@
 #ifndef RT_OPTICS_GLSL
 #define RT_OPTICS_GLSL
 
-// Ray-tree branches whose weight falls below this cannot change an 8-bit pixel.
+// A shadow ray through glass whose transmittance falls below this counts as
+// blocked. (The ray tree's own cut is sceneInfo.branchBailout, never below
+// the host's kMinBranchWeight, this same 1e-4.)
 const float RT_MIN_BRANCH_WEIGHT = 1e-4;
 
 // Unpolarised Fresnel reflectance of a dielectric interface. `eta` is

@@ -51,6 +51,7 @@ struct CommandLine {
   uint32_t repeats = 1;
   std::string shading;
   std::optional<float> roulette;
+  std::optional<float> bailout;
   std::string conventions;
   std::string device;
   std::string shaderDir;
@@ -135,6 +136,7 @@ void printSummaryTable(const std::vector<rt::ConvergencePoint>& points,
 int run(const CommandLine& cli) {
   rt::Scene scene = rt::loadSceneFile(cli.scenePath, {cli.strict});
   if (cli.roulette) scene.settings.rouletteWeight = *cli.roulette;
+  if (cli.bailout) scene.settings.branchBailout = *cli.bailout;
   rt::cli::applyConventionsOption(cli.conventions, scene);
   rt::ConvergenceSetup setup = convergenceSetup(cli, scene);
   std::vector<uint32_t> counts = sampleCounts(cli);
@@ -241,6 +243,8 @@ void addOptions(CLI::App& app, CommandLine& cli) {
                "Render as for --estimate-rmse (independent even/odd halves) and record the "
                "renderer's own RMSE estimate beside the true one");
   app.add_option("--roulette", cli.roulette, "Russian roulette weight (as the render command)")
+      ->check(CLI::Range(0.0f, 1.0f));
+  app.add_option("--bailout", cli.bailout, "Ray-tree bailout weight (as the render command)")
       ->check(CLI::Range(0.0f, 1.0f));
   app.add_option("--shading", cli.shading, "Shading model (default: the conventions')")
       ->check(CLI::IsMember({"standard", "coursework"}));

@@ -50,6 +50,7 @@ struct CommandLine {
   std::string toneCurve;
   std::optional<float> indirectClamp;
   std::optional<float> roulette;
+  std::optional<float> bailout;
   std::string sampleRange;
   std::string region;
   std::string cameraPath;
@@ -185,6 +186,7 @@ void applyPathFrame(const CommandLine& cli, rt::Scene& scene, rt::RenderOptions&
   uint32_t height = options.height ? options.height : scene.camera.height;
   rt::cli::PathFrame frame =
       rt::cli::pathFrame(scene, steps, cli.cameraPath, cli.frame.value_or(0), width, height);
+  options.frameOrigin = scene.camera.position;  // as the viewer encodes the scene
   scene.camera = frame.camera;
   options.width = frame.width;
   options.height = frame.height;
@@ -265,6 +267,7 @@ int run(const CommandLine& cli) {
   rt::cli::applyConventionsOption(cli.conventions, scene);
   if (cli.indirectClamp) scene.settings.indirectClamp = *cli.indirectClamp;
   if (cli.roulette) scene.settings.rouletteWeight = *cli.roulette;
+  if (cli.bailout) scene.settings.branchBailout = *cli.bailout;
   rt::RenderOptions options = renderOptions(cli, scene);
   if (options.adaptive && cli.sampler.empty() && scene.settings.samplerGiven &&
       scene.settings.sampler != options.sampler) {
@@ -358,6 +361,12 @@ int runRenderCommand(int argc, char** argv) {
   app.add_option("--roulette", cli.roulette,
                  "Russian roulette on mirror and refraction rays lighter than this weight "
                  "(unbiased; faster glass, a little more noise; e.g. 0.03; default 0 = off)")
+      ->check(CLI::Range(0.0f, 1.0f));
+  app.add_option("--bailout", cli.bailout,
+                 "Mirror, glass and diffuse-bounce rays whose weight is below this are not traced "
+                 "(POV-Ray's adc_bailout; default 1/255, which moves an 8-bit pixel by at most "
+                 "its radiance in 1/255 steps; 0 traces down to weight 1e-4; not in the path "
+                 "tracer)")
       ->check(CLI::Range(0.0f, 1.0f));
   app.add_option("--samples", cli.sampleRange,
                  "Render only sample indices FROM:TO of the --spp samples (merge the pieces "

@@ -1,5 +1,6 @@
 #include "encode/FlatScene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_access.hpp>
@@ -365,6 +366,9 @@ void addBvh(const std::vector<PendingInstance>& instances,
                               blas.baked ? glm::mat4(1.0f) : instance.objectToFrame});
   }
   flat.bvhDepth = top.depth + meshDepth;
+  // A lone baked instance: walks start at its root copy (GpuSceneInfo).
+  bool loneInstance = flat.primitives.size() == 1 && instances.size() == 1;
+  flat.info.soleInstance = loneInstance ? instances[0].primitive : RT_NO_INSTANCE;
 }
 
 gpu::GpuMaterial toGpu(const Material& m) {
@@ -481,7 +485,7 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   // Camera-relative coordinates: floats are coarse far from the world origin
   // (ulp 0.0625 at 1e6), so the scene is moved next to the camera, where
   // what the camera sees is resolved finely, before anything is rounded.
-  flat.frame.origin = scene.camera.position;
+  flat.frame.origin = options.frameOrigin.value_or(scene.camera.position);
   fillCamera(scene.camera, width, height, flat.frame, flat.info);
   for (const Material& m : scene.materials) flat.materials.push_back(toGpu(m));
   addTextures(scene, flat);
@@ -511,6 +515,9 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   // Off is no limit at all: the shader clamps without a branch.
   info.indirectClamp =
       scene.settings.indirectClamp > 0.0f ? scene.settings.indirectClamp : RT_FAR_VALUE;
+  info.branchBailout = scene.settings.mode == RenderMode::PathTracer
+                           ? kMinBranchWeight
+                           : std::max(scene.settings.branchBailout, kMinBranchWeight);
   info.binaryHitColor = kBinaryHitColor;
   info.renderMode = gpuRenderMode(scene.settings.mode);
   info.pointLightCount = static_cast<uint32_t>(flat.pointLights.size());

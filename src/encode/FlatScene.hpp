@@ -63,6 +63,11 @@ struct FlattenOptions {
   AccelKind accel = AccelKind::Bvh;
   uint32_t maxLeafSize = 4;   // BVH leaves (<= RT_REF_MAX_LEAF_SIZE)
   uint32_t buildThreads = 0;  // BVH build threads, 0: one per core
+  // Origin of the GPU's coordinates (GpuFrame); default the camera's
+  // position. The viewer and a camera path's frames keep the scene's own
+  // camera's, wherever the camera has moved: positions round alike, so a
+  // frame renders bit for bit as the viewer showed it.
+  std::optional<WorldPoint> frameOrigin;
 };
 
 FlatScene flattenScene(const Scene& scene, const FlattenOptions& options = {});

@@ -24,6 +24,8 @@ struct ImageSampling {
   AccelKind accel = AccelKind::Bvh;     // none: brute force, to compare against
   // How kernels read the scene arrays; the image does not depend on it.
   SceneArrays sceneArrays = SceneArrays::TexelBuffers;
+  // Origin of the GPU's coordinates (FlattenOptions::frameOrigin).
+  std::optional<WorldPoint> frameOrigin;
 };
 
 }  // namespace rt

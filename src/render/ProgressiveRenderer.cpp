@@ -85,6 +85,16 @@ ShaderFeatures featuresFor(const Scene& scene, const FlatScene& flat,
   return features;
 }
 
+FlattenOptions flattenOptionsFor(const ProgressiveOptions& options) {
+  FlattenOptions flatten;
+  flatten.width = options.width;
+  flatten.height = options.height;
+  flatten.shading = options.shading;
+  flatten.accel = options.accel;
+  flatten.frameOrigin = options.frameOrigin;
+  return flatten;
+}
+
 }  // namespace
 
 ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCompiler& compiler,
@@ -92,7 +102,7 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
     : context_(context),
       compiler_(compiler),
       options_(options),
-      flat_(flattenScene(scene, {options.width, options.height, options.shading, options.accel})),
+      flat_(flattenScene(scene, flattenOptionsFor(options))),
       features_(featuresFor(scene, flat_, options)),
       width_(flat_.info.width),
       height_(flat_.info.height),

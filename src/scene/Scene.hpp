@@ -176,6 +176,10 @@ enum class Conventions {
 std::optional<Conventions> conventionsNamed(const std::string& name);
 const char* conventionsName(Conventions conventions);
 
+// The lightest ray-tree branch any render traces (`--bailout 0`, the path
+// tracer): below it a branch's weight is rounding noise.
+inline constexpr float kMinBranchWeight = 1e-4f;
+
 struct RenderSettings {
   RenderMode mode = RenderMode::Phong;
   uint32_t maxBounces = 4;          // `nbounces`: Whitted depth, path length in PathTracer mode
@@ -188,11 +192,19 @@ struct RenderSettings {
   // a branch whose weight is below this survives with probability
   // weight / rouletteWeight, reweighted to rouletteWeight (unbiased). On
   // default.json 0.03 made samples 1.27x faster for 4-6% more error at equal
-  // samples. Off (0: every branch is traced) unless asked for (`--roulette`):
-  // after a camera move the viewer's camera differs from the render
-  // command's replay of the move in the last bits, invisible in 8-bit images
-  // until a roulette decision flips with it.
+  // samples, but its lanes disagree: no faster on lavapipe (README
+  // "Benchmarks"). Off (0: every branch is traced) unless asked for
+  // (`--roulette`).
   float rouletteWeight = 0.0f;
+  // Bailout of the Whitted tree (`--bailout`, POV-Ray's adc_bailout): mirror,
+  // glass and diffuse-bounce branches whose weight (the product of the
+  // reflectivities, transmissions and albedos on the way) is below this are
+  // not traced. At 1/255 a dropped branch changes an 8-bit pixel by at most
+  // its radiance in 1/255 steps; the common scene renders 1.14-1.16x faster
+  // than at kMinBranchWeight, `default.json` 1.23x (README "Speed vs
+  // accuracy"). The path tracer ignores it: its weights are whole path
+  // throughputs, which fall below 1/255 on long diffuse paths that matter.
+  float branchBailout = 1.0f / 255.0f;
   uint32_t samplesPerPixel = 0;  // 0: not given in the file
   SamplerKind sampler = SamplerKind::Jittered;
   bool samplerGiven = false;  // the file names a sampler (see samplerUnlessAsked)

@@ -153,6 +153,9 @@ std::unique_ptr<ProgressiveRenderer> Viewer::makeRenderer(glm::uvec2 size) const
   options.shading = options_.shading;
   options.adaptive = values.adaptive;
   options.independentHalves = values.adaptive;  // the rounds' noise estimate
+  // Encoded around the scene's own camera wherever this one has moved, as
+  // the render command encodes a camera path's frames: the same image.
+  options.frameOrigin = scene_.camera.position;
   return std::make_unique<ProgressiveRenderer>(*context_, *compiler_, scene, options);
 }
 

@@ -120,6 +120,20 @@ TEST_SUITE("bvh-gpu") {
     test::checkNoValidationMessages();
   }
 
+  TEST_CASE("a mesh alone is entered at its root and hits like brute force") {
+    Scene alone;
+    alone.materials.push_back({});
+    alone.meshes.push_back(bumpySphere({24, 32}));
+    alone.shapes.push_back({MeshInstance{0, WorldTransform(1.0)}, 0, ""});
+    CHECK(flattenScene(alone).info.soleInstance == 0u);
+    CHECK(flattenScene(meshScene(false)).info.soleInstance == RT_NO_INSTANCE);
+    auto rays = test::raysTowardsOrigin(6000, 13, 1.0f);
+    checkSame(
+        compareHits(gpuHits(alone, rays, AccelKind::Bvh), gpuHits(alone, rays, AccelKind::None)),
+        rays.size());
+    test::checkNoValidationMessages();
+  }
+
   TEST_CASE("a shared mesh hits like its flattened copies") {
     auto rays = randomRays(20000, 12);
     checkSame(compareHits(gpuHits(meshScene(false), rays, AccelKind::Bvh),

@@ -208,6 +208,28 @@ TEST_SUITE("render") {
     CHECK(std::abs(sum / 16 - 0.02) < 0.001);  // without the reweighting: 0.0133
   }
 
+  TEST_CASE("the bailout drops ray-tree branches lighter than it, and only those") {
+    // A black sphere with a 0.3% mirror before a white background: its
+    // mirror rays weigh 0.003, below the default bailout of 1/255.
+    Scene scene = baseScene(24, 24);
+    scene.backgroundColor = glm::vec3(1.0f);
+    Material faintMirror = test::diffuse(glm::vec3(0), 0, 0);
+    faintMirror.reflectivity = 0.003f;
+    test::addSphere(scene, faintMirror);
+    RenderOptions options;
+    options.samplesPerPixel = 1;
+    auto centre = [&](float bailout) {
+      scene.settings.branchBailout = bailout;
+      return pixel(test::render(scene, options), 12, 12).y;
+    };
+    CHECK(centre(1.0f / 255.0f) == 0.0f);
+    CHECK(centre(0.0f) == doctest::Approx(0.003f));
+    CHECK(centre(0.002f) == doctest::Approx(0.003f));
+    scene.settings.mode = RenderMode::PathTracer;  // whole-path weights: never dropped at 1/255
+    options.samplesPerPixel = 16;
+    CHECK(centre(1.0f / 255.0f) == doctest::Approx(0.003f));
+  }
+
   TEST_CASE("Russian roulette is compiled only where mirror or glass rays branch") {
     Scene scene = baseScene(16, 12);
     scene.settings.rouletteWeight = 0.03f;

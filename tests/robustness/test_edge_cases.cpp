@@ -147,13 +147,14 @@ TEST_SUITE("robustness-edge") {
     // Fresnel reflectance and transmittance sum to one at every interface,
     // total internal reflection included, so with no lights and black
     // matte terms every path ends in the background at full weight (minus
-    // the ray tree's 1e-4 cutoff and the depth limit).
+    // the ray tree's 1e-4 floor, with the bailout off, and the depth limit).
     for (float ior : {1.0001f, 1.5f, 4.0f}) {
       CAPTURE(ior);
       Scene scene = stage(16, 12);
       scene.pointLights.clear();
       scene.backgroundColor = glm::vec3(0.5f);
       scene.settings.maxBounces = 64;
+      scene.settings.branchBailout = 0.0f;
       addShape(scene, Sphere{{-1, 0, 0}, 1}, glass(ior));
       addShape(scene, Sphere{{-1, 0, 0}, 0.5f}, glass(ior * 1.3f));  // nested glass
       TriangleMesh cube = placed(icosphere(0), 1.0, {1.4, 0, 0});    // a glass polyhedron
