@@ -264,7 +264,8 @@ bool shadeHit(inout RayStack stack, inout vec3 radiance, inout PendingRay job, S
   // With sampled diffuse bounces, light through glass arrives along them
   // (caustics); straight shadow rays through glass would count it twice.
   bool throughGlass = limits.diffuse == 0u;
-  vec3 local = localLight(context, directLighting(context, pixelSample, vertex, throughGlass));
+  vec3 local = localLight(
+      context, directLighting(context, pixelSample, vertex, throughGlass, maxComponent(job.weight)));
   radiance += clampedContribution(job.weight * local, job);
 #if defined(RT_FEATURE_REFLECTION) || defined(RT_FEATURE_REFRACTION) || \
     defined(RT_FEATURE_DIFFUSE_BOUNCES)

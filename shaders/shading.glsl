@@ -196,8 +196,14 @@ vec3 emittedRadiance(GpuMaterial material, SurfaceHit hit, vec3 direction) {
 // Light reflected towards the viewer from a surface already facing it, from
 // every point light and every sample of every area light, in one loop (see
 // lightVisibility). `throughGlass`: shadow rays pass transmissive surfaces.
+// `pathWeight` is what the hit's light is worth in the pixel: a sample that
+// could add less than the bailout's share of it (all samples of the hit
+// together at most the bailout) is not traced but counted at half its
+// unshadowed light, in error by at most half that share whether it was lit
+// or not; so glass, whose highlight is dark nearly everywhere, traces
+// almost no shadow rays (README "Speed vs accuracy").
 vec3 directLighting(ShadingContext context, uvec2 pixelSample, uint vertexDepth,
-                    bool throughGlass) {
+                    bool throughGlass, float pathWeight) {
   vec3 radiance = vec3(0.0);
   uint samples = sceneInfo.pointLightCount;
 #ifdef RT_FEATURE_AREA_LIGHTS
@@ -207,6 +213,10 @@ vec3 directLighting(ShadingContext context, uvec2 pixelSample, uint vertexDepth,
   GpuAreaLight light;
   if (sceneInfo.areaLightCount > 0u) light = loadAreaLight(0u);
 #endif
+  // `--bailout 0` (the floor) traces every sample.
+  float negligible = sceneInfo.branchBailout > RT_MIN_BRANCH_WEIGHT
+                         ? sceneInfo.branchBailout / (max(pathWeight, 1e-30) * float(max(samples, 1u)))
+                         : 0.0;
   for (uint k = 0u; k < samples; ++k) {
     LightSample lit;
 #ifdef RT_FEATURE_AREA_LIGHTS
@@ -223,6 +233,10 @@ vec3 directLighting(ShadingContext context, uvec2 pixelSample, uint vertexDepth,
     lit = pointLightSample(context, k);
 #endif
     if (!(maxComponent(lit.reflected) > 0.0)) continue;
+    if (maxComponent(lit.reflected) < negligible) {
+      radiance += 0.5 * lit.reflected;
+      continue;
+    }
     radiance += lightVisibility(lit.shadowRay, lit.tMax, throughGlass) * lit.reflected;
   }
   // The coursework model clamps the light reaching the eye first, then tints

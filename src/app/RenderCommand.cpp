@@ -363,10 +363,10 @@ int runRenderCommand(int argc, char** argv) {
                  "(unbiased; faster glass, a little more noise; e.g. 0.03; default 0 = off)")
       ->check(CLI::Range(0.0f, 1.0f));
   app.add_option("--bailout", cli.bailout,
-                 "Mirror, glass and diffuse-bounce rays whose weight is below this are not traced "
-                 "(POV-Ray's adc_bailout; default 1/255, which moves an 8-bit pixel by at most "
-                 "its radiance in 1/255 steps; 0 traces down to weight 1e-4; not in the path "
-                 "tracer)")
+                 "Mirror, glass and diffuse-bounce rays whose weight is below this, and shadow "
+                 "rays that could add less to the pixel, are not traced (POV-Ray's adc_bailout; "
+                 "in steps of the written image; default 1/255; 0 traces every ray down to "
+                 "weight 1e-4; not in the path tracer)")
       ->check(CLI::Range(0.0f, 1.0f));
   app.add_option("--samples", cli.sampleRange,
                  "Render only sample indices FROM:TO of the --spp samples (merge the pieces "

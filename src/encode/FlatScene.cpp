@@ -474,6 +474,18 @@ void fillCamera(const Camera& camera, uint32_t width, uint32_t height, const Gpu
   info.height = height;
 }
 
+namespace {
+
+// The steepest slope of the scene's display mapping (exposure, then sRGB's
+// 12.92 near black): the bailout is in steps of the written image, so a
+// dropped branch or light sample moves an sRGB pixel as little as a linear one.
+float displaySlope(const Scene& scene) {
+  ToneMapping mapping = toneMappingFor(scene);
+  return std::max(mapping.exposure, 1e-6f) * (mapping.srgbEncode ? 12.92f : 1.0f);
+}
+
+}  // namespace
+
 FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   if (const std::optional<std::string> problem = precisionProblem(scene)) {
     throw Error((scene.sourcePath.empty() ? "scene" : scene.sourcePath.string()) + ": " + *problem);
@@ -515,9 +527,10 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   // Off is no limit at all: the shader clamps without a branch.
   info.indirectClamp =
       scene.settings.indirectClamp > 0.0f ? scene.settings.indirectClamp : RT_FAR_VALUE;
-  info.branchBailout = scene.settings.mode == RenderMode::PathTracer
-                           ? kMinBranchWeight
-                           : std::max(scene.settings.branchBailout, kMinBranchWeight);
+  info.branchBailout =
+      scene.settings.mode == RenderMode::PathTracer
+          ? kMinBranchWeight
+          : std::max(scene.settings.branchBailout / displaySlope(scene), kMinBranchWeight);
   info.binaryHitColor = kBinaryHitColor;
   info.renderMode = gpuRenderMode(scene.settings.mode);
   info.pointLightCount = static_cast<uint32_t>(flat.pointLights.size());

@@ -230,6 +230,24 @@ TEST_SUITE("render") {
     CHECK(centre(1.0f / 255.0f) == doctest::Approx(0.003f));
   }
 
+  TEST_CASE("a light sample worth less than the bailout is counted at half, untraced") {
+    // A faint matte sphere: its one light adds 0.002 at the centre, below
+    // 1/255, so with the default bailout the shadow ray is not traced and
+    // the light counts at half; with the bailout off, in full.
+    Scene scene = baseScene(24, 24);
+    test::addSphere(scene, test::diffuse(glm::vec3(1.0f), 0.0025f, 0.0f));
+    RenderOptions options;
+    options.samplesPerPixel = 1;
+    auto centre = [&](float bailout) {
+      scene.settings.branchBailout = bailout;
+      return pixel(test::render(scene, options), 12, 12).x;
+    };
+    float traced = centre(0.0f);
+    CHECK(traced > 0.0015f);
+    CHECK(traced < 0.0025f);
+    CHECK(centre(1.0f / 255.0f) == doctest::Approx(0.5f * traced));
+  }
+
   TEST_CASE("Russian roulette is compiled only where mirror or glass rays branch") {
     Scene scene = baseScene(16, 12);
     scene.settings.rouletteWeight = 0.03f;
