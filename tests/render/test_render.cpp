@@ -26,6 +26,16 @@ glm::vec3 pixel(const ImageF& image, uint32_t x, uint32_t y) {
   return {p[0], p[1], p[2]};
 }
 
+// A black sphere that only mirrors, by `reflectivity`, a white background.
+Scene faintMirrorScene(float reflectivity) {
+  Scene scene = baseScene(24, 24);
+  scene.backgroundColor = glm::vec3(1.0f);
+  Material faintMirror = test::diffuse(glm::vec3(0), 0, 0);
+  faintMirror.reflectivity = reflectivity;
+  test::addSphere(scene, faintMirror);
+  return scene;
+}
+
 bool bitwiseEqual(const ImageF& a, const ImageF& b) {
   return a.rgba.size() == b.rgba.size() &&
          std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(float)) == 0;
@@ -189,12 +199,8 @@ TEST_SUITE("render") {
     // A black sphere with a 2% mirror in front of a white background: the
     // mirror rays (weight 0.02, below the roulette's 0.03) survive two times
     // in three and carry 0.03, so the sphere still shows 2% of the white.
-    Scene scene = baseScene(24, 24);
+    Scene scene = faintMirrorScene(0.02f);
     scene.settings.rouletteWeight = 0.03f;
-    scene.backgroundColor = glm::vec3(1.0f);
-    Material faintMirror = test::diffuse(glm::vec3(0), 0, 0);
-    faintMirror.reflectivity = 0.02f;
-    test::addSphere(scene, faintMirror);
     RenderOptions options;
     options.samplesPerPixel = 64;
     options.sampler = SamplerKind::Sobol;
@@ -211,11 +217,7 @@ TEST_SUITE("render") {
   TEST_CASE("the bailout drops ray-tree branches lighter than it, and only those") {
     // A black sphere with a 0.3% mirror before a white background: its
     // mirror rays weigh 0.003, below the default bailout of 1/255.
-    Scene scene = baseScene(24, 24);
-    scene.backgroundColor = glm::vec3(1.0f);
-    Material faintMirror = test::diffuse(glm::vec3(0), 0, 0);
-    faintMirror.reflectivity = 0.003f;
-    test::addSphere(scene, faintMirror);
+    Scene scene = faintMirrorScene(0.003f);
     RenderOptions options;
     options.samplesPerPixel = 1;
     auto centre = [&](float bailout) {
