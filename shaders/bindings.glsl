@@ -46,8 +46,8 @@ void loadSceneInfo() {
       opaqueUint(b.sphereUvPole, z), opaqueUint(b.textureCount, z),
       opaqueUint(b.areaLightCount, z), opaqueUint(b.distributedBounces, z),
       opaqueFloat(b.ambient, z), opaqueFloat(b.indirectClamp, z),
-      opaqueUint(b.mirrorsReplaceLocalLight, z), opaqueUint(b.areaLightSamples, z), opaqueUint(b.soleInstance, z),
-      opaqueFloat(b.branchBailout, z));
+      opaqueUint(b.mirrorsReplaceLocalLight, z), opaqueUint(b.areaLightSamples, z),
+      opaqueUint(b.soleInstance, z), opaqueFloat(b.branchBailout, z));
 }
 
 // The scene arrays (records of whole 16-byte rows, gpu_types.h) are texel

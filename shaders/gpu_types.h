@@ -316,6 +316,11 @@ RT_ASSERT_TEXELS(GpuPointLight, RT_TEXELS_PER_POINT_LIGHT);
 // GpuSceneInfo::soleInstance when the top level is not a lone mesh instance.
 #define RT_NO_INSTANCE 0xffffffffu
 
+// The lightest weight anything is traced at: GpuSceneInfo::branchBailout's
+// floor (`--bailout 0`, the path tracer), where a branch's weight is rounding
+// noise, and the transmittance below which glass blocks a shadow ray.
+#define RT_MIN_BRANCH_WEIGHT 1e-4f
+
 struct GpuSceneInfo {
   vec3 cameraPosition;
   float tanHalfFovY;

@@ -2,11 +2,6 @@
 #ifndef RT_OPTICS_GLSL
 #define RT_OPTICS_GLSL
 
-// A shadow ray through glass whose transmittance falls below this counts as
-// blocked. (The ray tree's own cut is sceneInfo.branchBailout, never below
-// the host's kMinBranchWeight, this same 1e-4.)
-const float RT_MIN_BRANCH_WEIGHT = 1e-4;
-
 // Unpolarised Fresnel reflectance of a dielectric interface. `eta` is
 // n_incident / n_transmitted; returns 1 on total internal reflection.
 float dielectricReflectance(float cosIncident, float eta, out float cosTransmitted) {

@@ -214,9 +214,8 @@ vec3 directLighting(ShadingContext context, uvec2 pixelSample, uint vertexDepth,
   if (sceneInfo.areaLightCount > 0u) light = loadAreaLight(0u);
 #endif
   // `--bailout 0` (the floor) traces every sample.
-  float negligible = sceneInfo.branchBailout > RT_MIN_BRANCH_WEIGHT
-                         ? sceneInfo.branchBailout / (max(pathWeight, 1e-30) * float(max(samples, 1u)))
-                         : 0.0;
+  float share = sceneInfo.branchBailout / (max(pathWeight, 1e-30) * float(max(samples, 1u)));
+  float negligible = sceneInfo.branchBailout > RT_MIN_BRANCH_WEIGHT ? share : 0.0;
   for (uint k = 0u; k < samples; ++k) {
     LightSample lit;
 #ifdef RT_FEATURE_AREA_LIGHTS
@@ -232,8 +231,9 @@ vec3 directLighting(ShadingContext context, uvec2 pixelSample, uint vertexDepth,
 #else
     lit = pointLightSample(context, k);
 #endif
-    if (!(maxComponent(lit.reflected) > 0.0)) continue;
-    if (maxComponent(lit.reflected) < negligible) {
+    float worth = maxComponent(lit.reflected);
+    if (!(worth > 0.0)) continue;
+    if (worth < negligible) {
       radiance += 0.5 * lit.reflected;
       continue;
     }

@@ -529,8 +529,8 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
       scene.settings.indirectClamp > 0.0f ? scene.settings.indirectClamp : RT_FAR_VALUE;
   info.branchBailout =
       scene.settings.mode == RenderMode::PathTracer
-          ? kMinBranchWeight
-          : std::max(scene.settings.branchBailout / displaySlope(scene), kMinBranchWeight);
+          ? RT_MIN_BRANCH_WEIGHT
+          : std::max(scene.settings.branchBailout / displaySlope(scene), RT_MIN_BRANCH_WEIGHT);
   info.binaryHitColor = kBinaryHitColor;
   info.renderMode = gpuRenderMode(scene.settings.mode);
   info.pointLightCount = static_cast<uint32_t>(flat.pointLights.size());

@@ -176,10 +176,6 @@ enum class Conventions {
 std::optional<Conventions> conventionsNamed(const std::string& name);
 const char* conventionsName(Conventions conventions);
 
-// The lightest ray-tree branch any render traces (`--bailout 0`, the path
-// tracer): below it a branch's weight is rounding noise.
-inline constexpr float kMinBranchWeight = 1e-4f;
-
 struct RenderSettings {
   RenderMode mode = RenderMode::Phong;
   uint32_t maxBounces = 4;          // `nbounces`: Whitted depth, path length in PathTracer mode
