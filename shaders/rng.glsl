@@ -48,9 +48,23 @@ vec2 randomPair(uint pixel, uint sampleIndex, uint dimension, uint seed) {
   return vec2(unitFloat(h.x), unitFloat(h.y));
 }
 
-// A bijection of [0, n) keyed by `key`: invertible mixing on the smallest
+// One round of keyed invertible mixing on [0, mask] (mask = 2^k - 1).
+uint permuteRound(uint v, uint mask, uint key) {
+  v ^= key & mask;
+  v = (v * 0x2c1b3c6du) & mask;  // odd multiplier: bijective modulo 2^k
+  v ^= (v & mask) >> 3u;
+  v = (v * 0x297a2d39u) & mask;
+  v ^= (v >> 5u) ^ ((key >> 16u) & mask);
+  v = (v * 0x8ebc6af1u) & mask;
+  v ^= v >> 7u;
+  return v;
+}
+
+// A bijection of [0, n) keyed by `key`: permuteRound on the smallest
 // power-of-two domain that holds n, walked until the value falls inside
-// (cycle walking keeps it a permutation of exactly [0, n)).
+// (cycle walking keeps it a permutation of exactly [0, n)). The walk is
+// behind a branch: on a SIMD driver a loop costs its bookkeeping even when
+// every lane leaves after the first round.
 uint permuteIndex(uint index, uint n, uint key) {
   uint mask = n - 1u;
   mask |= mask >> 1u;
@@ -58,20 +72,11 @@ uint permuteIndex(uint index, uint n, uint key) {
   mask |= mask >> 4u;
   mask |= mask >> 8u;
   mask |= mask >> 16u;
-  uint v = index;
-  // n > mask / 2, so from a value inside [0, n) the walk meets the next one
-  // within mask / 2 + 1 steps: the bound never cuts a walk short, and a
-  // loop of known trip count can be dropped by the compiler when its result
-  // is unused.
-  for (uint step = 0u; step <= mask / 2u; ++step) {
-    v ^= key & mask;
-    v = (v * 0x2c1b3c6du) & mask;  // odd multiplier: bijective modulo 2^k
-    v ^= (v & mask) >> 3u;
-    v = (v * 0x297a2d39u) & mask;
-    v ^= (v >> 5u) ^ ((key >> 16u) & mask);
-    v = (v * 0x8ebc6af1u) & mask;
-    v ^= v >> 7u;
-    if (v < n) break;
+  uint v = permuteRound(index, mask, key);
+  if (v >= n) {
+    // n > mask / 2, so from a value inside [0, n) the walk meets the next
+    // one within mask / 2 + 1 rounds: the bound never cuts a walk short.
+    for (uint step = 1u; step <= mask / 2u && v >= n; ++step) v = permuteRound(v, mask, key);
   }
   return v;
 }
@@ -88,33 +93,53 @@ uint quotientOfSmall(uint a, uint b) {
   return remainder < 0 ? q - 1u : (remainder >= int(b) ? q + 1u : q);
 }
 
-// The grid of jitteredPoint for `count` samples: columns x rows >= count
-// cells, about square. A power of two 2^k gets exactly 2^ceil(k/2) x
-// 2^floor(k/2) cells (8 samples 4 x 2, not 3 x 3 with one left out): every
-// permutation below is then over a power of two and needs no walk, which
-// on a SIMD driver runs until its slowest lane has found its value (the
-// common scene at 32 samples a pixel on 6 x 6 cells took 1.23x the random
-// sampler's render time, at 64 on 8 x 8 1.09x; README "Benchmarks").
-uvec2 jitteredGrid(uint count) {
-  uint columns = uint(ceil(sqrt(float(count))));
-  uint rows = quotientOfSmall(count + columns - 1u, columns);
-  uint exponent = uint(findMSB(count));  // k, when count is 2^k
-  bool powerOfTwo = count != 0u && (count & (count - 1u)) == 0u;
-  return powerOfTwo ? uvec2(1u << ((exponent + 1u) / 2u), 1u << (exponent / 2u))
-                    : uvec2(columns, rows);
+// 2^-e as a float, exactly (e < 127).
+float inversePowerOfTwo(uint e) { return uintBitsToFloat((127u - e) << 23u); }
+
+// The point of `cell` in a grid of columns x rows cells, with sub-column
+// subX of rows and sub-row subY of columns (multi-jittered) and in-cell
+// offsets `offset`.
+vec2 jitteredCellPoint(uvec2 cell, uvec2 sub, vec2 offset, vec2 inverseGrid) {
+  float x = (float(cell.x) + (float(sub.x) + offset.x) * inverseGrid.y) * inverseGrid.x;
+  float y = (float(cell.y) + (float(sub.y) + offset.y) * inverseGrid.x) * inverseGrid.y;
+  return min(vec2(x, y), vec2(0.99999994));
+}
+
+// jitteredPoint for count = 2^k: 2^ceil(k/2) x 2^floor(k/2) cells (8 samples
+// 4 x 2, not 3 x 3 with one left out), so that every permutation is one
+// round with no walk, the cell's row and column a shift and a mask, and the
+// scales exact powers of two. Behind a branch that is the same for every
+// lane (the count is the render's): the general grid's square root,
+// quotients and walks cost a pinhole render's samples 2.4x the time of the
+// random sampler's, this path 1.2x (README "Benchmarks").
+vec2 jitteredPointPowerOfTwo(uint s, uint count, uint key) {
+  uint k = uint(findMSB(count));
+  uint columnBits = (k + 1u) / 2u, rowBits = k / 2u;
+  uint columnMask = (1u << columnBits) - 1u, rowMask = (1u << rowBits) - 1u;
+  uint cell = permuteRound(s, count - 1u, key);
+  uvec2 cellXY = uvec2(cell & columnMask, cell >> columnBits);
+  uint subX = permuteRound(cellXY.y, rowMask, key * 0x9e3779b9u + 1u);
+  uint subY = permuteRound(cellXY.x, columnMask, key * 0x85ebca6bu + 2u);
+  uvec4 h = hashCounter(uvec4(s, count, key, 0x51ed27u));
+  return jitteredCellPoint(cellXY, uvec2(subX, subY), vec2(unitFloat(h.x), unitFloat(h.y)),
+                           vec2(inversePowerOfTwo(columnBits), inversePowerOfTwo(rowBits)));
 }
 
 // Stratified 2D point for sample `s` of `count`: the unit square is cut
-// into columns x rows >= count cells (jitteredGrid); each sample takes its
-// own cell (a keyed permutation of all cells, so when there are more cells
-// than samples the cells left out differ from pixel to pixel and no part of
-// the square is always missed) and, inside it, its own sub-column and
-// sub-row (multi-jittered), so both projections are stratified too. Works
-// for any count, not only squares; s < count.
+// into columns x rows >= count cells, about square (columns the ceiling of
+// the square root); each sample takes its own cell (a keyed permutation of
+// all cells, so when there are more cells than samples the cells left out
+// differ from pixel to pixel and no part of the square is always missed)
+// and, inside it, its own sub-column and sub-row (multi-jittered), so both
+// projections are stratified too. Works for any count, not only squares;
+// s < count. Where the grid is not a power of two the permutations walk,
+// which a SIMD driver runs until its slowest lane has found its value (the
+// common scene at 32 samples a pixel on 6 x 6 cells took 1.23x the random
+// sampler's render time, at 64 on 8 x 8 1.09x; README "Benchmarks").
 vec2 jitteredPoint(uint s, uint count, uint key) {
-  uvec2 grid = jitteredGrid(count);
-  uint columns = grid.x;
-  uint rows = grid.y;
+  if ((count & (count - 1u)) == 0u) return jitteredPointPowerOfTwo(s, count, key);
+  uint columns = uint(ceil(sqrt(float(count))));
+  uint rows = quotientOfSmall(count + columns - 1u, columns);
   uint cell = permuteIndex(s, columns * rows, key);
   uint cy = quotientOfSmall(cell, columns);
   uint cx = cell - cy * columns;
