@@ -476,11 +476,10 @@ void fillCamera(const Camera& camera, uint32_t width, uint32_t height, const Gpu
 
 namespace {
 
-// The steepest slope of the scene's display mapping (exposure, then sRGB's
-// 12.92 near black): the bailout is in steps of the written image, so a
-// dropped branch or light sample moves an sRGB pixel as little as a linear one.
-float displaySlope(const Scene& scene) {
-  ToneMapping mapping = toneMappingFor(scene);
+// The steepest slope of the display mapping (exposure, then sRGB's 12.92
+// near black): the bailout is in steps of the written image, so a dropped
+// branch or light sample moves an sRGB pixel as little as a linear one.
+float displaySlope(const ToneMapping& mapping) {
   return std::max(mapping.exposure, 1e-6f) * (mapping.srgbEncode ? 12.92f : 1.0f);
 }
 
@@ -530,7 +529,9 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   info.branchBailout =
       scene.settings.mode == RenderMode::PathTracer
           ? RT_MIN_BRANCH_WEIGHT
-          : std::max(scene.settings.branchBailout / displaySlope(scene), RT_MIN_BRANCH_WEIGHT);
+          : std::max(scene.settings.branchBailout /
+                         displaySlope(options.displayMapping.value_or(toneMappingFor(scene))),
+                     RT_MIN_BRANCH_WEIGHT);
   info.binaryHitColor = kBinaryHitColor;
   info.renderMode = gpuRenderMode(scene.settings.mode);
   info.pointLightCount = static_cast<uint32_t>(flat.pointLights.size());

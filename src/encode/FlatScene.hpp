@@ -68,6 +68,10 @@ struct FlattenOptions {
   // camera's, wherever the camera has moved: positions round alike, so a
   // frame renders bit for bit as the viewer showed it.
   std::optional<WorldPoint> frameOrigin;
+  // How the image is shown (default: toneMappingFor(scene)): the ray tree's
+  // bailout is in steps of it, so `--exposure 4` quarters the weight below
+  // which branches and light samples are dropped.
+  std::optional<ToneMapping> displayMapping;
 };
 
 FlatScene flattenScene(const Scene& scene, const FlattenOptions& options = {});

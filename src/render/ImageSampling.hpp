@@ -26,6 +26,10 @@ struct ImageSampling {
   SceneArrays sceneArrays = SceneArrays::TexelBuffers;
   // Origin of the GPU's coordinates (FlattenOptions::frameOrigin).
   std::optional<WorldPoint> frameOrigin;
+  // How the image is shown (default: toneMappingFor(scene)), `--exposure`
+  // included: the error estimate measures in it and the ray tree's bailout
+  // counts its steps (FlattenOptions::displayMapping).
+  std::optional<ToneMapping> displayMapping;
 };
 
 }  // namespace rt

@@ -92,6 +92,7 @@ FlattenOptions flattenOptionsFor(const ProgressiveOptions& options) {
   flatten.shading = options.shading;
   flatten.accel = options.accel;
   flatten.frameOrigin = options.frameOrigin;
+  flatten.displayMapping = options.displayMapping;
   return flatten;
 }
 

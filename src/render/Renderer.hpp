@@ -36,7 +36,6 @@ struct RenderOptions : ImageSampling {
   // and shouldStop still apply, whichever comes first.
   bool estimateError = false;
   double targetRmse = 0;
-  std::optional<ToneMapping> displayMapping;
   // Adaptive sampling (render/AdaptiveSampling.hpp): after a first pass of
   // 1.25 samples a pixel (one, and one more on two 4x2 blocks of every 8x8
   // tile), rounds give more samples to the noisiest tiles. samplesPerPixel

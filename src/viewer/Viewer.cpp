@@ -156,6 +156,9 @@ std::unique_ptr<ProgressiveRenderer> Viewer::makeRenderer(glm::uvec2 size) const
   // Encoded around the scene's own camera wherever this one has moved, as
   // the render command encodes a camera path's frames: the same image.
   options.frameOrigin = scene_.camera.position;
+  // The exposure at this rebuild sets the bailout's steps, as `render
+  // --exposure` does; moving the slider later only changes the display.
+  options.displayMapping = displayMapping();
   return std::make_unique<ProgressiveRenderer>(*context_, *compiler_, scene, options);
 }
 

@@ -227,6 +227,14 @@ TEST_SUITE("render") {
     CHECK(centre(1.0f / 255.0f) == 0.0f);
     CHECK(centre(0.0f) == doctest::Approx(0.003f));
     CHECK(centre(0.002f) == doctest::Approx(0.003f));
+    // Shown at 4x exposure the same branch moves the image by more than a
+    // step: the bailout counts steps of the shown image, 1/255/4 < 0.003.
+    options.displayMapping = toneMappingFor(scene);
+    options.displayMapping->exposure = 4.0f;
+    CHECK(centre(1.0f / 255.0f) == doctest::Approx(0.003f));
+    options.displayMapping->exposure = 0.5f;
+    CHECK(centre(0.002f) == 0.0f);
+    options.displayMapping.reset();
     scene.settings.mode = RenderMode::PathTracer;  // whole-path weights: never dropped at 1/255
     options.samplesPerPixel = 16;
     CHECK(centre(1.0f / 255.0f) == doctest::Approx(0.003f));
