@@ -109,9 +109,10 @@ vec2 jitteredCellPoint(uvec2 cell, uvec2 sub, vec2 offset, vec2 inverseGrid) {
 // 4 x 2, not 3 x 3 with one left out), so that every permutation is one
 // round with no walk, the cell's row and column a shift and a mask, and the
 // scales exact powers of two. Behind a branch that is the same for every
-// lane (the count is the render's): the general grid's square root,
-// quotients and walks cost a pinhole render's samples 2.4x the time of the
-// random sampler's, this path 1.2x (README "Benchmarks").
+// lane (the count is the render's). A kernel without its walk, 64 samples a
+// pixel: 1.75x the random sampler's time through the general grid's square
+// root, quotients and walk loops, 1.15x through this path (README
+// "Benchmarks").
 vec2 jitteredPointPowerOfTwo(uint s, uint count, uint key) {
   uint k = uint(findMSB(count));
   uint columnBits = (k + 1u) / 2u, rowBits = k / 2u;
@@ -133,9 +134,9 @@ vec2 jitteredPointPowerOfTwo(uint s, uint count, uint key) {
 // and, inside it, its own sub-column and sub-row (multi-jittered), so both
 // projections are stratified too. Works for any count, not only squares;
 // s < count. Where the grid is not a power of two the permutations walk,
-// which a SIMD driver runs until its slowest lane has found its value (the
-// common scene at 32 samples a pixel on 6 x 6 cells took 1.23x the random
-// sampler's render time, at 64 on 8 x 8 1.09x; README "Benchmarks").
+// which a SIMD driver runs until its slowest lane has found its value (when
+// 32 samples still had 6 x 6 cells, the common scene took 1.23x the random
+// sampler's render time, on 8 x 8 at 64 samples 1.09x; README "Benchmarks").
 vec2 jitteredPoint(uint s, uint count, uint key) {
   if ((count & (count - 1u)) == 0u) return jitteredPointPowerOfTwo(s, count, key);
   uint columns = uint(ceil(sqrt(float(count))));
