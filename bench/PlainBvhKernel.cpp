@@ -4,13 +4,13 @@
 #include <cstring>
 #include <vector>
 
-#include "BenchClock.hpp"
 #include "bvh/Bvh.hpp"
 #include "encode/GpuBvh.hpp"
 #include "gpu/Buffer.hpp"
 #include "gpu/ComputeKernel.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
+#include "util/Clock.hpp"
 
 namespace bench {
 namespace {
@@ -226,14 +226,14 @@ PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& 
   PlainResult result;
   const double rays = double(width) * width * samples;
   for (int repetition = 0; repetition < 4; ++repetition) {  // the first one warms up
-    auto start = Clock::now();
-    double cpuStart = cpuSeconds();
+    auto start = rt::SteadyClock::now();
+    double cpuStart = rt::processCpuSeconds();
     context.submitAndWait([&](VkCommandBuffer commands) {
       for (params.sample = 0; params.sample < samples; ++params.sample) {
         kernel.recordDispatch(commands, &params, (width + 7) / 8, (width + 7) / 8);
       }
     });
-    double wall = secondsSince(start), cpu = cpuSeconds() - cpuStart;
+    double wall = rt::secondsSince(start), cpu = rt::processCpuSeconds() - cpuStart;
     if (repetition == 0) continue;
     result.mraysPerSecond = std::max(result.mraysPerSecond, rays / wall * 1e-6);
     result.mraysPerCpuSecond = std::max(result.mraysPerCpuSecond, rays / cpu * 1e-6);

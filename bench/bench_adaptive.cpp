@@ -14,8 +14,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "BenchClock.hpp"
 #include "render/AdaptiveSampling.hpp"
+#include "util/Clock.hpp"
 
 namespace {
 
@@ -78,13 +78,13 @@ Timing timeRounds(uint32_t width, uint32_t height, int repeats) {
   Timing timing;
   timing.tiles = static_cast<uint32_t>(noise.size());
   for (int i = 0; i < repeats; ++i) {
-    auto start = bench::Clock::now();
+    auto start = rt::SteadyClock::now();
     rt::AdaptiveRounds rounds(width, height, {0, 0, width, height}, goal);
-    timing.setupMs = std::min(timing.setupMs, bench::secondsSince(start) * 1e3);
-    start = bench::Clock::now();
+    timing.setupMs = std::min(timing.setupMs, rt::secondsSince(start) * 1e3);
+    start = rt::SteadyClock::now();
     rounds.finishRound(noise, rays);
     std::vector<glm::uvec2> ranges = rounds.kernelRanges();
-    timing.roundMs = std::min(timing.roundMs, bench::secondsSince(start) * 1e3);
+    timing.roundMs = std::min(timing.roundMs, rt::secondsSince(start) * 1e3);
     timing.added = 0;
     for (const glm::uvec2& range : ranges) timing.added += range.y;
   }
@@ -97,10 +97,10 @@ Timing timeRounds(uint32_t width, uint32_t height, int repeats) {
   next.sampleBudget = double(goal.meanSamples) * width * height - double(plan.pixelSamples());
   next.maxSamples = goal.maxSamples;
   for (int i = 0; i < repeats; ++i) {
-    auto start = bench::Clock::now();
+    auto start = rt::SteadyClock::now();
     const rt::EdgeRound edges =
         plan.edgeRound(measured.tiles, rt::neighbourContrast(image, {}, region), next);
-    timing.edgeMs = std::min(timing.edgeMs, bench::secondsSince(start) * 1e3);
+    timing.edgeMs = std::min(timing.edgeMs, rt::secondsSince(start) * 1e3);
   }
   return timing;
 }

@@ -14,7 +14,6 @@
 #include <thread>
 #include <vector>
 
-#include "BenchClock.hpp"
 #include "PlainBvhKernel.hpp"
 #include "bvh/Bvh.hpp"
 #include "encode/FlatScene.hpp"
@@ -25,12 +24,13 @@
 #include "render/BatchIntersector.hpp"
 #include "render/Renderer.hpp"
 #include "scene/ProceduralMesh.hpp"
+#include "util/Clock.hpp"
 
 namespace {
 
-using bench::Clock;
-using bench::cpuSeconds;
-using bench::secondsSince;
+using rt::processCpuSeconds;
+using rt::secondsSince;
+using Clock = rt::SteadyClock;
 
 // Primary rays: a square image of this width, this many samples a pixel.
 constexpr uint32_t kPrimaryWidth = 512;
@@ -143,11 +143,11 @@ Row measure(const std::string& label, rt::TriangleMesh mesh, rt::Renderer& rende
   rt::BatchIntersector intersector(context, compiler, scene, flatten);
   intersector.intersect(std::vector<rt::gpu::GpuRay>(diffuse.begin(), diffuse.begin() + 4096));
   start = Clock::now();
-  double cpuStart = cpuSeconds();
+  double cpuStart = processCpuSeconds();
   intersector.intersect(diffuse);
   // The batch kernel answers a closest-hit and an any-hit query per ray.
   row.diffuseMqueries = 2.0 * double(diffuse.size()) / secondsSince(start) * 1e-6;
-  row.diffuseCpuMqueries = 2.0 * double(diffuse.size()) / (cpuSeconds() - cpuStart) * 1e-6;
+  row.diffuseCpuMqueries = 2.0 * double(diffuse.size()) / (processCpuSeconds() - cpuStart) * 1e-6;
   std::fprintf(stderr, "%s: done\n", label.c_str());
   return row;
 }

@@ -5,7 +5,6 @@
 
 #include <CLI/CLI.hpp>
 #include <atomic>
-#include <chrono>
 #include <cstdio>
 #include <optional>
 #include <regex>
@@ -24,6 +23,7 @@
 #include "imaging/SampleMaps.hpp"
 #include "io/Image.hpp"
 #include "render/Renderer.hpp"
+#include "util/Clock.hpp"
 #include "util/Error.hpp"
 #include "viewer/CameraPath.hpp"
 
@@ -292,11 +292,9 @@ int run(const CommandLine& cli) {
   rt::ProgressBar progress(renderedPixels(options, width, height), !cli.quiet);
   rt::RenderStats stats;
   installInterruptHandlers();
-  auto start = std::chrono::steady_clock::now();
+  auto start = rt::SteadyClock::now();
   options.shouldStop = [&] {
-    double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return interrupted.load() || (cli.timeBudget && elapsed >= *cli.timeBudget);
+    return interrupted.load() || (cli.timeBudget && rt::secondsSince(start) >= *cli.timeBudget);
   };
   rt::ImageF image = renderer.render(
       scene, options, [&](const rt::RenderProgress& p) { progress.update(p); }, &stats);

@@ -3,9 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <limits>
 #include <optional>
 
@@ -16,22 +14,13 @@
 #include "render/AdaptiveSampling.hpp"
 #include "render/ProgressiveRenderer.hpp"
 #include "scene/Limits.hpp"
+#include "util/Clock.hpp"
 #include "util/Error.hpp"
 
 namespace rt {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-double processCpuSeconds() {
-  timespec now{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-  return double(now.tv_sec) + double(now.tv_nsec) * 1e-9;
-}
+using Clock = SteadyClock;
 
 // Sizes dispatches from the measured cost of one pixel-sample so that each
 // takes about `target` seconds: several samples over the whole image when

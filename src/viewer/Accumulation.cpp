@@ -58,7 +58,7 @@ std::optional<double> Accumulation::rmseEstimate() const {
 std::optional<double> Accumulation::takeDoneSeconds() {
   if (accumulating() || doneReported_) return std::nullopt;
   doneReported_ = true;
-  return std::chrono::duration<double>(Clock::now() - start_).count();
+  return secondsSince(start_);
 }
 
 std::vector<Band> Accumulation::planAdaptiveBands(const ToneMapping& mapping, bool& readBack) {

@@ -6,7 +6,6 @@
 
 #include <vulkan/vulkan.h>
 
-#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -14,6 +13,7 @@
 
 #include "render/AdaptiveSampling.hpp"
 #include "render/ProgressiveRenderer.hpp"
+#include "util/Clock.hpp"
 #include "viewer/FramePlanner.hpp"
 
 namespace rt::viewer {
@@ -52,7 +52,7 @@ class Accumulation {
   void frameTook(double seconds) { planner_.frameTook(seconds); }
 
  private:
-  using Clock = std::chrono::steady_clock;
+  using Clock = SteadyClock;
   std::vector<Band> planAdaptiveBands(const ToneMapping& mapping, bool& readBack);
 
   FramePlanner planner_;

@@ -8,10 +8,6 @@ constexpr std::chrono::seconds kLogInterval(1);
 constexpr double kRateWindowSeconds = 1.0;
 // ...or over a shorter one that idle frames end, if it lasted this long.
 constexpr double kShortestRateWindowSeconds = 0.05;
-
-double secondsBetween(RateMeter::Clock::time_point from, RateMeter::Clock::time_point to) {
-  return std::chrono::duration<double>(to - from).count();
-}
 }  // namespace
 
 void RateMeter::add(double samples, Clock::time_point now) {
@@ -33,7 +29,7 @@ void RateMeter::add(double samples, Clock::time_point now) {
 }
 
 double FrameClock::frameDone(uint64_t pixelSamples, Clock::time_point now) {
-  double seconds = std::chrono::duration<double>(now - lastFrameDone_).count();
+  double seconds = secondsBetween(lastFrameDone_, now);
   lastFrameDone_ = now;
   frameMilliseconds_ = seconds * 1e3;
   rate_.add(double(pixelSamples), now);

@@ -2,8 +2,9 @@
 // samples per second, and when the next progress line is due.
 #pragma once
 
-#include <chrono>
 #include <cstdint>
+
+#include "util/Clock.hpp"
 
 namespace rt::viewer {
 
@@ -12,7 +13,7 @@ namespace rt::viewer {
 // rendering: a finished render keeps showing the rate it ran at, not zero.
 class RateMeter {
  public:
-  using Clock = std::chrono::steady_clock;
+  using Clock = SteadyClock;
   explicit RateMeter(Clock::time_point start = Clock::now()) : start_(start), lastWork_(start) {}
   // A frame that finished at `now` and added `samples`.
   void add(double samples, Clock::time_point now);
@@ -27,7 +28,7 @@ class RateMeter {
 
 class FrameClock {
  public:
-  using Clock = std::chrono::steady_clock;
+  using Clock = SteadyClock;
 
   // A frame finished on the GPU with `pixelSamples` of work; returns the
   // seconds since the previous one finished.

@@ -41,11 +41,6 @@ void installSignalHandlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-double millisecondsBetween(std::chrono::steady_clock::time_point a,
-                           std::chrono::steady_clock::time_point b) {
-  return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
 ContextOptions contextOptions(const ViewerOptions& options, const Window& window) {
   ContextOptions context;
   context.validation = options.validation;
@@ -286,7 +281,7 @@ void Viewer::waitForFrame() {
   if (submitted_.reloadSavedAt) {
     // The first frame drawn with reloaded shaders is finished and presented.
     std::printf("reload: presented %.0f ms after the save\n",
-                millisecondsBetween(*submitted_.reloadSavedAt, now));
+                1e3 * secondsBetween(*submitted_.reloadSavedAt, now));
   }
   // Nothing is in flight now: the replaced kernels can go.
   renderer_->releaseRetiredKernels();

@@ -15,7 +15,6 @@
 
 #include <vulkan/vulkan.h>
 
-#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -24,6 +23,7 @@
 
 #include "render/ProgressiveRenderer.hpp"
 #include "scene/Scene.hpp"
+#include "util/Clock.hpp"
 #include "viewer/Accumulation.hpp"
 #include "viewer/CameraPath.hpp"
 #include "viewer/FrameClock.hpp"
@@ -55,7 +55,7 @@ struct FrameRecord {
   std::vector<std::filesystem::path> screenshots;
   // When the file behind a successful reload was saved, for the first frame
   // drawn with the new shaders or scene.
-  std::optional<std::chrono::steady_clock::time_point> reloadSavedAt;
+  std::optional<SteadyClock::time_point> reloadSavedAt;
 };
 
 class Viewer {
@@ -68,7 +68,7 @@ class Viewer {
   int run();
 
  private:
-  using Clock = std::chrono::steady_clock;
+  using Clock = SteadyClock;
 
   // Setup.
   void initialiseSettings();

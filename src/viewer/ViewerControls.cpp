@@ -86,7 +86,7 @@ void Viewer::reloadShaders() {
   } catch (const std::exception& e) {
     errors += (errors.empty() ? "" : "\n") + std::string(e.what());
   }
-  double milliseconds = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  double milliseconds = 1e3 * secondsSince(start);
   if (traceReloaded) {
     // New shading: what was accumulated so far no longer matches.
     renderer_->reset();
@@ -198,8 +198,7 @@ void Viewer::handleKey(const KeyPress& key) {
 }
 
 void Viewer::flyWithHeldKeys() {
-  double seconds = std::min(std::chrono::duration<double>(Clock::now() - lastInputAt_).count(),
-                            kMaxFlyStepSeconds);
+  double seconds = std::min(secondsSince(lastInputAt_), kMaxFlyStepSeconds);
   auto axis = [&](int positive, int negative) {
     return (window_->keyHeld(positive) ? 1.0f : 0.0f) - (window_->keyHeld(negative) ? 1.0f : 0.0f);
   };

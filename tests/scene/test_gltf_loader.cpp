@@ -31,6 +31,7 @@
 #include "render/Renderer.hpp"
 #include "support/JsonMutations.hpp"
 #include "support/TestSupport.hpp"
+#include "util/Clock.hpp"
 #include "util/Error.hpp"
 
 namespace {
@@ -386,7 +387,7 @@ Outcome loadIsolated(const fs::path& file, int timeoutSeconds) {
   int fds[2];
   REQUIRE(pipe(fds) == 0);
   size_t limit = addressSpaceBytes() + (size_t(2) << 30);
-  auto start = std::chrono::steady_clock::now();
+  auto start = rt::SteadyClock::now();
   pid_t child = fork();
   REQUIRE(child >= 0);
   if (child == 0) {
@@ -414,7 +415,7 @@ Outcome loadIsolated(const fs::path& file, int timeoutSeconds) {
   int status = 0;
   waitpid(child, &status, 0);
   Outcome outcome;
-  outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  outcome.seconds = rt::secondsSince(start);
   if (!finished) {
     outcome.kind = Outcome::TimedOut;
   } else if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || message.empty()) {
