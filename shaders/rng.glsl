@@ -93,26 +93,25 @@ uint quotientOfSmall(uint a, uint b) {
   return remainder < 0 ? q - 1u : (remainder >= int(b) ? q + 1u : q);
 }
 
-// 2^-e as a float, exactly (e < 127).
-float inversePowerOfTwo(uint e) { return uintBitsToFloat((127u - e) << 23u); }
-
-// The point of `cell` in a grid of columns x rows cells, with sub-column
-// subX of rows and sub-row subY of columns (multi-jittered) and in-cell
-// offsets `offset`.
-vec2 jitteredCellPoint(uvec2 cell, uvec2 sub, vec2 offset, vec2 inverseGrid) {
-  float x = (float(cell.x) + (float(sub.x) + offset.x) * inverseGrid.y) * inverseGrid.x;
-  float y = (float(cell.y) + (float(sub.y) + offset.y) * inverseGrid.x) * inverseGrid.y;
+// Sample `s` of `count` in `cell` of a grid of columns x rows cells, at
+// sub-column sub.x of rows and sub-row sub.y of columns (multi-jittered),
+// offset inside that by a hash of the sample. Both jitteredPoint paths end
+// here; on a power-of-two grid the divisions are exact scalings.
+vec2 jitteredCellPoint(uint s, uint count, uint key, uvec2 cell, uvec2 sub, uvec2 grid) {
+  uvec4 h = hashCounter(uvec4(s, count, key, 0x51ed27u));
+  vec2 size = vec2(grid);
+  float x = (float(cell.x) + (float(sub.x) + unitFloat(h.x)) / size.y) / size.x;
+  float y = (float(cell.y) + (float(sub.y) + unitFloat(h.y)) / size.x) / size.y;
   return min(vec2(x, y), vec2(0.99999994));
 }
 
 // jitteredPoint for count = 2^k: 2^ceil(k/2) x 2^floor(k/2) cells (8 samples
 // 4 x 2, not 3 x 3 with one left out), so that every permutation is one
-// round with no walk, the cell's row and column a shift and a mask, and the
-// scales exact powers of two. Behind a branch that is the same for every
-// lane (the count is the render's). A kernel without its walk, 64 samples a
-// pixel: 1.75x the random sampler's time through the general grid's square
-// root, quotients and walk loops, 1.15x through this path (README
-// "Benchmarks").
+// round with no walk and the cell's row and column a shift and a mask.
+// Behind a branch that is the same for every lane (the count is the
+// render's). A kernel without its walk, 64 samples a pixel: 1.75x the random
+// sampler's time through the general grid's square root, quotients and walk
+// loops, 1.15x through this path (README "Benchmarks").
 vec2 jitteredPointPowerOfTwo(uint s, uint count, uint key) {
   uint k = uint(findMSB(count));
   uint columnBits = (k + 1u) / 2u, rowBits = k / 2u;
@@ -121,9 +120,8 @@ vec2 jitteredPointPowerOfTwo(uint s, uint count, uint key) {
   uvec2 cellXY = uvec2(cell & columnMask, cell >> columnBits);
   uint subX = permuteRound(cellXY.y, rowMask, key * 0x9e3779b9u + 1u);
   uint subY = permuteRound(cellXY.x, columnMask, key * 0x85ebca6bu + 2u);
-  uvec4 h = hashCounter(uvec4(s, count, key, 0x51ed27u));
-  return jitteredCellPoint(cellXY, uvec2(subX, subY), vec2(unitFloat(h.x), unitFloat(h.y)),
-                           vec2(inversePowerOfTwo(columnBits), inversePowerOfTwo(rowBits)));
+  return jitteredCellPoint(s, count, key, cellXY, uvec2(subX, subY),
+                           uvec2(columnMask, rowMask) + 1u);
 }
 
 // Stratified 2D point for sample `s` of `count`: the unit square is cut
@@ -146,10 +144,7 @@ vec2 jitteredPoint(uint s, uint count, uint key) {
   uint cx = cell - cy * columns;
   uint subX = permuteIndex(cy, rows, key * 0x9e3779b9u + 1u);
   uint subY = permuteIndex(cx, columns, key * 0x85ebca6bu + 2u);
-  uvec4 h = hashCounter(uvec4(s, count, key, 0x51ed27u));
-  float x = (float(cx) + (float(subX) + unitFloat(h.x)) / float(rows)) / float(columns);
-  float y = (float(cy) + (float(subY) + unitFloat(h.y)) / float(columns)) / float(rows);
-  return min(vec2(x, y), vec2(0.99999994));
+  return jitteredCellPoint(s, count, key, uvec2(cx, cy), uvec2(subX, subY), uvec2(columns, rows));
 }
 
 // --- Owen-scrambled Sobol points ---------------------------------------------
