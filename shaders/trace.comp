@@ -3,17 +3,27 @@
 // float32 accumulator. Feature defines (RT_FEATURE_*) are set per scene by
 // the host so that unused code is never compiled.
 #extension GL_GOOGLE_include_directive : require
+#ifdef RT_COUNT_RAYS_PER_SUBGROUP
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#endif
 
 #include "gpu_types.h"
 
 layout(local_size_x = RT_WORKGROUP_SIZE_X, local_size_y = RT_WORKGROUP_SIZE_Y) in;
 
-// Storage texel buffers (one RGBA32F texel per pixel): CPU drivers read a
-// storage buffer lane by lane, an image with one gather.
-layout(rgba32f, set = 0, binding = RT_BINDING_ACCUMULATION) uniform restrict imageBuffer
-    accumulation;  // rgb: sum of sample radiance, a: number of samples
-layout(rgba32f, set = 0, binding = RT_BINDING_ACCUMULATION_ODD) uniform restrict imageBuffer
-    oddAccumulation;  // the same over odd sample indices only
+// One vec4 per pixel. Storage buffers, not storage texel buffers: each
+// invocation loads and stores its pixel once a pass, and on Mesa 25's
+// lavapipe a texel buffer's imageStore cost about 15 ns of wall time a pixel
+// (2 cores) against 3-7 ns for a storage buffer's store, which made a pass of
+// one sample over a 2048x2048 image with an empty sample loop 1.7x slower
+// (README "Benchmarks").
+layout(std430, set = 0, binding = RT_BINDING_ACCUMULATION) restrict buffer AccumulationBuffer {
+  vec4 accumulation[];  // rgb: sum of sample radiance, a: number of samples
+};
+layout(std430, set = 0, binding = RT_BINDING_ACCUMULATION_ODD) restrict buffer
+    OddAccumulationBuffer {
+  vec4 oddAccumulation[];  // the same over odd sample indices only
+};
 
 #ifdef RT_ADAPTIVE_SAMPLING
 // Per tile of RT_ADAPTIVE_TILE_SIZE^2 pixels, row-major over the whole
@@ -86,8 +96,8 @@ void main() {
 #endif
   // Samples are added one by one in index order, so the sum is the same
   // however the sample range is split over dispatches.
-  vec4 sum = imageLoad(accumulation, int(pixelIndex));
-  vec4 oddSum = imageLoad(oddAccumulation, int(pixelIndex));
+  vec4 sum = accumulation[pixelIndex];
+  vec4 oddSum = oddAccumulation[pixelIndex];
   for (uint s = range.x; s < range.x + range.y; ++s) {
     vec2 jitter = samplePair(frame.samplerKind, pixelIndex, s, frame.samplesTotal, RT_DIM_PIXEL,
                              frame.seed);
@@ -109,10 +119,18 @@ void main() {
     sum += contribution;
     if ((s & 1u) == 1u) oddSum += contribution;
   }
-  imageStore(accumulation, int(pixelIndex), sum);
-  imageStore(oddAccumulation, int(pixelIndex), oddSum);
+  accumulation[pixelIndex] = sum;
+  oddAccumulation[pixelIndex] = oddSum;
 #ifdef RT_COUNT_RAYS
+#ifdef RT_COUNT_RAYS_PER_SUBGROUP
+  // Every lane's atomic add to the one counter contends across the driver's
+  // threads: on lavapipe, one add a subgroup made the bunny bench's primary
+  // rays about 3% faster (five interleaved runs, 0-8%).
+  uint subgroupRays = subgroupAdd(raysTraced);
+  if (subgroupElect()) atomicAdd(rayCounter[0], subgroupRays);
+#else
   atomicAdd(rayCounter[0], raysTraced);
+#endif
 #endif
 #ifdef RT_ADAPTIVE_SAMPLING
   // Integer sums: the same whatever order the invocations add in.

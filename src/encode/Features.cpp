@@ -107,6 +107,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(diffuseBounces, "RT_FEATURE_DIFFUSE_BOUNCES");
   flag(pathTracer, "RT_FEATURE_PATH_TRACER");
   flag(countRays, "RT_COUNT_RAYS");
+  flag(countRaysPerSubgroup, "RT_COUNT_RAYS_PER_SUBGROUP");
   flag(adaptiveSampling, "RT_ADAPTIVE_SAMPLING");
   flag(hardwareAccel, "RT_ACCEL_HARDWARE");
   flag(storageBuffers, "RT_SCENE_STORAGE_BUFFERS");

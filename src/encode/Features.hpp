@@ -27,11 +27,12 @@ struct ShaderFeatures {
   bool vertices = false;  // per-vertex normals / UVs on triangles
   bool textures = false;
   bool areaLights = false;
-  bool diffuseBounces = false;    // sampled diffuse bounces (distributed bounces, path tracer)
-  bool pathTracer = false;        // one continuation per hit
-  bool countRays = false;         // benchmark instrumentation
-  bool adaptiveSampling = false;  // per-tile sample ranges (render/AdaptiveSampling.hpp)
-  bool hardwareAccel = false;     // ray queries instead of the BVH walk (--accel hardware)
+  bool diffuseBounces = false;        // sampled diffuse bounces (distributed bounces, path tracer)
+  bool pathTracer = false;            // one continuation per hit
+  bool countRays = false;             // benchmark instrumentation
+  bool countRaysPerSubgroup = false;  // with countRays: one atomic add a subgroup
+  bool adaptiveSampling = false;      // per-tile sample ranges (render/AdaptiveSampling.hpp)
+  bool hardwareAccel = false;         // ray queries instead of the BVH walk (--accel hardware)
   // The scene arrays are storage buffers, not texel buffers (SceneArrays).
   bool storageBuffers = false;
   // Binary mode: a sample is one closest-hit query; no shading code is built.

@@ -299,6 +299,13 @@ void VulkanContext::pickPhysicalDevice(const ContextOptions& options) {
   description_ = describe(physicalDevice_, *chosen);
   vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
   vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+  VkPhysicalDeviceSubgroupProperties subgroups{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
+                                          &subgroups};
+  vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
+  subgroupArithmetic_ = (subgroups.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+                        (subgroups.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);
   queueFamily_ = *usableQueueFamily(physicalDevice_, surface_);
 }
 

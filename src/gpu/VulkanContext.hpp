@@ -61,6 +61,8 @@ class VulkanContext {
   const DeviceDescription& description() const { return description_; }
   const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
   bool rayQueriesEnabled() const { return rayQueries_; }
+  // Compute kernels may use subgroup arithmetic (GL_KHR_shader_subgroup_arithmetic).
+  bool subgroupArithmetic() const { return subgroupArithmetic_; }
   VkSurfaceKHR surface() const { return surface_; }
 
   // Validation warnings and errors reported so far (0 when validation is off).
@@ -97,6 +99,7 @@ class VulkanContext {
   VkCommandPool commandPool_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
   bool rayQueries_ = false;
+  bool subgroupArithmetic_ = false;
   uint32_t validationMessages_ = 0;
 };
 

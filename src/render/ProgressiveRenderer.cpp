@@ -28,11 +28,10 @@ uint32_t spreadingStride(uint32_t count) {
   }
 }
 
-// Accumulation buffers: texels to the render kernel, storage buffers to the
-// viewer's display pass and the noise measurement, and cleared and read back
-// by transfers.
-constexpr VkBufferUsageFlags kAccumulationUsage =
-    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;
+// Accumulation buffers: storage buffers to the render kernel, the viewer's
+// display pass and the noise measurement, and cleared and read back by
+// transfers.
+constexpr VkBufferUsageFlags kAccumulationUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 
 // The largest memory heap: no single allocation can exceed it.
 VkDeviceSize largestHeap(const VulkanContext& context) {
@@ -59,12 +58,8 @@ uint32_t gpuSamplerKind(SamplerKind kind) {
 
 VkDeviceSize accumulationBytes(VulkanContext& context, const FlatScene& flat) {
   const VkDeviceSize bytes = VkDeviceSize(flat.info.width) * flat.info.height * sizeof(glm::vec4);
-  // The render kernel sees it as RGBA32F texels, the viewer's display pass
-  // as a storage buffer.
   const VkDeviceSize limit = std::min<VkDeviceSize>(
-      {VkDeviceSize(context.limits().maxStorageBufferRange),
-       VkDeviceSize(context.limits().maxTexelBufferElements) * sizeof(glm::vec4),
-       largestHeap(context)});
+      VkDeviceSize(context.limits().maxStorageBufferRange), largestHeap(context));
   if (bytes > limit) {
     throw Error(fmt::format(
         "image {}x{} is too large for this device: its accumulation buffer needs {} MiB "
@@ -76,10 +71,11 @@ VkDeviceSize accumulationBytes(VulkanContext& context, const FlatScene& flat) {
 }
 
 ShaderFeatures featuresFor(const Scene& scene, const FlatScene& flat,
-                           const ProgressiveOptions& options) {
+                           const ProgressiveOptions& options, const VulkanContext& context) {
   ShaderFeatures features = detectFeatures(scene, flat);
   features.storageBuffers = options.sceneArrays == SceneArrays::StorageBuffers;
   features.countRays = options.countRays;
+  features.countRaysPerSubgroup = options.countRays && context.subgroupArithmetic();
   features.samplerKind = static_cast<int>(gpuSamplerKind(options.sampler));
   features.adaptiveSampling = options.adaptive;
   return features;
@@ -104,7 +100,7 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
       compiler_(compiler),
       options_(options),
       flat_(flattenScene(scene, flattenOptionsFor(options))),
-      features_(featuresFor(scene, flat_, options)),
+      features_(featuresFor(scene, flat_, options, context)),
       width_(flat_.info.width),
       height_(flat_.info.height),
       sceneBuffers_(context, flat_, options.sceneArrays),
@@ -143,8 +139,8 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
 std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(bool countRays, AccelKind accel,
                                                                bool adaptive, SceneArrays arrays) {
   std::vector<KernelBinding> bindings = SceneBuffers::bindings(accel, arrays);
-  bindings.push_back({RT_BINDING_ACCUMULATION, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER});
-  bindings.push_back({RT_BINDING_ACCUMULATION_ODD, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER});
+  bindings.push_back({RT_BINDING_ACCUMULATION});
+  bindings.push_back({RT_BINDING_ACCUMULATION_ODD});
   if (countRays) bindings.push_back({RT_BINDING_RAY_COUNTER});
   if (adaptive) {
     bindings.push_back({RT_BINDING_SAMPLE_PLAN});
@@ -161,8 +157,8 @@ std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
                      options_.sceneArrays),
       static_cast<uint32_t>(sizeof(gpu::GpuFrameParams)));
   sceneBuffers_.bindTo(*kernel);
-  kernel->bindTexels(RT_BINDING_ACCUMULATION, accumulation_, VK_FORMAT_R32G32B32A32_SFLOAT);
-  kernel->bindTexels(RT_BINDING_ACCUMULATION_ODD, oddAccumulation_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  kernel->bind(RT_BINDING_ACCUMULATION, accumulation_);
+  kernel->bind(RT_BINDING_ACCUMULATION_ODD, oddAccumulation_);
   if (rayCounter_) kernel->bind(RT_BINDING_RAY_COUNTER, *rayCounter_);
   if (samplePlan_) kernel->bind(RT_BINDING_SAMPLE_PLAN, *samplePlan_);
   if (tileRays_) kernel->bind(RT_BINDING_TILE_RAYS, *tileRays_);

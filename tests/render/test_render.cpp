@@ -288,6 +288,27 @@ TEST_SUITE("render") {
     CHECK(pixel(image, 0, 0) == scene.backgroundColor);
   }
 
+  TEST_CASE("the benchmarks' ray counter counts every ray traced") {
+    // 37x23 is no whole number of 8x8 groups: the lanes past the image's
+    // edge must add nothing (the kernel adds a subgroup's rays at once).
+    Scene scene = baseScene(37, 23);
+    scene.settings.mode = RenderMode::Binary;
+    test::addSphere(scene, test::diffuse({0.3f, 0.3f, 0.3f}));
+    RenderOptions options;
+    options.samplesPerPixel = 3;
+    options.countRays = true;
+    RenderStats binary;
+    test::render(scene, options, &binary);
+    const uint64_t samples = 37u * 23u * 3u;
+    CHECK(binary.raysTraced == samples);  // one primary ray a sample
+    scene.settings.mode = RenderMode::Phong;
+    RenderStats phong;
+    test::render(scene, options, &phong);
+    // Plus a shadow ray for each sample whose hit faces the light.
+    CHECK(phong.raysTraced > samples + samples / 10);
+    CHECK(phong.raysTraced <= 2 * samples);
+  }
+
   TEST_CASE("renders are reproducible and do not depend on how samples are split") {
     Scene scene = baseScene(48, 40);
     test::addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
