@@ -148,14 +148,15 @@ float displayValue(float linear, const ToneMapping& mapping) {
                              mapping.srgbEncode ? 1u : 0u);
 }
 
+uint8_t displayByte(float linear, const ToneMapping& mapping) {
+  return quantize(displayValue(linear, mapping), mapping.quantization);
+}
+
 Image8 toneMap(const ImageF& image, const ToneMapping& mapping) {
   Image8 out{image.width, image.height, {}};
   out.rgb.reserve(size_t(image.width) * image.height * 3);
   for (size_t i = 0; i < size_t(image.width) * image.height; ++i) {
-    for (int c = 0; c < 3; ++c) {
-      out.rgb.push_back(
-          quantize(displayValue(image.rgba[i * 4 + c], mapping), mapping.quantization));
-    }
+    for (int c = 0; c < 3; ++c) out.rgb.push_back(displayByte(image.rgba[i * 4 + c], mapping));
   }
   return out;
 }

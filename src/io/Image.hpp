@@ -57,6 +57,8 @@ struct ToneMapping {
 
 // One linear channel value as displayed, in [0, 1] before 8-bit quantization.
 float displayValue(float linear, const ToneMapping& mapping);
+// The same as an 8-bit image stores it.
+uint8_t displayByte(float linear, const ToneMapping& mapping);
 
 Image8 toneMap(const ImageF& image, const ToneMapping& mapping);
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <string>
 
 namespace rt {
@@ -57,15 +56,13 @@ int32_t addMissingTexture(Scene& scene) {
 }
 
 int32_t addCheckerTexture(Scene& scene, glm::vec3 even, glm::vec3 odd, uint32_t count) {
-  const auto srgb = [](glm::vec3 linear) {
-    std::array<uint8_t, 3> out{};
-    for (int i = 0; i < 3; ++i) {
-      const float c = std::clamp(linear[i], 0.0f, 1.0f);
-      const float encoded =
-          c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-      out[size_t(i)] = static_cast<uint8_t>(std::lround(encoded * 255.0f));
-    }
-    return out;
+  // Stored as an sRGB image file stores the linear colour.
+  ToneMapping srgbBytes;
+  srgbBytes.srgbEncode = true;
+  const auto srgb = [&](glm::vec3 linear) {
+    return std::array<uint8_t, 3>{displayByte(linear.x, srgbBytes),
+                                  displayByte(linear.y, srgbBytes),
+                                  displayByte(linear.z, srgbBytes)};
   };
   const std::string name = "checker " + std::to_string(count);
   scene.textures.push_back({name, squares(srgb(even), srgb(odd), std::clamp(count, 1u, 64u))});
