@@ -29,7 +29,19 @@ TileNoiseKernel::TileNoiseKernel(VulkanContext& context, const ShaderCompiler& c
           sizeof(gpu::GpuTileNoiseParams)),
       tiles_(context, VkDeviceSize(tileCount_) * sizeof(gpu::GpuTileNoise),
              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
-      noExtras_(context, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {}
+      noExtras_(context, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
+  // Compiled now rather than at the first measurement (lavapipe turns a
+  // pipeline into machine code at its first dispatch): a dispatch over an
+  // image of no tiles, which reads and writes nothing; the bindings only
+  // need to be valid.
+  gpu::GpuTileNoiseParams nothing{};
+  for (uint32_t binding : {RT_NOISE_BINDING_ACCUMULATION, RT_NOISE_BINDING_ACCUMULATION_ODD,
+                           RT_NOISE_BINDING_TILES, RT_NOISE_BINDING_PIXEL_EXTRAS}) {
+    kernel_.bind(binding, tiles_);
+  }
+  context_.submitAndWait(
+      [&](VkCommandBuffer commands) { kernel_.recordDispatch(commands, &nothing, 1); });
+}
 
 std::vector<gpu::GpuTileNoise> TileNoiseKernel::measure(const Buffer& all, const Buffer& odd,
                                                         const Buffer* pixelExtras,
