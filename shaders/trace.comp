@@ -20,10 +20,15 @@ layout(local_size_x = RT_WORKGROUP_SIZE_X, local_size_y = RT_WORKGROUP_SIZE_Y) i
 layout(std430, set = 0, binding = RT_BINDING_ACCUMULATION) restrict buffer AccumulationBuffer {
   vec4 accumulation[];  // rgb: sum of sample radiance, a: number of samples
 };
+#ifdef RT_ODD_SUMS
+// Only where an error estimate reads them (ProgressiveOptions::oddSums): the
+// second load and store a pixel and pass made a one-sample render of the
+// official binary_primitves.json 1.24x slower (README "Benchmarks").
 layout(std430, set = 0, binding = RT_BINDING_ACCUMULATION_ODD) restrict buffer
     OddAccumulationBuffer {
   vec4 oddAccumulation[];  // the same over odd sample indices only
 };
+#endif
 
 #ifdef RT_ADAPTIVE_SAMPLING
 // Per tile of RT_ADAPTIVE_TILE_SIZE^2 pixels, row-major over the whole
@@ -97,7 +102,9 @@ void main() {
   // Samples are added one by one in index order, so the sum is the same
   // however the sample range is split over dispatches.
   vec4 sum = accumulation[pixelIndex];
+#ifdef RT_ODD_SUMS
   vec4 oddSum = oddAccumulation[pixelIndex];
+#endif
   for (uint s = range.x; s < range.x + range.y; ++s) {
     vec2 jitter = samplePair(frame.samplerKind, pixelIndex, s, frame.samplesTotal, RT_DIM_PIXEL,
                              frame.seed);
@@ -117,10 +124,14 @@ void main() {
 #endif
     vec4 contribution = vec4(finiteOrZero(radiance), 1.0);
     sum += contribution;
+#ifdef RT_ODD_SUMS
     if ((s & 1u) == 1u) oddSum += contribution;
+#endif
   }
   accumulation[pixelIndex] = sum;
+#ifdef RT_ODD_SUMS
   oddAccumulation[pixelIndex] = oddSum;
+#endif
 #ifdef RT_COUNT_RAYS
 #ifdef RT_COUNT_RAYS_PER_SUBGROUP
   // Every lane's atomic add to the one counter contends across the driver's

@@ -108,6 +108,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(pathTracer, "RT_FEATURE_PATH_TRACER");
   flag(countRays, "RT_COUNT_RAYS");
   flag(countRaysPerSubgroup, "RT_COUNT_RAYS_PER_SUBGROUP");
+  flag(oddSums, "RT_ODD_SUMS");
   flag(adaptiveSampling, "RT_ADAPTIVE_SAMPLING");
   flag(hardwareAccel, "RT_ACCEL_HARDWARE");
   flag(storageBuffers, "RT_SCENE_STORAGE_BUFFERS");

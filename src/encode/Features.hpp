@@ -31,6 +31,7 @@ struct ShaderFeatures {
   bool pathTracer = false;            // one continuation per hit
   bool countRays = false;             // benchmark instrumentation
   bool countRaysPerSubgroup = false;  // with countRays: one atomic add a subgroup
+  bool oddSums = false;               // the odd samples' sums too (error estimates)
   bool adaptiveSampling = false;      // per-tile sample ranges (render/AdaptiveSampling.hpp)
   bool hardwareAccel = false;         // ray queries instead of the BVH walk (--accel hardware)
   // The scene arrays are storage buffers, not texel buffers (SceneArrays).

@@ -78,6 +78,7 @@ ShaderFeatures featuresFor(const Scene& scene, const FlatScene& flat,
   features.countRaysPerSubgroup = options.countRays && context.subgroupArithmetic();
   features.samplerKind = static_cast<int>(gpuSamplerKind(options.sampler));
   features.adaptiveSampling = options.adaptive;
+  features.oddSums = options.oddSums;
   return features;
 }
 
@@ -286,7 +287,8 @@ SampleSums ProgressiveRenderer::sampleSums() {
 }
 
 bool ProgressiveRenderer::halvesIndependent() const {
-  return options_.independentHalves || options_.sampler == SamplerKind::Random;
+  return options_.oddSums &&
+         (options_.independentHalves || options_.sampler == SamplerKind::Random);
 }
 
 std::optional<double> ProgressiveRenderer::estimateRmse(const ToneMapping& mapping) {

@@ -35,6 +35,10 @@ struct ProgressiveOptions : ImageSampling {
   // Even and odd samples as two independent replicates (RT_SAMPLER_REPLICATES),
   // which the error estimate needs; it costs stratified samplers accuracy.
   bool independentHalves = false;
+  // Keep the sums of the odd samples, which every error estimate reads
+  // (estimateRmse, tileNoise, the error image of sampleSums). Without them
+  // the kernel neither loads nor stores them and halvesIndependent() is false.
+  bool oddSums = true;
   // Per-tile sample ranges (setSamplePlan, recordPlannedSamples) instead of
   // one range for every pixel: adaptive sampling (render/AdaptiveSampling.hpp).
   bool adaptive = false;

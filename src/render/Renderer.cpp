@@ -308,6 +308,9 @@ ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
   progressive.independentHalves =
       options.estimateError || options.targetRmse > 0 || options.adaptive;
   progressive.adaptive = options.adaptive;
+  // The error image of a random-sampler render needs them too (its halves
+  // are always independent).
+  progressive.oddSums = progressive.independentHalves || options.keepErrorImage;
   ProgressiveRenderer job(context_, compiler_, scene, progressive);
   s.primitives = job.flatScene().info.primitiveCount;
   s.bvhNodes = job.flatScene().info.bvhNodeCount;

@@ -148,6 +148,7 @@ std::unique_ptr<ProgressiveRenderer> Viewer::makeRenderer(glm::uvec2 size) const
   options.shading = options_.shading;
   options.adaptive = values.adaptive;
   options.independentHalves = values.adaptive;  // the rounds' noise estimate
+  options.oddSums = values.adaptive;
   // Encoded around the scene's own camera wherever this one has moved, as
   // the render command encodes a camera path's frames: the same image.
   options.frameOrigin = scene_.camera.position;

@@ -1,6 +1,7 @@
 // End-to-end renders of small scenes with answers known in advance.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -307,6 +308,31 @@ TEST_SUITE("render") {
     // Plus a shadow ray for each sample whose hit faces the light.
     CHECK(phong.raysTraced > samples + samples / 10);
     CHECK(phong.raysTraced <= 2 * samples);
+  }
+
+  TEST_CASE("the odd samples' sums are kept only for an error estimate and change nothing else") {
+    Scene scene = baseScene(40, 32);
+    test::addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
+    RenderOptions options;
+    options.samplesPerPixel = 6;
+    options.sampler = SamplerKind::Random;  // halves always independent
+    RenderStats plain;
+    ImageF image = test::render(scene, options, &plain);
+    CHECK_FALSE(plain.features.oddSums);
+    CHECK(plain.estimatedError.empty());
+    options.keepErrorImage = true;  // an error layer (EXR output)
+    RenderStats layered;
+    CHECK(bitwiseEqual(image, test::render(scene, options, &layered)));
+    CHECK(layered.features.oddSums);
+    REQUIRE(layered.estimatedError.size() == 40u * 32u);
+    // The estimate is a real one: some pixels differ between the halves.
+    CHECK(*std::max_element(layered.estimatedError.begin(), layered.estimatedError.end()) > 0.0f);
+    options.keepErrorImage = false;
+    options.estimateError = true;
+    RenderStats estimated;
+    test::render(scene, options, &estimated);
+    CHECK(estimated.features.oddSums);
+    CHECK(estimated.rmseEstimate);
   }
 
   TEST_CASE("renders are reproducible and do not depend on how samples are split") {
