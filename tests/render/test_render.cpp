@@ -37,6 +37,14 @@ Scene faintMirrorScene(float reflectivity) {
   return scene;
 }
 
+// A grey sphere in binary mode: hits in the hit colour, misses in the background.
+Scene binarySphereScene(uint32_t width, uint32_t height) {
+  Scene scene = baseScene(width, height);
+  scene.settings.mode = RenderMode::Binary;
+  test::addSphere(scene, test::diffuse({0.3f, 0.3f, 0.3f}));
+  return scene;
+}
+
 bool bitwiseEqual(const ImageF& a, const ImageF& b) {
   return a.rgba.size() == b.rgba.size() &&
          std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(float)) == 0;
@@ -279,9 +287,7 @@ TEST_SUITE("render") {
   }
 
   TEST_CASE("binary mode paints hits in one colour and misses in the background colour") {
-    Scene scene = baseScene(32, 32);
-    scene.settings.mode = RenderMode::Binary;
-    test::addSphere(scene, test::diffuse({0.3f, 0.3f, 0.3f}));
+    Scene scene = binarySphereScene(32, 32);
     RenderOptions options;
     options.samplesPerPixel = 1;
     ImageF image = test::render(scene, options);
@@ -292,9 +298,7 @@ TEST_SUITE("render") {
   TEST_CASE("the benchmarks' ray counter counts every ray traced") {
     // 37x23 is no whole number of 8x8 groups: the lanes past the image's
     // edge must add nothing (the kernel adds a subgroup's rays at once).
-    Scene scene = baseScene(37, 23);
-    scene.settings.mode = RenderMode::Binary;
-    test::addSphere(scene, test::diffuse({0.3f, 0.3f, 0.3f}));
+    Scene scene = binarySphereScene(37, 23);
     RenderOptions options;
     options.samplesPerPixel = 3;
     options.countRays = true;
