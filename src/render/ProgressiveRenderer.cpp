@@ -106,10 +106,12 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
       height_(flat_.info.height),
       sceneBuffers_(context, flat_, options.sceneArrays),
       region_(resolveRegion(options.region, width_, height_)),
-      accumulation_(context, accumulationBytes(context, flat_), kAccumulationUsage),
-      oddAccumulation_(context, accumulation_.size(), kAccumulationUsage) {
+      accumulation_(context, accumulationBytes(context, flat_), kAccumulationUsage) {
   accumulation_.fillZero();
-  oddAccumulation_.fillZero();
+  if (options.oddSums) {
+    oddAccumulation_.emplace(context, accumulation_.size(), kAccumulationUsage);
+    oddAccumulation_->fillZero();
+  }
   samplesDone_ = options.firstSample;
   if (options.countRays) {
     rayCounter_.emplace(context, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -159,7 +161,8 @@ std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
       static_cast<uint32_t>(sizeof(gpu::GpuFrameParams)));
   sceneBuffers_.bindTo(*kernel);
   kernel->bind(RT_BINDING_ACCUMULATION, accumulation_);
-  kernel->bind(RT_BINDING_ACCUMULATION_ODD, oddAccumulation_);
+  // Without odd sums the kernel does not declare the binding: it stays unwritten.
+  if (oddAccumulation_) kernel->bind(RT_BINDING_ACCUMULATION_ODD, *oddAccumulation_);
   if (rayCounter_) kernel->bind(RT_BINDING_RAY_COUNTER, *rayCounter_);
   if (samplePlan_) kernel->bind(RT_BINDING_SAMPLE_PLAN, *samplePlan_);
   if (tileRays_) kernel->bind(RT_BINDING_TILE_RAYS, *tileRays_);
@@ -225,7 +228,7 @@ void ProgressiveRenderer::addSamples(uint32_t count) {
 
 void ProgressiveRenderer::recordReset(VkCommandBuffer commands) {
   vkCmdFillBuffer(commands, accumulation_.handle(), 0, VK_WHOLE_SIZE, 0);
-  vkCmdFillBuffer(commands, oddAccumulation_.handle(), 0, VK_WHOLE_SIZE, 0);
+  if (oddAccumulation_) vkCmdFillBuffer(commands, oddAccumulation_->handle(), 0, VK_WHOLE_SIZE, 0);
   if (tileRays_) {
     vkCmdFillBuffer(commands, tileRays_->handle(), 0, VK_WHOLE_SIZE, 0);
     std::fill(tileRaysRead_.begin(), tileRaysRead_.end(), 0u);
@@ -280,9 +283,11 @@ ImageF ProgressiveRenderer::resolve() {
 SampleSums ProgressiveRenderer::sampleSums() {
   SampleSums sums{width_, height_, {}, {}};
   sums.all.resize(size_t(width_) * height_);
-  sums.odd.resize(sums.all.size());
+  sums.odd.resize(sums.all.size());  // zeros without odd sums
   accumulation_.download(sums.all.data(), sums.all.size() * sizeof(glm::vec4));
-  oddAccumulation_.download(sums.odd.data(), sums.odd.size() * sizeof(glm::vec4));
+  if (oddAccumulation_) {
+    oddAccumulation_->download(sums.odd.data(), sums.odd.size() * sizeof(glm::vec4));
+  }
   return sums;
 }
 
@@ -304,7 +309,7 @@ std::vector<gpu::GpuTileNoise> ProgressiveRenderer::tileNoise(const ToneMapping&
     tileNoise_ = std::make_unique<TileNoiseKernel>(context_, compiler_, width_, height_);
   }
   if (edges && !pixelExtras_) throw Error("tile noise: not an adaptive render");
-  return tileNoise_->measure(accumulation_, oddAccumulation_, edges ? &*pixelExtras_ : nullptr,
+  return tileNoise_->measure(accumulation_, *oddAccumulation_, edges ? &*pixelExtras_ : nullptr,
                              region_, mapping);
 }
 

@@ -137,7 +137,8 @@ class ProgressiveRenderer {
   SceneBuffers sceneBuffers_;
   PixelRegion region_;
   Buffer accumulation_;
-  Buffer oddAccumulation_;  // sums of odd sample indices: the error estimate
+  // Sums of odd sample indices, for the error estimate (ProgressiveOptions::oddSums).
+  std::optional<Buffer> oddAccumulation_;
   std::optional<Buffer> rayCounter_;
   std::optional<Buffer> samplePlan_;    // adaptive only
   std::optional<Buffer> tileRays_;      // adaptive only: running counters
