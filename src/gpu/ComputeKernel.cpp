@@ -157,6 +157,11 @@ void ComputeKernel::bindAccelerationStructure(uint32_t binding,
   vkUpdateDescriptorSets(context_.device(), 1, &write, 0, nullptr);
 }
 
+void ComputeKernel::compileNow(const void* idlePushConstants) const {
+  context_.submitAndWait(
+      [&](VkCommandBuffer commands) { recordDispatch(commands, idlePushConstants, 1); });
+}
+
 void ComputeKernel::recordDispatch(VkCommandBuffer commands, const void* pushConstants,
                                    uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) const {
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);

@@ -50,6 +50,13 @@ class ComputeKernel {
   void recordDispatch(VkCommandBuffer commands, const void* pushConstants, uint32_t groupsX,
                       uint32_t groupsY = 1, uint32_t groupsZ = 1) const;
 
+  // Runs one workgroup with `idlePushConstants`, which must make every
+  // invocation return without touching memory, and waits. Lavapipe turns a
+  // pipeline into machine code at its first dispatch, not when it is
+  // created: done at set-up, that time is not counted as work (1 s for
+  // default.json's render kernel with Mesa's shader cache off).
+  void compileNow(const void* idlePushConstants) const;
+
  private:
   void destroy();
   VkDescriptorType declaredType(uint32_t binding, VkDescriptorType fallback) const;

@@ -167,13 +167,10 @@ std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
   if (samplePlan_) kernel->bind(RT_BINDING_SAMPLE_PLAN, *samplePlan_);
   if (tileRays_) kernel->bind(RT_BINDING_TILE_RAYS, *tileRays_);
   if (pixelExtras_) kernel->bind(RT_BINDING_PIXEL_EXTRAS, *pixelExtras_);
-  // Lavapipe turns a pipeline into machine code at its first dispatch, not
-  // when it is created: with its shader cache off, default.json's kernel
-  // took 1 s there, which the render's time and rate counted. A dispatch of
-  // an empty tile (every invocation returns at once) does it now, in setup.
-  const gpu::GpuFrameParams nothing{};
-  context_.submitAndWait(
-      [&](VkCommandBuffer commands) { kernel->recordDispatch(commands, &nothing, 1, 1); });
+  // In setup, not in the render's time: an empty tile, where every
+  // invocation returns at once.
+  const gpu::GpuFrameParams emptyTile{};
+  kernel->compileNow(&emptyTile);
   return kernel;
 }
 

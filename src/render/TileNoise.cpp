@@ -1,5 +1,6 @@
 #include "render/TileNoise.hpp"
 
+#include <array>
 #include <cmath>
 
 #include "gpu/ShaderCompiler.hpp"
@@ -8,6 +9,10 @@
 
 namespace rt {
 namespace {
+
+constexpr std::array<uint32_t, 4> kBindings{RT_NOISE_BINDING_ACCUMULATION,
+                                            RT_NOISE_BINDING_ACCUMULATION_ODD,
+                                            RT_NOISE_BINDING_TILES, RT_NOISE_BINDING_PIXEL_EXTRAS};
 
 uint32_t tileCount(uint32_t width, uint32_t height) {
   const glm::uvec2 grid = gpu::adaptiveTileGrid({width, height});
@@ -22,25 +27,18 @@ TileNoiseKernel::TileNoiseKernel(VulkanContext& context, const ShaderCompiler& c
       width_(width),
       height_(height),
       tileCount_(tileCount(width, height)),
-      kernel_(
-          context, compiler.compile("tile_noise.comp", {}),
-          std::vector<uint32_t>{RT_NOISE_BINDING_ACCUMULATION, RT_NOISE_BINDING_ACCUMULATION_ODD,
-                                RT_NOISE_BINDING_TILES, RT_NOISE_BINDING_PIXEL_EXTRAS},
-          sizeof(gpu::GpuTileNoiseParams)),
+      kernel_(context, compiler.compile("tile_noise.comp", {}),
+              std::vector<uint32_t>(kBindings.begin(), kBindings.end()),
+              sizeof(gpu::GpuTileNoiseParams)),
       tiles_(context, VkDeviceSize(tileCount_) * sizeof(gpu::GpuTileNoise),
              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
       noExtras_(context, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
-  // Compiled now rather than at the first measurement (lavapipe turns a
-  // pipeline into machine code at its first dispatch): a dispatch over an
-  // image of no tiles, which reads and writes nothing; the bindings only
-  // need to be valid.
-  gpu::GpuTileNoiseParams nothing{};
-  for (uint32_t binding : {RT_NOISE_BINDING_ACCUMULATION, RT_NOISE_BINDING_ACCUMULATION_ODD,
-                           RT_NOISE_BINDING_TILES, RT_NOISE_BINDING_PIXEL_EXTRAS}) {
-    kernel_.bind(binding, tiles_);
-  }
-  context_.submitAndWait(
-      [&](VkCommandBuffer commands) { kernel_.recordDispatch(commands, &nothing, 1); });
+  // Compiled now rather than at the first measurement: over an image of no
+  // tiles the kernel reads and writes nothing, so its bindings only need to
+  // be valid.
+  for (uint32_t binding : kBindings) kernel_.bind(binding, tiles_);
+  const gpu::GpuTileNoiseParams noTiles{};
+  kernel_.compileNow(&noTiles);
 }
 
 std::vector<gpu::GpuTileNoise> TileNoiseKernel::measure(const Buffer& all, const Buffer& odd,
