@@ -40,11 +40,32 @@ struct RayStack {
   uint size;
 };
 
-// Up to three continuations of one hit.
+// Up to three continuations of one hit, in named slots rather than an
+// array: the count differs between lanes, and a SIMD driver writes an array
+// element at a per-lane index lane by lane (twelve scalars a ray), where a
+// slot is written with one select per scalar for all lanes.
 struct Continuations {
-  PendingRay rays[3];
+  PendingRay first;
+  PendingRay second;
+  PendingRay third;
   uint count;
 };
+
+void appendContinuation(inout Continuations next, PendingRay ray) {
+  if (next.count == 0u) {
+    next.first = ray;
+  } else if (next.count == 1u) {
+    next.second = ray;
+  } else {
+    next.third = ray;
+  }
+  ++next.count;
+}
+
+PendingRay continuationAt(Continuations next, uint index) {
+  if (index == 0u) return next.first;
+  return index == 1u ? next.second : next.third;
+}
 
 // A branch lighter than the bailout is dropped: at POV-Ray's 1/255 (the
 // default) it cannot change an 8-bit pixel by more than its radiance in
@@ -52,7 +73,7 @@ struct Continuations {
 // branches together (README "Speed vs accuracy").
 void addContinuation(inout Continuations next, PendingRay ray) {
   if (!(maxComponent(ray.weight) >= sceneInfo.branchBailout)) return;
-  next.rays[next.count++] = ray;
+  appendContinuation(next, ray);
 }
 
 #ifdef RT_ROULETTE_WEIGHT
@@ -65,13 +86,13 @@ void rouletteContinuations(inout Continuations next, float u) {
   Continuations kept;
   kept.count = 0u;
   for (uint i = 0u; i < next.count; ++i) {
-    PendingRay ray = next.rays[i];
+    PendingRay ray = continuationAt(next, i);
     float weight = maxComponent(ray.weight);
     if (weight < RT_ROULETTE_WEIGHT) {
       if (fract(u + 0.61803399 * float(i)) * RT_ROULETTE_WEIGHT >= weight) continue;
       ray.weight *= RT_ROULETTE_WEIGHT / weight;
     }
-    kept.rays[kept.count++] = ray;
+    appendContinuation(kept, ray);
   }
   next = kept;
 }
@@ -101,15 +122,17 @@ vec2 lobeChoice(uvec2 pixelSample, uint vertex) {
 // it not at all. Returns false when the walk has no continuation here.
 bool nextContinuation(inout RayStack stack, Continuations next, vec2 choice, uvec2 pixelSample,
                       uint vertex, out PendingRay follow) {
-  follow = next.rays[0];
+  follow = next.first;
   if (next.count == 0u) return false;
   if (stack.size + next.count <= RT_WHITTED_STACK_SIZE) {
-    for (uint i = 0u; i + 1u < next.count; ++i) stack.entries[stack.size++] = next.rays[i];
-    follow = next.rays[next.count - 1u];
+    for (uint i = 0u; i + 1u < next.count; ++i) {
+      stack.entries[stack.size++] = continuationAt(next, i);
+    }
+    follow = continuationAt(next, next.count - 1u);
     return true;
   }
   float total = 0.0;
-  for (uint i = 0u; i < next.count; ++i) total += maxComponent(next.rays[i].weight);
+  for (uint i = 0u; i < next.count; ++i) total += maxComponent(continuationAt(next, i).weight);
   if (!(total > 0.0) || stack.size >= RT_WHITTED_STACK_SIZE) return false;
 #ifdef RT_LOBE_AT_EVERY_HIT
   float threshold = choice.x * total;
@@ -119,13 +142,13 @@ bool nextContinuation(inout RayStack stack, Continuations next, vec2 choice, uve
   uint chosen = next.count - 1u;
   float running = 0.0;
   for (uint i = 0u; i < next.count; ++i) {
-    running += maxComponent(next.rays[i].weight);
+    running += maxComponent(continuationAt(next, i).weight);
     if (threshold < running) {
       chosen = i;
       break;
     }
   }
-  follow = next.rays[chosen];
+  follow = continuationAt(next, chosen);
   follow.weight *= total / maxComponent(follow.weight);
   return true;
 }
