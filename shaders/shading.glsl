@@ -28,44 +28,98 @@ const int RT_MAX_SHADOW_CROSSINGS = 8;
 const int RT_MAX_SHADOW_CROSSINGS = 1;
 #endif
 
-// Share of a light that reaches the end of `ray` at distance tMax: 0 behind
-// an opaque surface; with `throughGlass`, transmissive surfaces let it
-// through, losing the Fresnel reflectance and (1 - transmission) at each
-// crossing (shadow rays go straight: refraction does not bend them, and
-// caustics need sampled bounces). Without it (where sampled bounces carry
-// that light) an any-hit query decides. One walk call site for all of it:
-// the walk is most of a kernel's code, and every call site is a copy.
-float lightVisibility(Ray ray, float tMax, bool throughGlass) {
-  float transmittance = 1.0;
-  float travelled = 0.0;
+// A shadow ray on its way to a light: with `throughGlass`, transmissive
+// surfaces let the light through, losing the Fresnel reflectance and
+// (1 - transmission) at each crossing (shadow rays go straight: refraction
+// does not bend them, and caustics need sampled bounces); without it (where
+// sampled bounces carry that light) an any-hit query decides.
+struct ShadowPath {
+  Ray ray;              // from the last crossing on
+  float remaining;      // distance from ray.origin to the light
+  float transmittance;  // of the crossings so far
+  bool open;            // not settled yet
+};
+
+ShadowPath shadowPath(Ray ray, float tMax) { return ShadowPath(ray, tMax, 1.0, true); }
+
+// The path's light once the walks are done: a path still open after the
+// most crossings counts as blocked.
+float pathVisibility(ShadowPath path) { return path.open ? 0.0 : path.transmittance; }
+
+// Moves an open path past what its last walk found: nothing (the light
+// arrives), an opaque surface (blocked), or a crossing through glass.
+void crossSurface(inout ShadowPath path, bool found, SurfaceHit hit, bool throughGlass) {
+  if (!path.open) return;
+  if (!found) {
+    path.open = false;
+    return;
+  }
 #ifdef RT_FEATURE_REFRACTION
-  bool anyHit = !throughGlass;
-#else
-  const bool anyHit = true;  // nothing to pass through: any hit blocks the light
-#endif
-  for (int crossing = 0; crossing < RT_MAX_SHADOW_CROSSINGS; ++crossing) {
-    SurfaceHit hit;
-    float limit = tMax - travelled;
-    if (!traverse(ray, 0.0, limit, anyHit, hit)) return transmittance;
-#ifdef RT_FEATURE_REFRACTION
-    if (!throughGlass) return 0.0;
+  if (throughGlass) {
     GpuMaterial blocker = loadMaterial(hitMaterial(hit));
-    float cosine = dot(ray.direction, hit.normal);
+    float cosine = dot(path.ray.direction, hit.normal);
     float eta = cosine < 0.0 ? 1.0 / blocker.ior : blocker.ior;
     float cosTransmitted;
     float reflectance = dielectricReflectance(abs(cosine), eta, cosTransmitted);
-    transmittance *= blocker.transmission * (1.0 - reflectance);
-    if (transmittance < RT_MIN_BRANCH_WEIGHT) return 0.0;
-    vec4 point = hitPoint(ray, hit);
-    Ray next = spawnRay(point.xyz, point.w, hit.normal, ray.direction);
-    travelled += dot(next.origin - ray.origin, ray.direction);
-    ray = next;
-#else
-    return 0.0;
-#endif
+    path.transmittance *= blocker.transmission * (1.0 - reflectance);
+    if (path.transmittance >= RT_MIN_BRANCH_WEIGHT) {
+      vec4 point = hitPoint(path.ray, hit);
+      Ray next = spawnRay(point.xyz, point.w, hit.normal, path.ray.direction);
+      path.remaining -= dot(next.origin - path.ray.origin, path.ray.direction);
+      path.ray = next;
+      return;
+    }
   }
-  return 0.0;
+#endif
+  path.transmittance = 0.0;
+  path.open = false;
 }
+
+bool shadowWalkIsAnyHit(bool throughGlass) {
+#ifdef RT_FEATURE_REFRACTION
+  return !throughGlass;
+#else
+  return true;  // nothing to pass through: any hit blocks the light
+#endif
+}
+
+#ifdef RT_SHADOW_PAIRS
+// Share of each light sample's light that reaches the end of its shadow
+// ray (length tMax; a negative tMax: not traced, 0), the two rays walked
+// together (traversePair). One walk call site for all of it: the walk is
+// most of a kernel's code, and every call site is a copy.
+vec2 lightVisibilityPair(Ray rayA, float tMaxA, Ray rayB, float tMaxB, bool throughGlass) {
+  ShadowPath a = shadowPath(rayA, tMaxA);
+  ShadowPath b = shadowPath(rayB, tMaxB);
+  a.open = tMaxA >= 0.0;
+  b.open = tMaxB >= 0.0;
+  bool anyHit = shadowWalkIsAnyHit(throughGlass);
+  for (int crossing = 0; crossing < RT_MAX_SHADOW_CROSSINGS && (a.open || b.open); ++crossing) {
+    SurfaceHit hitA;
+    SurfaceHit hitB;
+    traversePair(a.ray, b.ray, bvec2(a.open, b.open), vec2(a.remaining, b.remaining), anyHit,
+                 hitA, hitB);
+    crossSurface(a, hitA.t >= 0.0, hitA, throughGlass);
+    crossSurface(b, hitB.t >= 0.0, hitB, throughGlass);
+  }
+  return vec2(pathVisibility(a), pathVisibility(b));
+}
+#else
+// Share of a light that reaches the end of `ray` at distance tMax. One walk
+// call site for all of it: the walk is most of a kernel's code, and every
+// call site is a copy.
+float lightVisibility(Ray ray, float tMax, bool throughGlass) {
+  ShadowPath path = shadowPath(ray, tMax);
+  bool anyHit = shadowWalkIsAnyHit(throughGlass);
+  for (int crossing = 0; crossing < RT_MAX_SHADOW_CROSSINGS && path.open; ++crossing) {
+    SurfaceHit hit;
+    float limit = path.remaining;
+    bool found = traverse(path.ray, 0.0, limit, anyHit, hit);
+    crossSurface(path, found, hit, throughGlass);
+  }
+  return pathVisibility(path);
+}
+#endif
 
 // Unit-length colour: the coursework's renderer tints by the diffuse colour's
 // direction, not its magnitude (white (1,1,1) shows as 0.577).
@@ -193,6 +247,61 @@ vec3 emittedRadiance(GpuMaterial material, SurfaceHit hit, vec3 direction) {
 }
 #endif
 
+// The light samples of one shading point, in order: every point light,
+// then each area light's samples.
+struct LightCursor {
+  uint next;  // index of the next sample
+#ifdef RT_FEATURE_AREA_LIGHTS
+  uint areaLight;  // the area light of the next area sample, and its sample
+  uint sub;
+  GpuAreaLight light;
+#endif
+};
+
+LightCursor firstLight() {
+  LightCursor cursor;
+  cursor.next = 0u;
+#ifdef RT_FEATURE_AREA_LIGHTS
+  cursor.areaLight = 0u;
+  cursor.sub = 0u;
+  if (sceneInfo.areaLightCount > 0u) cursor.light = loadAreaLight(0u);
+#endif
+  return cursor;
+}
+
+LightSample nextLightSample(inout LightCursor cursor, ShadingContext context, uvec2 pixelSample,
+                            uint vertexDepth) {
+  uint k = cursor.next++;
+#ifdef RT_FEATURE_AREA_LIGHTS
+  if (k >= sceneInfo.pointLightCount) {
+    LightSample lit = areaLightSample(context, cursor.light, cursor.areaLight, cursor.sub,
+                                      pixelSample, vertexDepth);
+    if (++cursor.sub >= cursor.light.samples && ++cursor.areaLight < sceneInfo.areaLightCount) {
+      cursor.sub = 0u;
+      cursor.light = loadAreaLight(cursor.areaLight);
+    }
+    return lit;
+  }
+#endif
+  return pointLightSample(context, k);
+}
+
+// Whether a sample's shadow ray is traced: a sample that could add less
+// than `negligible` is counted at half its unshadowed light instead.
+bool shadowRayTraced(LightSample lit, float negligible) {
+  float worth = maxComponent(lit.reflected);
+  return worth > 0.0 && !(worth < negligible);
+}
+
+// What a sample adds, given the share of its light that its shadow ray
+// found (read only where the ray was traced).
+vec3 sampleContribution(LightSample lit, float negligible, float visibility) {
+  float worth = maxComponent(lit.reflected);
+  if (!(worth > 0.0)) return vec3(0.0);
+  if (worth < negligible) return 0.5 * lit.reflected;
+  return visibility * lit.reflected;
+}
+
 // Light reflected towards the viewer from a surface already facing it, from
 // every point light and every sample of every area light, in one loop (see
 // lightVisibility). `throughGlass`: shadow rays pass transmissive surfaces.
@@ -201,44 +310,42 @@ vec3 emittedRadiance(GpuMaterial material, SurfaceHit hit, vec3 direction) {
 // together at most the bailout) is not traced but counted at half its
 // unshadowed light, in error by at most half that share whether it was lit
 // or not; so glass, whose highlight is dark nearly everywhere, traces
-// almost no shadow rays (README "Speed vs accuracy").
+// almost no shadow rays (README "Speed vs accuracy"). With RT_SHADOW_PAIRS
+// the samples go two by two, their shadow rays walked together; the sums
+// are made in the same order, so the image is the same.
 vec3 directLighting(ShadingContext context, uvec2 pixelSample, uint vertexDepth,
                     bool throughGlass, float pathWeight) {
   vec3 radiance = vec3(0.0);
   uint samples = sceneInfo.pointLightCount;
 #ifdef RT_FEATURE_AREA_LIGHTS
   samples += sceneInfo.areaLightSamples;
-  uint areaLight = 0u;  // the area light of the next area sample, and its sample
-  uint sub = 0u;
-  GpuAreaLight light;
-  if (sceneInfo.areaLightCount > 0u) light = loadAreaLight(0u);
 #endif
+  LightCursor cursor = firstLight();
   // `--bailout 0` (the floor) traces every sample.
   float share = sceneInfo.branchBailout / (max(pathWeight, 1e-30) * float(max(samples, 1u)));
   float negligible = sceneInfo.branchBailout > RT_MIN_BRANCH_WEIGHT ? share : 0.0;
-  for (uint k = 0u; k < samples; ++k) {
-    LightSample lit;
-#ifdef RT_FEATURE_AREA_LIGHTS
-    if (k >= sceneInfo.pointLightCount) {
-      lit = areaLightSample(context, light, areaLight, sub, pixelSample, vertexDepth);
-      if (++sub >= light.samples && ++areaLight < sceneInfo.areaLightCount) {
-        sub = 0u;
-        light = loadAreaLight(areaLight);
-      }
-    } else {
-      lit = pointLightSample(context, k);
-    }
-#else
-    lit = pointLightSample(context, k);
-#endif
-    float worth = maxComponent(lit.reflected);
-    if (!(worth > 0.0)) continue;
-    if (worth < negligible) {
-      radiance += 0.5 * lit.reflected;
-      continue;
-    }
-    radiance += lightVisibility(lit.shadowRay, lit.tMax, throughGlass) * lit.reflected;
+#ifdef RT_SHADOW_PAIRS
+  for (uint k = 0u; k < samples; k += 2u) {
+    LightSample first = nextLightSample(cursor, context, pixelSample, vertexDepth);
+    LightSample second = first;  // past the last sample: not traced, adds nothing
+    second.reflected = vec3(0.0);
+    if (k + 1u < samples) second = nextLightSample(cursor, context, pixelSample, vertexDepth);
+    vec2 visibility = lightVisibilityPair(
+        first.shadowRay, shadowRayTraced(first, negligible) ? first.tMax : -1.0,
+        second.shadowRay, shadowRayTraced(second, negligible) ? second.tMax : -1.0, throughGlass);
+    radiance += sampleContribution(first, negligible, visibility.x);
+    radiance += sampleContribution(second, negligible, visibility.y);
   }
+#else
+  for (uint k = 0u; k < samples; ++k) {
+    LightSample lit = nextLightSample(cursor, context, pixelSample, vertexDepth);
+    float visibility = 0.0;
+    if (shadowRayTraced(lit, negligible)) {
+      visibility = lightVisibility(lit.shadowRay, lit.tMax, throughGlass);
+    }
+    radiance += sampleContribution(lit, negligible, visibility);
+  }
+#endif
   // The coursework model clamps the light reaching the eye first, then tints
   // it (highlights included) by the normalised diffuse colour, or by the
   // texture colour as it is.

@@ -55,6 +55,68 @@ float boxEntry(vec3 boundsMin, vec3 boundsMax, vec3 originTimesInv, vec3 invDir,
 
 bool isLeafRef(uint ref) { return (ref & RT_REF_LEAF) != 0u; }
 
+// A ray as the walk tests it: the slab test's reciprocal direction and
+// origin times it, and the watertight triangle test's frame, once per ray
+// (and per instance entered).
+struct WalkRay {
+  Ray ray;
+  vec3 invDir;
+  vec3 originTimesInv;
+  ShearedRay frame;
+};
+
+WalkRay walkRay(Ray ray) {
+  vec3 invDir = safeReciprocal(ray.direction);
+  return WalkRay(ray, invDir, ray.origin * invDir, shearRay(ray.direction));
+}
+
+// An interior node's two children: their boxes and references.
+struct ChildBoxes {
+  vec3 leftMin;
+  vec3 leftMax;
+  vec3 rightMin;
+  vec3 rightMax;
+  uint left;
+  uint right;
+};
+
+ChildBoxes loadChildBoxes(uint node) {
+  uvec4 low = nodeRow(node, 0u);
+  uvec4 high = nodeRow(node, 1u);
+  vec2 lminZmaxX = unpackHalf2x16(low.w);
+  vec2 rminZmaxX = unpackHalf2x16(high.z);
+  return ChildBoxes(vec3(unpackHalf2x16(low.z), lminZmaxX.x),
+                    vec3(lminZmaxX.y, unpackHalf2x16(high.x)),
+                    vec3(unpackHalf2x16(high.y), rminZmaxX.x),
+                    vec3(rminZmaxX.y, unpackHalf2x16(high.w)), low.x, low.y);
+}
+
+// Entry distances of `ray` into both children (RT_FAR: missed).
+vec2 childEntries(ChildBoxes boxes, WalkRay ray, float tMin, float tMax) {
+  return vec2(boxEntry(boxes.leftMin, boxes.leftMax, ray.originTimesInv, ray.invDir, tMin, tMax),
+              boxEntry(boxes.rightMin, boxes.rightMax, ray.originTimesInv, ray.invDir, tMin,
+                       tMax));
+}
+
+#ifdef RT_FEATURE_MESHES
+// A mesh triangle of `instance` against `ray`; on a hit shrinks tMax and
+// records it in `hit`. Normals are found once, after the walk: the leaf
+// loop runs for every lane, so it carries as little as it can.
+bool testMeshTriangle(uint item, vec3 v0, vec3 v1, vec3 v2, WalkRay ray, float tMin,
+                      inout float tMax, uint instance, inout SurfaceHit hit) {
+  vec2 barycentric;
+  if (!intersectTriangleSheared(v0, v1, v2, ray.ray.origin, ray.frame, tMin, tMax,
+                                barycentric)) {
+    return false;
+  }
+  hit.t = tMax;
+  hit.primitiveIndex = instance;
+  hit.triangleIndex = item;
+  hit.barycentric = barycentric;
+  return true;
+}
+#endif
+
 #ifdef RT_FEATURE_INSTANCE_TRANSFORMS
 // Stack entry that ends a mesh instance: the walk goes back to world space.
 // Only scenes with a mesh placed more than once need it: a mesh used once is
@@ -105,6 +167,20 @@ uint popTop(inout StackTop top) {
     node = popTop(top);                                        \
     if (top.size >= 4u) top.entries[3] = spill[top.size - 4u]; \
   }
+// From an interior node to its nearer child that the ray enters (the other
+// one pushed if it enters both), or to the stack's top if it enters neither.
+// `entries` is childEntries' answer.
+#define RT_DESCEND(top, spill, node, boxes, entries)                     \
+  {                                                                      \
+    bool hitLeft = entries.x != RT_FAR, hitRight = entries.y != RT_FAR; \
+    if (!hitLeft && !hitRight) {                                         \
+      RT_POP(top, spill, node);                                          \
+    } else {                                                             \
+      bool leftFirst = entries.x <= entries.y;                           \
+      node = leftFirst ? boxes.left : boxes.right;                       \
+      if (hitLeft && hitRight) RT_PUSH(top, spill, leftFirst ? boxes.right : boxes.left); \
+    }                                                                    \
+  }
 
 // Walks the BVH; with anyHit it stops at the first intersection found.
 // A walk pushes only when it enters both children, at most one entry per
@@ -116,11 +192,7 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
   ++raysTraced;
 #endif
   if (sceneInfo.bvhNodeCount == 0u) return false;
-  Ray ray = worldRay;
-  vec3 invDir = safeReciprocal(ray.direction);
-  vec3 originTimesInv = ray.origin * invDir;
-  // The watertight test's ray frame, once per ray (and per instance entered).
-  ShearedRay frame = shearRay(ray.direction);
+  WalkRay ray = walkRay(worldRay);
   uint hitKind = RT_PRIM_TRIANGLE;
   StackTop top = StackTop(uint[4](RT_NONE, RT_NONE, RT_NONE, RT_NONE), 0u);
   uint spill[RT_BVH_STACK_SIZE];
@@ -136,24 +208,9 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
   while (node != RT_NONE) {
     // Interior nodes until this lane holds a leaf (or has nothing left).
     while (!isLeafRef(node)) {
-      uvec4 low = nodeRow(node, 0u);
-      uvec4 high = nodeRow(node, 1u);
-      vec2 lminZmaxX = unpackHalf2x16(low.w);
-      vec2 rminZmaxX = unpackHalf2x16(high.z);
-      vec3 leftMin = vec3(unpackHalf2x16(low.z), lminZmaxX.x);
-      vec3 leftMax = vec3(lminZmaxX.y, unpackHalf2x16(high.x));
-      vec3 rightMin = vec3(unpackHalf2x16(high.y), rminZmaxX.x);
-      vec3 rightMax = vec3(rminZmaxX.y, unpackHalf2x16(high.w));
-      float tLeft = boxEntry(leftMin, leftMax, originTimesInv, invDir, tMin, tMax);
-      float tRight = boxEntry(rightMin, rightMax, originTimesInv, invDir, tMin, tMax);
-      bool hitLeft = tLeft != RT_FAR, hitRight = tRight != RT_FAR;
-      if (!hitLeft && !hitRight) {
-        RT_POP(top, spill, node);
-      } else {
-        bool leftFirst = tLeft <= tRight;
-        node = leftFirst ? low.x : low.y;
-        if (hitLeft && hitRight) RT_PUSH(top, spill, leftFirst ? low.y : low.x);
-      }
+      ChildBoxes boxes = loadChildBoxes(node);
+      vec2 entries = childEntries(boxes, ray, tMin, tMax);
+      RT_DESCEND(top, spill, node, boxes, entries);
     }
     if (node == RT_NONE) break;
 
@@ -164,25 +221,17 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
     bool meshLeaf = (node & RT_REF_MESH) != 0u;
     uint kind = field - 1u;
 #ifdef RT_FEATURE_MESHES
-    // Normals are found once, after the walk: the loop body runs for every
-    // lane, so it carries as little as it can.
     uint count = meshLeaf ? field : 0u;
     for (uint item = first; item < first + count; ++item) {
-      vec2 barycentric;
-      if (intersectTriangleSheared(itemRow(item, 0u).xyz, itemRow(item, 1u).xyz,
-                                   itemRow(item, 2u).xyz, ray.origin, frame, tMin, tMax,
-                                   barycentric)) {
-        hit.t = tMax;
-        hit.primitiveIndex = instance;
-        hit.triangleIndex = item;
-        hit.barycentric = barycentric;
+      if (testMeshTriangle(item, itemRow(item, 0u).xyz, itemRow(item, 1u).xyz,
+                           itemRow(item, 2u).xyz, ray, tMin, tMax, instance, hit)) {
         hitKind = RT_PRIM_TRIANGLE;
         if (anyHit) return true;
       }
     }
 #endif
 #ifdef RT_TOP_LEVEL_SHAPES
-    if (!meshLeaf && testTopLevelItem(first, kind, ray, frame, tMin, tMax, hit)) {
+    if (!meshLeaf && testTopLevelItem(first, kind, ray.ray, ray.frame, tMin, tMax, hit)) {
       hitKind = kind;
       if (anyHit) return true;
     }
@@ -207,19 +256,108 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
     // In object space until the marker under the mesh's entries comes back.
     if (enter) {
       RT_PUSH(top, spill, RT_REF_LEAVE_INSTANCE);
-      ray = rayToObject(worldRay, itemRow(first, 0u), itemRow(first, 1u), itemRow(first, 2u));
+      ray = walkRay(
+          rayToObject(worldRay, itemRow(first, 0u), itemRow(first, 1u), itemRow(first, 2u)));
     }
-    if (leave) ray = worldRay;
-    if (enter || leave) {
-      invDir = safeReciprocal(ray.direction);
-      originTimesInv = ray.origin * invDir;
-      frame = shearRay(ray.direction);
-    }
+    if (leave) ray = walkRay(worldRay);
 #endif
   }
   if (hit.t < 0.0) return false;
   completeHitNormal(worldRay, hitKind, hit);
   return true;
 }
+
+
+#ifdef RT_SHADOW_PAIRS
+// Two rays walked together: the shadow rays of one shading point towards
+// two light samples start at one point and mostly head the same way, so
+// they visit mostly the same nodes, and each node's two texel fetches (the
+// larger part of a visit on lavapipe) serve both. A node is entered if
+// either ray enters it, nearest first by the nearer of the two. The answers
+// are those of two `traverse` calls: each ray keeps its own tMax and hit,
+// and an any-hit ray that found one stops taking part. A ray that is not
+// `walking` takes no part and is not counted. tMin is 0 (shadow rays), so a
+// negative tMax meets nothing. Not built with instance transforms.
+#ifdef RT_FEATURE_INSTANCE_TRANSFORMS
+#error RT_SHADOW_PAIRS walks without instance transforms
+#endif
+void traversePair(Ray rayA, Ray rayB, bvec2 walking, vec2 tMax, bool anyHit,
+                  out SurfaceHit hitA, out SurfaceHit hitB) {
+  clearHit(hitA);
+  clearHit(hitB);
+  const float tMin = 0.0;
+  const float retired = -1.0;  // below tMin: no box or primitive is met
+  tMax = mix(vec2(retired), tMax, walking);
+#ifdef RT_TALLY_RAYS
+  raysTraced += uint(walking.x) + uint(walking.y);
+#endif
+  if (sceneInfo.bvhNodeCount == 0u || !any(walking)) return;
+  WalkRay a = walkRay(rayA);
+  WalkRay b = walkRay(rayB);
+  uint kindA = RT_PRIM_TRIANGLE, kindB = RT_PRIM_TRIANGLE;
+  StackTop top = StackTop(uint[4](RT_NONE, RT_NONE, RT_NONE, RT_NONE), 0u);
+  uint spill[RT_BVH_STACK_SIZE];
+  uint node = 0u;
+#ifdef RT_FEATURE_MESHES
+  uint instance = sceneInfo.soleInstance;
+  if (instance != RT_NO_INSTANCE) node = 1u + instance;
+#endif
+  while (node != RT_NONE) {
+    while (!isLeafRef(node)) {
+      ChildBoxes boxes = loadChildBoxes(node);
+      vec2 entriesA = childEntries(boxes, a, tMin, tMax.x);
+      vec2 entriesB = childEntries(boxes, b, tMin, tMax.y);
+      vec2 entries = vec2(selectMin(entriesA.x, entriesB.x), selectMin(entriesA.y, entriesB.y));
+      RT_DESCEND(top, spill, node, boxes, entries);
+    }
+    if (node == RT_NONE) break;
+    uint first = node & RT_REF_FIRST_MASK;
+    uint field = (node >> RT_REF_COUNT_SHIFT) & RT_REF_MAX_LEAF_SIZE;
+    bool meshLeaf = (node & RT_REF_MESH) != 0u;
+    uint kind = field - 1u;
+#ifdef RT_FEATURE_MESHES
+    uint count = meshLeaf ? field : 0u;
+    for (uint item = first; item < first + count; ++item) {
+      vec3 v0 = itemRow(item, 0u).xyz, v1 = itemRow(item, 1u).xyz, v2 = itemRow(item, 2u).xyz;
+      if (testMeshTriangle(item, v0, v1, v2, a, tMin, tMax.x, instance, hitA)) {
+        kindA = RT_PRIM_TRIANGLE;
+        if (anyHit) tMax.x = retired;
+      }
+      if (testMeshTriangle(item, v0, v1, v2, b, tMin, tMax.y, instance, hitB)) {
+        kindB = RT_PRIM_TRIANGLE;
+        if (anyHit) tMax.y = retired;
+      }
+    }
+#endif
+#ifdef RT_TOP_LEVEL_SHAPES
+    if (!meshLeaf) {
+      if (testTopLevelItem(first, kind, a.ray, a.frame, tMin, tMax.x, hitA)) {
+        kindA = kind;
+        if (anyHit) tMax.x = retired;
+      }
+      if (testTopLevelItem(first, kind, b.ray, b.frame, tMin, tMax.y, hitB)) {
+        kindB = kind;
+        if (anyHit) tMax.y = retired;
+      }
+    }
+#endif
+    if (anyHit && tMax.x == retired && tMax.y == retired) break;
+#ifdef RT_FEATURE_MESHES
+    bool enter = !meshLeaf && kind == RT_PRIM_INSTANCE;
+    if (enter) {
+      node = 1u + first;
+    } else {
+      RT_POP(top, spill, node);
+    }
+    instance = enter ? first : instance;
+#else
+    RT_POP(top, spill, node);
+#endif
+  }
+  if (anyHit) return;
+  if (hitA.t >= 0.0) completeHitNormal(rayA, kindA, hitA);
+  if (hitB.t >= 0.0) completeHitNormal(rayB, kindB, hitB);
+}
+#endif
 
 #endif

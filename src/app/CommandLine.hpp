@@ -9,6 +9,7 @@
 #include <string>
 
 #include "encode/Conventions.hpp"
+#include "encode/Features.hpp"
 #include "encode/FlatScene.hpp"
 #include "encode/SceneBuffers.hpp"
 #include "scene/Limits.hpp"
@@ -57,6 +58,11 @@ AccelKind accelNamed(const std::string& name);
 // the kind (empty: texel).
 void addSceneArraysOption(CLI::App& app, std::string& name);
 SceneArrays sceneArraysNamed(const std::string& name);
+
+// --shadow-walks paired|single into `name`; shadowWalksNamed turns it into
+// the kind (empty: paired).
+void addShadowWalksOption(CLI::App& app, std::string& name);
+ShadowWalks shadowWalksNamed(const std::string& name);
 
 // --conventions NAME (coursework-a, coursework-b, textbook) into `name`.
 void addConventionsOption(CLI::App& app, std::string& name);

@@ -67,6 +67,8 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat) {
     for (const gpu::GpuEmitter& emitter : flat.emitters)
       features.emitterKinds |= 1u << emitter.kind;
   }
+  features.shadowPairs = lit && !features.hardwareAccel && !features.instanceTransforms &&
+                         flat.info.pointLightCount + flat.info.areaLightSamples >= 2;
   features.pathTracer = scene.settings.mode == RenderMode::PathTracer;
   features.diffuseBounces =
       features.pathTracer ? scene.settings.maxBounces > 0 : lit && flat.info.distributedBounces > 0;
@@ -113,6 +115,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(hardwareAccel, "RT_ACCEL_HARDWARE");
   flag(storageBuffers, "RT_SCENE_STORAGE_BUFFERS");
   flag(binaryOnly, "RT_BINARY_ONLY");
+  flag(shadowPairs, "RT_SHADOW_PAIRS");
   if (samplerKind >= 0) result.emplace_back("RT_SAMPLER_KIND", std::to_string(samplerKind) + "u");
   if (emitterKinds != 0) {
     result.emplace_back("RT_EMITTER_KINDS", std::to_string(emitterKinds) + "u");

@@ -12,6 +12,11 @@
 
 namespace rt {
 
+// How a shading point's shadow rays walk the BVH: two by two where a scene
+// has two or more light samples a hit (the default), or one by one (to
+// measure other GPUs). The image is the same.
+enum class ShadowWalks { Paired, Single };
+
 struct ShaderFeatures {
   bool spheres = false;
   bool triangles = false;       // also quads and meshes
@@ -44,9 +49,14 @@ struct ShaderFeatures {
   // Kinds of area-light pieces (bits 1 << RT_PRIM_*), so that only their
   // sampling code is built; 0: no area lights.
   uint32_t emitterKinds = 0;
+  // Pending rays of the ray tree.
   uint32_t whittedStackSize = 1;
-  float rouletteWeight = 0.0f;  // RenderSettings::rouletteWeight where the tree branches  //
-                                // pending rays of the ray tree
+  // RenderSettings::rouletteWeight where the tree branches.
+  float rouletteWeight = 0.0f;
+  // A shading point's shadow rays are walked two by two (traversePair in
+  // shaders/traverse_bvh.glsl): scenes with two or more light samples a hit,
+  // through the renderer's own BVH, without instance transforms.
+  bool shadowPairs = false;
 
   ShaderDefines defines() const;
   std::string summary() const;  // e.g. "spheres triangles reflection"

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "encode/Conventions.hpp"
+#include "encode/Features.hpp"
 #include "encode/FlatScene.hpp"
 #include "encode/SceneBuffers.hpp"
 #include "imaging/PixelRegion.hpp"
@@ -24,6 +25,8 @@ struct ImageSampling {
   AccelKind accel = AccelKind::Bvh;     // none: brute force, to compare against
   // How kernels read the scene arrays; the image does not depend on it.
   SceneArrays sceneArrays = SceneArrays::TexelBuffers;
+  // How shadow rays walk the BVH; the image does not depend on it.
+  ShadowWalks shadowWalks = ShadowWalks::Paired;
   // Origin of the GPU's coordinates (FlattenOptions::frameOrigin).
   std::optional<WorldPoint> frameOrigin;
   // How the image is shown (default: toneMappingFor(scene)), `--exposure`

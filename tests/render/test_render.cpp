@@ -533,6 +533,66 @@ TEST_SUITE("render") {
   }
 }
 
+// A shading point's shadow rays walked two by two (ShadowWalks::Paired,
+// traversePair) or one by one: each ray finds the same hits and the sums are
+// made in the same order, so the image is the same to the bit, and so is
+// the count of rays, which adaptive sampling weighs tiles by.
+TEST_SUITE("render") {
+  void checkPairedShadowWalksMatch(const Scene& scene, RenderOptions options,
+                                   bool expectPairs = true) {
+    options.countRays = true;
+    options.shadowWalks = ShadowWalks::Single;
+    RenderStats singleStats;
+    const ImageF single = test::render(scene, options, &singleStats);
+    options.shadowWalks = ShadowWalks::Paired;
+    RenderStats pairedStats;
+    const ImageF paired = test::render(scene, options, &pairedStats);
+    CHECK_FALSE(singleStats.features.shadowPairs);
+    CHECK(pairedStats.features.shadowPairs == expectPairs);
+    CHECK(bitwiseEqual(single, paired));
+    CHECK(allFinite(paired));
+    CHECK(singleStats.raysTraced == pairedStats.raysTraced);
+  }
+
+  RenderOptions pairedWalksRender() {
+    RenderOptions options;
+    options.width = 64;
+    options.height = 48;
+    options.samplesPerPixel = 3;
+    return options;
+  }
+
+  TEST_CASE("paired shadow walks give the single walks' image and ray count") {
+    // Two point lights; spheres, cylinders, a mesh, mirrors, and glass that
+    // shadow rays cross (closest-hit walks from crossing to crossing).
+    const Scene defaultScene = test::projectScene("default.json");
+    checkPairedShadowWalksMatch(defaultScene, pairedWalksRender());
+    // A point light and an area light.
+    Scene areaLit = test::projectScene("study-arealight.json");
+    checkPairedShadowWalksMatch(areaLit, pairedWalksRender());
+    // Three light samples: the last pair walks one ray.
+    REQUIRE(areaLit.areaLights.size() == 1);
+    areaLit.areaLights[0].samples = 2;
+    checkPairedShadowWalksMatch(areaLit, pairedWalksRender());
+    // The path tracer, whose shadow rays stop at any hit (glass blocks them:
+    // sampled bounces carry the light through it).
+    Scene cornell = test::projectScene("cornell-pathtraced.json");
+    REQUIRE(cornell.areaLights.size() == 1);
+    cornell.areaLights[0].samples = 2;
+    checkPairedShadowWalksMatch(cornell, pairedWalksRender());
+    // Adaptive sampling, whose rounds read the rays each tile traced.
+    RenderOptions adaptive = pairedWalksRender();
+    adaptive.adaptive = true;
+    adaptive.keepErrorImage = true;
+    checkPairedShadowWalksMatch(defaultScene, adaptive);
+    // One light: nothing to pair, the single walk is built.
+    Scene oneLight = defaultScene;
+    oneLight.pointLights.resize(1);
+    checkPairedShadowWalksMatch(oneLight, pairedWalksRender(), false);
+    test::checkNoValidationMessages();
+  }
+}
+
 // A Blender export (formats/json/BlenderExport), end to end: Blender's
 // camera, cube, light power and world colour.
 TEST_SUITE("render") {
