@@ -15,4 +15,18 @@ vec3 binaryRadiance(Ray primary) {
                                                 : sceneInfo.backgroundColor;
 }
 
+#ifdef RT_PRIMARY_PAIRS
+// The values of two samples whose primary rays walk together (traversePair):
+// rays through one pixel visit nearly the same nodes. Without `hasSecond`
+// only the first is traced.
+void binaryRadiancePair(Ray first, Ray second, bool hasSecond, out vec3 firstValue,
+                        out vec3 secondValue) {
+  SurfaceHit firstHit;
+  SurfaceHit secondHit;
+  traversePair(first, second, bvec2(true, hasSecond), vec2(RT_FAR), false, firstHit, secondHit);
+  firstValue = firstHit.t >= 0.0 ? sceneInfo.binaryHitColor : sceneInfo.backgroundColor;
+  secondValue = secondHit.t >= 0.0 ? sceneInfo.binaryHitColor : sceneInfo.backgroundColor;
+}
+#endif
+
 #endif

@@ -268,18 +268,19 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
 }
 
 
-#ifdef RT_SHADOW_PAIRS
+#if defined(RT_SHADOW_PAIRS) || defined(RT_PRIMARY_PAIRS)
 // Two rays walked together: the shadow rays of one shading point towards
-// two light samples start at one point and mostly head the same way, so
-// they visit mostly the same nodes, and each node's two texel fetches (the
-// larger part of a visit on lavapipe) serve both. A node is entered if
+// two light samples, or the primary rays of two samples of one pixel, start
+// at one point and mostly head the same way, so they visit mostly the same
+// nodes, and each node's two texel fetches (the larger part of a visit on
+// lavapipe) serve both. A node is entered if
 // either ray enters it, nearest first by the nearer of the two. The answers
 // are those of two `traverse` calls: each ray keeps its own tMax and hit,
 // and an any-hit ray that found one stops taking part. A ray that is not
 // `walking` takes no part and is not counted. tMin is 0 (shadow rays), so a
 // negative tMax meets nothing. Not built with instance transforms.
 #ifdef RT_FEATURE_INSTANCE_TRANSFORMS
-#error RT_SHADOW_PAIRS walks without instance transforms
+#error paired walks are built without instance transforms
 #endif
 void traversePair(Ray rayA, Ray rayB, bvec2 walking, vec2 tMax, bool anyHit,
                   out SurfaceHit hitA, out SurfaceHit hitB) {

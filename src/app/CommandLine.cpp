@@ -124,16 +124,17 @@ SceneArrays sceneArraysNamed(const std::string& name) {
   return name == "storage" ? SceneArrays::StorageBuffers : SceneArrays::TexelBuffers;
 }
 
-void addShadowWalksOption(CLI::App& app, std::string& name) {
-  app.add_option("--shadow-walks", name,
-                 "How a hit's shadow rays walk the BVH: paired (two light samples' rays in one "
-                 "walk, the default where a hit has two or more: the faster on lavapipe) or "
-                 "single (one walk each, to measure other GPUs); the image is the same")
+void addWalksOption(CLI::App& app, std::string& name) {
+  app.add_option("--walks", name,
+                 "How rays that start together walk the BVH: paired (the default, the faster on "
+                 "lavapipe: a hit's shadow rays two by two, binary mode's primary rays two "
+                 "samples at a time) or single (one walk a ray, to measure other GPUs); the "
+                 "image is the same")
       ->check(CLI::IsMember({"paired", "single"}));
 }
 
-ShadowWalks shadowWalksNamed(const std::string& name) {
-  return name == "single" ? ShadowWalks::Single : ShadowWalks::Paired;
+Walks walksNamed(const std::string& name) {
+  return name == "single" ? Walks::Single : Walks::Paired;
 }
 
 void addConventionsOption(CLI::App& app, std::string& name) {

@@ -59,10 +59,10 @@ AccelKind accelNamed(const std::string& name);
 void addSceneArraysOption(CLI::App& app, std::string& name);
 SceneArrays sceneArraysNamed(const std::string& name);
 
-// --shadow-walks paired|single into `name`; shadowWalksNamed turns it into
-// the kind (empty: paired).
-void addShadowWalksOption(CLI::App& app, std::string& name);
-ShadowWalks shadowWalksNamed(const std::string& name);
+// --walks paired|single into `name`; walksNamed turns it into the kind
+// (empty: paired).
+void addWalksOption(CLI::App& app, std::string& name);
+Walks walksNamed(const std::string& name);
 
 // --conventions NAME (coursework-a, coursework-b, textbook) into `name`.
 void addConventionsOption(CLI::App& app, std::string& name);

@@ -44,7 +44,7 @@ struct CommandLine {
   std::string conventions;
   std::string accel;
   std::string sceneArrays;
-  std::string shadowWalks;
+  std::string walks;
   std::string device;
   std::string shaderDir;
   std::optional<float> exposure;
@@ -172,7 +172,7 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
   options.shading = rt::cli::shadingNamed(cli.shading);
   options.accel = rt::cli::accelNamed(cli.accel);
   options.sceneArrays = rt::cli::sceneArraysNamed(cli.sceneArrays);
-  options.shadowWalks = rt::cli::shadowWalksNamed(cli.shadowWalks);
+  options.walks = rt::cli::walksNamed(cli.walks);
   if (!cli.sampleRange.empty()) parseSampleRange(cli.sampleRange, options);
   refuseSplitAdaptive(cli, options);
   checkMapOptions(cli, options);
@@ -344,7 +344,7 @@ int runRenderCommand(int argc, char** argv) {
   rt::cli::addStrictOption(app, cli.strict);
   rt::cli::addAccelOption(app, cli.accel);
   rt::cli::addSceneArraysOption(app, cli.sceneArrays);
-  rt::cli::addShadowWalksOption(app, cli.shadowWalks);
+  rt::cli::addWalksOption(app, cli.walks);
   app.add_flag("--offscreen", cli.offscreen, "Render without a window (the default)");
   app.add_option("--device", cli.device, "'list' to list Vulkan devices, or the number to use");
   app.add_flag("--validation", cli.validation,

@@ -67,8 +67,10 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat) {
     for (const gpu::GpuEmitter& emitter : flat.emitters)
       features.emitterKinds |= 1u << emitter.kind;
   }
-  features.shadowPairs = lit && !features.hardwareAccel && !features.instanceTransforms &&
-                         flat.info.pointLightCount + flat.info.areaLightSamples >= 2;
+  bool pairable = !features.hardwareAccel && !features.instanceTransforms;
+  features.shadowPairs =
+      pairable && lit && flat.info.pointLightCount + flat.info.areaLightSamples >= 2;
+  features.primaryPairs = pairable && features.binaryOnly;
   features.pathTracer = scene.settings.mode == RenderMode::PathTracer;
   features.diffuseBounces =
       features.pathTracer ? scene.settings.maxBounces > 0 : lit && flat.info.distributedBounces > 0;
@@ -116,6 +118,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(storageBuffers, "RT_SCENE_STORAGE_BUFFERS");
   flag(binaryOnly, "RT_BINARY_ONLY");
   flag(shadowPairs, "RT_SHADOW_PAIRS");
+  flag(primaryPairs, "RT_PRIMARY_PAIRS");
   if (samplerKind >= 0) result.emplace_back("RT_SAMPLER_KIND", std::to_string(samplerKind) + "u");
   if (emitterKinds != 0) {
     result.emplace_back("RT_EMITTER_KINDS", std::to_string(emitterKinds) + "u");

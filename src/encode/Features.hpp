@@ -12,10 +12,11 @@
 
 namespace rt {
 
-// How a shading point's shadow rays walk the BVH: two by two where a scene
-// has two or more light samples a hit (the default), or one by one (to
-// measure other GPUs). The image is the same.
-enum class ShadowWalks { Paired, Single };
+// How rays that start together walk the BVH: two by two (the default: a
+// shading point's shadow rays where a scene has two or more light samples a
+// hit, and binary mode's primary rays two samples of a pixel at a time), or
+// one by one (to measure other GPUs). The image is the same.
+enum class Walks { Paired, Single };
 
 struct ShaderFeatures {
   bool spheres = false;
@@ -53,10 +54,12 @@ struct ShaderFeatures {
   uint32_t whittedStackSize = 1;
   // RenderSettings::rouletteWeight where the tree branches.
   float rouletteWeight = 0.0f;
-  // A shading point's shadow rays are walked two by two (traversePair in
-  // shaders/traverse_bvh.glsl): scenes with two or more light samples a hit,
-  // through the renderer's own BVH, without instance transforms.
+  // Rays walked two by two (traversePair in shaders/traverse_bvh.glsl),
+  // through the renderer's own BVH, without instance transforms: a shading
+  // point's shadow rays where a hit has two or more light samples, and
+  // binary mode's primary rays, two samples of a pixel at a time.
   bool shadowPairs = false;
+  bool primaryPairs = false;
 
   ShaderDefines defines() const;
   std::string summary() const;  // e.g. "spheres triangles reflection"

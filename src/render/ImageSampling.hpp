@@ -25,8 +25,9 @@ struct ImageSampling {
   AccelKind accel = AccelKind::Bvh;     // none: brute force, to compare against
   // How kernels read the scene arrays; the image does not depend on it.
   SceneArrays sceneArrays = SceneArrays::TexelBuffers;
-  // How shadow rays walk the BVH; the image does not depend on it.
-  ShadowWalks shadowWalks = ShadowWalks::Paired;
+  // Rays that start together walk the BVH in pairs or one by one; the image
+  // does not depend on it.
+  Walks walks = Walks::Paired;
   // Origin of the GPU's coordinates (FlattenOptions::frameOrigin).
   std::optional<WorldPoint> frameOrigin;
   // How the image is shown (default: toneMappingFor(scene)), `--exposure`

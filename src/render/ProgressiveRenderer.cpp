@@ -74,7 +74,8 @@ ShaderFeatures featuresFor(const Scene& scene, const FlatScene& flat,
                            const ProgressiveOptions& options, const VulkanContext& context) {
   ShaderFeatures features = detectFeatures(scene, flat);
   features.storageBuffers = options.sceneArrays == SceneArrays::StorageBuffers;
-  features.shadowPairs &= options.shadowWalks == ShadowWalks::Paired;
+  features.shadowPairs &= options.walks == Walks::Paired;
+  features.primaryPairs &= options.walks == Walks::Paired;
   features.countRays = options.countRays;
   features.countRaysPerSubgroup = options.countRays && context.subgroupArithmetic();
   features.samplerKind = static_cast<int>(gpuSamplerKind(options.sampler));

@@ -47,17 +47,21 @@ ls "$SCRATCH" | grep -q '\.tmp-' && fail "temporary files left behind" || pass
   grep -q "conventions: coursework-b (--conventions)" "$SCRATCH/stderr" && pass || fail "--conventions"
 expect_error "bad --conventions" '--conventions' "$SCRATCH/good.json" "$SCRATCH/out.png" --conventions physics
 
-# --- shadow walks: two lights' shadow rays walked together or apart -----------
+# --- walks: two lights' shadow rays, and primary rays, walked in pairs or not ---
 TWO_LIGHTS='{"nbounces":2,"camera":{"type":"pinhole","width":32,"height":24,"fov":45,"position":[0,0,0],"lookat":[0,0,-1],"up":[0,1,0]},
 "scene":{"backgroundcolor":[0.1,0.1,0.1],"lightsources":[{"type":"pointlight","position":[0,2,0],"is":[5,5,5],"id":[5,5,5]},
 {"type":"pointlight","position":[2,0,-1],"is":[3,3,3],"id":[3,3,3]}],
 "shapes":[{"type":"sphere","center":[0,0,-3],"radius":1,"material":{"ks":0.2,"kd":0.8,"specularexponent":10,"diffusecolor":[0.8,0.2,0.2]}},
 {"type":"sphere","center":[0.8,0.3,-1.8],"radius":0.3,"material":{"ks":0.2,"kd":0.8,"specularexponent":10,"diffusecolor":[0.2,0.8,0.2]}}]}}'
 write twolights.json "$TWO_LIGHTS"
-"$RAYTRACER" "$SCRATCH/twolights.json" "$SCRATCH/paired.ppm" --spp 2 -q --shadow-walks paired &&
-  "$RAYTRACER" "$SCRATCH/twolights.json" "$SCRATCH/single.ppm" --spp 2 -q --shadow-walks single &&
-  cmp -s "$SCRATCH/paired.ppm" "$SCRATCH/single.ppm" && pass || fail "--shadow-walks paired and single: the same image"
-expect_error "bad --shadow-walks" '--shadow-walks' "$SCRATCH/good.json" "$SCRATCH/out.png" --shadow-walks quad
+"$RAYTRACER" "$SCRATCH/twolights.json" "$SCRATCH/paired.ppm" --spp 2 -q --walks paired &&
+  "$RAYTRACER" "$SCRATCH/twolights.json" "$SCRATCH/single.ppm" --spp 2 -q --walks single &&
+  cmp -s "$SCRATCH/paired.ppm" "$SCRATCH/single.ppm" && pass || fail "--walks paired and single: the same image"
+write binary.json "${GOOD/\{\"nbounces\"/\{\"rendermode\":\"binary\",\"nbounces\"}"
+"$RAYTRACER" "$SCRATCH/binary.json" "$SCRATCH/paired.ppm" --spp 3 -q --walks paired &&
+  "$RAYTRACER" "$SCRATCH/binary.json" "$SCRATCH/single.ppm" --spp 3 -q --walks single &&
+  cmp -s "$SCRATCH/paired.ppm" "$SCRATCH/single.ppm" && pass || fail "--walks in binary mode: the same image"
+expect_error "bad --walks" '--walks' "$SCRATCH/good.json" "$SCRATCH/out.png" --walks quad
 
 # --- split renders, budgets, interruption -----------------------------------
 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/a.exr" --spp 6 --samples 0:2 -q &&

@@ -533,27 +533,36 @@ TEST_SUITE("render") {
   }
 }
 
-// A shading point's shadow rays walked two by two (ShadowWalks::Paired,
-// traversePair) or one by one: each ray finds the same hits and the sums are
-// made in the same order, so the image is the same to the bit, and so is
-// the count of rays, which adaptive sampling weighs tiles by.
+// Rays that start together walked two by two (Walks::Paired, traversePair):
+// a shading point's shadow rays, binary mode's primary rays. Each ray finds
+// the same hits as a walk of its own and the sums are made in the same
+// order, so the image is the same to the bit, and so is the count of rays,
+// which adaptive sampling weighs tiles by.
 TEST_SUITE("render") {
-  void checkPairedShadowWalksMatch(const Scene& scene, RenderOptions options,
-                                   bool expectPairs = true) {
+  struct PairsExpected {
+    bool shadow = true;
+    bool primary = false;
+  };
+
+  void checkPairedWalksMatch(const Scene& scene, RenderOptions options,
+                             PairsExpected expected = {}) {
     options.countRays = true;
-    options.shadowWalks = ShadowWalks::Single;
+    options.walks = Walks::Single;
     RenderStats singleStats;
     const ImageF single = test::render(scene, options, &singleStats);
-    options.shadowWalks = ShadowWalks::Paired;
+    options.walks = Walks::Paired;
     RenderStats pairedStats;
     const ImageF paired = test::render(scene, options, &pairedStats);
     CHECK_FALSE(singleStats.features.shadowPairs);
-    CHECK(pairedStats.features.shadowPairs == expectPairs);
+    CHECK_FALSE(singleStats.features.primaryPairs);
+    CHECK(pairedStats.features.shadowPairs == expected.shadow);
+    CHECK(pairedStats.features.primaryPairs == expected.primary);
     CHECK(bitwiseEqual(single, paired));
     CHECK(allFinite(paired));
     CHECK(singleStats.raysTraced == pairedStats.raysTraced);
   }
 
+  // 3 samples: the last of a pixel's pairs of primary rays has one ray.
   RenderOptions pairedWalksRender() {
     RenderOptions options;
     options.width = 64;
@@ -566,29 +575,41 @@ TEST_SUITE("render") {
     // Two point lights; spheres, cylinders, a mesh, mirrors, and glass that
     // shadow rays cross (closest-hit walks from crossing to crossing).
     const Scene defaultScene = test::projectScene("default.json");
-    checkPairedShadowWalksMatch(defaultScene, pairedWalksRender());
+    checkPairedWalksMatch(defaultScene, pairedWalksRender());
     // A point light and an area light.
     Scene areaLit = test::projectScene("study-arealight.json");
-    checkPairedShadowWalksMatch(areaLit, pairedWalksRender());
+    checkPairedWalksMatch(areaLit, pairedWalksRender());
     // Three light samples: the last pair walks one ray.
     REQUIRE(areaLit.areaLights.size() == 1);
     areaLit.areaLights[0].samples = 2;
-    checkPairedShadowWalksMatch(areaLit, pairedWalksRender());
+    checkPairedWalksMatch(areaLit, pairedWalksRender());
     // The path tracer, whose shadow rays stop at any hit (glass blocks them:
     // sampled bounces carry the light through it).
     Scene cornell = test::projectScene("cornell-pathtraced.json");
     REQUIRE(cornell.areaLights.size() == 1);
     cornell.areaLights[0].samples = 2;
-    checkPairedShadowWalksMatch(cornell, pairedWalksRender());
+    checkPairedWalksMatch(cornell, pairedWalksRender());
     // Adaptive sampling, whose rounds read the rays each tile traced.
     RenderOptions adaptive = pairedWalksRender();
     adaptive.adaptive = true;
     adaptive.keepErrorImage = true;
-    checkPairedShadowWalksMatch(defaultScene, adaptive);
+    checkPairedWalksMatch(defaultScene, adaptive);
     // One light: nothing to pair, the single walk is built.
     Scene oneLight = defaultScene;
     oneLight.pointLights.resize(1);
-    checkPairedShadowWalksMatch(oneLight, pairedWalksRender(), false);
+    checkPairedWalksMatch(oneLight, pairedWalksRender(), {.shadow = false});
+    test::checkNoValidationMessages();
+  }
+
+  TEST_CASE("paired primary walks in binary mode give the single walks' image and ray count") {
+    Scene binary = test::projectScene("default.json");
+    binary.settings.mode = RenderMode::Binary;
+    const PairsExpected primaryOnly{.shadow = false, .primary = true};
+    checkPairedWalksMatch(binary, pairedWalksRender(), primaryOnly);
+    RenderOptions adaptive = pairedWalksRender();
+    adaptive.adaptive = true;
+    adaptive.keepErrorImage = true;
+    checkPairedWalksMatch(binary, adaptive, primaryOnly);
     test::checkNoValidationMessages();
   }
 }
