@@ -182,6 +182,24 @@ uint popTop(inout StackTop top) {
     }                                                                    \
   }
 
+// After a leaf: a mesh instance's leaf goes on at the copy of the mesh's
+// root, node 1 + item, above the entries waiting on the stack (`enter`,
+// declared here, says so; `instance` becomes that mesh); any other leaf
+// goes back to the stack's top. Both walks leave their leaves this way.
+#ifdef RT_FEATURE_MESHES
+#define RT_LEAVE_LEAF(top, spill, node, instance, enter, meshLeaf, kind, first) \
+  bool enter = !meshLeaf && kind == RT_PRIM_INSTANCE;                          \
+  if (enter) {                                                                 \
+    node = 1u + first;                                                         \
+  } else {                                                                     \
+    RT_POP(top, spill, node);                                                  \
+  }                                                                            \
+  instance = enter ? first : instance
+#else
+#define RT_LEAVE_LEAF(top, spill, node, instance, enter, meshLeaf, kind, first) \
+  RT_POP(top, spill, node)
+#endif
+
 // Walks the BVH; with anyHit it stops at the first intersection found.
 // A walk pushes only when it enters both children, at most one entry per
 // level of its path; RT_BVH_STACK_SIZE is over twice RT_BVH_MAX_DEPTH, room
@@ -239,19 +257,7 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
 #ifdef RT_FEATURE_INSTANCE_TRANSFORMS
     bool leave = node == RT_REF_LEAVE_INSTANCE;
 #endif
-#ifdef RT_FEATURE_MESHES
-    // A mesh instance: the walk goes on at the copy of the mesh's root, node
-    // 1 + item, above the entries waiting on the stack.
-    bool enter = !meshLeaf && kind == RT_PRIM_INSTANCE;
-    if (enter) {
-      node = 1u + first;
-    } else {
-      RT_POP(top, spill, node);
-    }
-    instance = enter ? first : instance;
-#else
-    RT_POP(top, spill, node);
-#endif
+    RT_LEAVE_LEAF(top, spill, node, instance, enter, meshLeaf, kind, first);
 #ifdef RT_FEATURE_INSTANCE_TRANSFORMS
     // In object space until the marker under the mesh's entries comes back.
     if (enter) {
@@ -343,17 +349,7 @@ void traversePair(Ray rayA, Ray rayB, bvec2 walking, vec2 tMax, bool anyHit,
     }
 #endif
     if (anyHit && tMax.x == retired && tMax.y == retired) break;
-#ifdef RT_FEATURE_MESHES
-    bool enter = !meshLeaf && kind == RT_PRIM_INSTANCE;
-    if (enter) {
-      node = 1u + first;
-    } else {
-      RT_POP(top, spill, node);
-    }
-    instance = enter ? first : instance;
-#else
-    RT_POP(top, spill, node);
-#endif
+    RT_LEAVE_LEAF(top, spill, node, instance, enter, meshLeaf, kind, first);
   }
   if (anyHit) return;
   if (hitA.t >= 0.0) completeHitNormal(rayA, kindA, hitA);
