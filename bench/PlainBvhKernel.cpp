@@ -24,6 +24,8 @@ struct PlainParams {
   uint32_t width;
   uint32_t sample;
   uint32_t pad;
+  VkDeviceAddress nodeAddress;
+  VkDeviceAddress triangleAddress;
 };
 
 float bitsFloat(uint32_t bits) {
@@ -188,7 +190,8 @@ PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& 
       layout.halfWide ? layoutHalfWide(nodes) : std::vector<uint32_t>{};
   std::vector<float> triangles = layoutTriangles(mesh, bvh);
   const VkBufferUsageFlags usage =
-      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
+      (layout.deviceAddress ? VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT : 0);
   // Both node layouts are 32-bit words.
   const void* nodeWords =
       layout.halfWide ? static_cast<const void*>(halfNodes.data()) : nodes.data();
@@ -203,6 +206,7 @@ PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& 
   rt::ShaderCompiler compiler(RT_BENCH_SHADER_DIR, "");
   rt::ShaderDefines defines;
   if (storageBuffers) defines.emplace_back("PLAIN_STORAGE_BUFFERS", "1");
+  if (layout.deviceAddress) defines.emplace_back("PLAIN_DEVICE_ADDRESS", "1");
   if (wide) defines.emplace_back("PLAIN_WIDE", "1");
   if (layout.halfWide) defines.emplace_back("PLAIN_WIDE_HALF", "1");
   defines.emplace_back("PLAIN_NODE_TEXELS", layout.wide ? "7u" : "4u");
@@ -222,7 +226,11 @@ PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& 
   }
   kernel.bind(2, distances);
 
-  PlainParams params{glm::vec4(camera.position, 0.0f), camera.tanHalfFovY, width, 0, 0};
+  PlainParams params{glm::vec4(camera.position, 0.0f), camera.tanHalfFovY, width, 0, 0, 0, 0};
+  if (layout.deviceAddress) {
+    params.nodeAddress = nodeBuffer.deviceAddress();
+    params.triangleAddress = triangleBuffer.deviceAddress();
+  }
   PlainResult result;
   const double rays = double(width) * width * samples;
   for (int repetition = 0; repetition < 4; ++repetition) {  // the first one warms up

@@ -35,6 +35,8 @@ struct PlainLayout {
   // The four-wide nodes with half-float boxes, four texels a node (texel
   // buffers only).
   bool halfWide = false;
+  // Nodes and triangles read through buffer device addresses (binary only).
+  bool deviceAddress = false;
 };
 
 // `width` x `width` pixels, `samples` dispatches.

@@ -188,8 +188,11 @@ void printPlainReference(rt::VulkanContext& context, const rt::TriangleMesh& bun
                               {"binary, storage buffers", {true, false, false}},
                               {"4-wide, texel buffers", {false, true, false}},
                               {"4-wide, storage buffers", {true, true, false}},
-                              {"4-wide half floats, texel buffers", {false, false, true}}};
+                              {"4-wide half floats, texel buffers", {false, false, true}},
+                              {"binary, device addresses", {false, false, false, true}}};
   for (const Variant& variant : variants) {
+    // Device addresses are enabled with ray queries only (VulkanContext).
+    if (variant.layout.deviceAddress && !context.rayQueriesEnabled()) continue;
     bench::PlainResult r = bench::measurePlainBvh(context, bunny, camera, variant.layout,
                                                   kPrimaryWidth, kPrimarySamples);
     std::printf("| %-36s | %15.2f | %14.2f | %11.1f%% |\n", variant.label, r.mraysPerSecond,

@@ -5,6 +5,10 @@
 // distance (-1: miss). Push constants only enter
 // arithmetic, never a branch: lavapipe would recompile the kernel at every
 // dispatch otherwise.
+#ifdef PLAIN_DEVICE_ADDRESS
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+#endif
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(push_constant) uniform PlainParams {
@@ -13,9 +17,22 @@ layout(push_constant) uniform PlainParams {
   uint width;
   uint sampleIndex;
   uint pad;
+  uvec2 nodeAddress;  // PLAIN_DEVICE_ADDRESS only
+  uvec2 triangleAddress;
 } params;
 
-#ifdef PLAIN_STORAGE_BUFFERS
+#ifdef PLAIN_DEVICE_ADDRESS
+// Loads through buffer device addresses: no descriptor, no bounds check.
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Rows {
+  vec4 rows[];
+};
+vec4 nodeRow(uint node, uint row) {
+  return Rows(params.nodeAddress).rows[node * PLAIN_NODE_TEXELS + row];
+}
+vec4 triangleRow(uint triangle, uint row) {
+  return Rows(params.triangleAddress).rows[triangle * 3u + row];
+}
+#elif defined(PLAIN_STORAGE_BUFFERS)
 layout(std430, set = 0, binding = 0) readonly buffer Nodes { vec4 nodes[]; };
 layout(std430, set = 0, binding = 1) readonly buffer Triangles { vec4 triangles[]; };
 vec4 nodeRow(uint node, uint row) { return nodes[node * PLAIN_NODE_TEXELS + row]; }

@@ -64,6 +64,9 @@ using uint = uint32_t;
 // Adaptive sampling's per-pixel edge samples: what the edge round adds to
 // each pixel beyond its tile's count (RT_ADAPTIVE_SAMPLING only).
 #define RT_BINDING_PIXEL_EXTRAS 19
+// The render kernel's work queue on CPU devices: the next run of pixels a
+// subgroup takes (RT_WORK_QUEUE only; trace.comp).
+#define RT_BINDING_WORK_QUEUE 20
 
 #define RT_WORKGROUP_SIZE_X 8
 #define RT_WORKGROUP_SIZE_Y 8

@@ -6,6 +6,9 @@
 #ifdef RT_COUNT_RAYS_PER_SUBGROUP
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #endif
+#ifdef RT_WORK_QUEUE
+#extension GL_KHR_shader_subgroup_ballot : require
+#endif
 
 #include "gpu_types.h"
 
@@ -61,6 +64,13 @@ layout(std430, set = 0, binding = RT_BINDING_RAY_COUNTER) buffer RayCounterBuffe
 };
 #endif
 
+#ifdef RT_WORK_QUEUE
+// Runs of pixels taken so far in this dispatch (zeroed before it).
+layout(std430, set = 0, binding = RT_BINDING_WORK_QUEUE) restrict buffer WorkQueueBuffer {
+  uint runsTaken;
+};
+#endif
+
 // Each file includes what it uses (include guards keep one copy).
 #include "binary.glsl"
 #include "camera.glsl"
@@ -106,16 +116,15 @@ void addSample(inout vec4 sum, inout vec4 oddSum, uint s, vec3 radiance) {
 #endif
 }
 
-void main() {
-  loadSceneInfo();
-  loadFrameParams();
-  // The block this workgroup renders (see GpuFrameParams::groupStride).
-  uvec2 group = (gl_WorkGroupID.xy * frame.groupStride) % gl_NumWorkGroups.xy;
-  uvec2 local = group * gl_WorkGroupSize.xy + pixelInGroup(gl_LocalInvocationIndex);
+// Adds this dispatch's samples to the pixel of invocation `index` (0..63) of
+// 8x8 block `group` of the tile.
+void renderPixel(uvec2 group, uint index) {
+  uvec2 local = group * gl_WorkGroupSize.xy + pixelInGroup(index);
   if (any(greaterThanEqual(local, frame.tileSize))) return;
   uvec2 pixel = frame.tileOrigin + local;
   uint pixelIndex = pixel.y * sceneInfo.width + pixel.x;
 #ifdef RT_ADAPTIVE_SAMPLING
+  uint raysBefore = raysTraced;
   uint tilesPerRow = adaptiveTileGrid(uvec2(sceneInfo.width, 0u)).x;
   uint tile = (pixel.y / RT_ADAPTIVE_TILE_SIZE) * tilesPerRow + pixel.x / RT_ADAPTIVE_TILE_SIZE;
   uvec2 range = plannedRange(samplePlan[tile], pixel, pixelIndex);
@@ -161,6 +170,40 @@ void main() {
 #ifdef RT_ODD_SUMS
   oddAccumulation[pixelIndex] = oddSum;
 #endif
+#ifdef RT_ADAPTIVE_SAMPLING
+  // Integer sums: the same whatever order the invocations add in.
+  atomicAdd(tileRays[tile], raysTraced - raysBefore);
+#endif
+}
+
+void main() {
+  loadSceneInfo();
+  loadFrameParams();
+#ifdef RT_WORK_QUEUE
+  // CPU drivers split a dispatch's workgroups into one contiguous share per
+  // worker thread (lavapipe: groups / threads each), so a thread whose share
+  // holds the glass waits while the other idles at the end of every
+  // dispatch. Here each subgroup takes the next run of pixels from a counter
+  // until none is left: the threads finish within one run of each other.
+  // A run is gl_SubgroupSize consecutive invocations of the grid's 8x8
+  // blocks in row order, laid out as a workgroup's would be.
+  uvec2 groups = (frame.tileSize + gl_WorkGroupSize.xy - 1u) / gl_WorkGroupSize.xy;
+  uint invocationsPerGroup = gl_WorkGroupSize.x * gl_WorkGroupSize.y;
+  uint runs = groups.x * groups.y * (invocationsPerGroup / gl_SubgroupSize);
+  for (;;) {
+    uint run = 0u;
+    if (subgroupElect()) run = atomicAdd(runsTaken, 1u);
+    run = subgroupBroadcastFirst(run);
+    if (run >= runs) break;
+    uint invocation = run * gl_SubgroupSize + gl_SubgroupInvocationID;
+    uint group = invocation / invocationsPerGroup;
+    renderPixel(uvec2(group % groups.x, group / groups.x), invocation % invocationsPerGroup);
+  }
+#else
+  // The block this workgroup renders (see GpuFrameParams::groupStride).
+  renderPixel((gl_WorkGroupID.xy * frame.groupStride) % gl_NumWorkGroups.xy,
+              gl_LocalInvocationIndex);
+#endif
 #ifdef RT_COUNT_RAYS
 #ifdef RT_COUNT_RAYS_PER_SUBGROUP
   // Every lane's atomic add to the one counter contends across the driver's
@@ -171,9 +214,5 @@ void main() {
 #else
   atomicAdd(rayCounter[0], raysTraced);
 #endif
-#endif
-#ifdef RT_ADAPTIVE_SAMPLING
-  // Integer sums: the same whatever order the invocations add in.
-  atomicAdd(tileRays[tile], raysTraced);
 #endif
 }

@@ -119,6 +119,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(binaryOnly, "RT_BINARY_ONLY");
   flag(shadowPairs, "RT_SHADOW_PAIRS");
   flag(primaryPairs, "RT_PRIMARY_PAIRS");
+  flag(workQueue, "RT_WORK_QUEUE");
   if (samplerKind >= 0) result.emplace_back("RT_SAMPLER_KIND", std::to_string(samplerKind) + "u");
   if (emitterKinds != 0) {
     result.emplace_back("RT_EMITTER_KINDS", std::to_string(emitterKinds) + "u");

@@ -18,6 +18,12 @@ namespace rt {
 // one by one (to measure other GPUs). The image is the same.
 enum class Walks { Paired, Single };
 
+// How a render dispatch's pixels reach the driver's threads: on CPU devices
+// each subgroup takes the next run of pixels from a queue (the default),
+// or, as on GPUs, each workgroup renders its own block of the grid. The
+// image is the same.
+enum class WorkQueue { OnCpu, Off };
+
 struct ShaderFeatures {
   bool spheres = false;
   bool triangles = false;       // also quads and meshes
@@ -60,6 +66,8 @@ struct ShaderFeatures {
   // binary mode's primary rays, two samples of a pixel at a time.
   bool shadowPairs = false;
   bool primaryPairs = false;
+  // Subgroups take runs of pixels from a queue (WorkQueue; trace.comp).
+  bool workQueue = false;
 
   ShaderDefines defines() const;
   std::string summary() const;  // e.g. "spheres triangles reflection"

@@ -306,6 +306,8 @@ void VulkanContext::pickPhysicalDevice(const ContextOptions& options) {
   vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
   subgroupArithmetic_ = (subgroups.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
                         (subgroups.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);
+  subgroupBallot_ = (subgroups.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+                    (subgroups.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT);
   queueFamily_ = *usableQueueFamily(physicalDevice_, surface_);
 }
 

@@ -63,6 +63,11 @@ class VulkanContext {
   bool rayQueriesEnabled() const { return rayQueries_; }
   // Compute kernels may use subgroup arithmetic (GL_KHR_shader_subgroup_arithmetic).
   bool subgroupArithmetic() const { return subgroupArithmetic_; }
+  // Compute kernels may elect a lane and broadcast from it (GL_KHR_shader_subgroup_ballot).
+  bool subgroupBallot() const { return subgroupBallot_; }
+  // The device is a CPU (lavapipe, SwiftShader): its worker threads each take
+  // one contiguous share of a dispatch's workgroups.
+  bool isCpu() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
   VkSurfaceKHR surface() const { return surface_; }
 
   // Validation warnings and errors reported so far (0 when validation is off).
@@ -100,6 +105,7 @@ class VulkanContext {
   VkFence fence_ = VK_NULL_HANDLE;
   bool rayQueries_ = false;
   bool subgroupArithmetic_ = false;
+  bool subgroupBallot_ = false;
   uint32_t validationMessages_ = 0;
 };
 

@@ -28,6 +28,9 @@ struct ImageSampling {
   // Rays that start together walk the BVH in pairs or one by one; the image
   // does not depend on it.
   Walks walks = Walks::Paired;
+  // Pixels from a queue on CPU devices, or a workgroup per block; the image
+  // does not depend on it.
+  WorkQueue workQueue = WorkQueue::OnCpu;
   // Origin of the GPU's coordinates (FlattenOptions::frameOrigin).
   std::optional<WorldPoint> frameOrigin;
   // How the image is shown (default: toneMappingFor(scene)), `--exposure`

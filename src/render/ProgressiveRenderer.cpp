@@ -28,6 +28,11 @@ uint32_t spreadingStride(uint32_t count) {
   }
 }
 
+// Workgroups a render dispatch with a work queue launches: at least one
+// per driver thread (lavapipe starts at most 32), each of whose subgroups
+// takes runs until the queue is empty.
+constexpr uint32_t kQueueWorkgroups = 64;
+
 // Accumulation buffers: storage buffers to the render kernel, the viewer's
 // display pass and the noise measurement, and cleared and read back by
 // transfers.
@@ -81,6 +86,8 @@ ShaderFeatures featuresFor(const Scene& scene, const FlatScene& flat,
   features.samplerKind = static_cast<int>(gpuSamplerKind(options.sampler));
   features.adaptiveSampling = options.adaptive;
   features.oddSums = options.oddSums;
+  features.workQueue =
+      options.workQueue == WorkQueue::OnCpu && context.isCpu() && context.subgroupBallot();
   return features;
 }
 
@@ -119,6 +126,10 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
     rayCounter_.emplace(context, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     rayCounter_->fillZero();
   }
+  if (features_.workQueue) {
+    workQueue_.emplace(context, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    workQueue_->fillZero();
+  }
   if (options.adaptive) {
     const glm::uvec2 grid = gpu::adaptiveTileGrid({width_, height_});
     const uint32_t tiles = grid.x * grid.y;
@@ -141,13 +152,15 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
   }
 }
 
-std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(bool countRays, AccelKind accel,
-                                                               bool adaptive, SceneArrays arrays) {
-  std::vector<KernelBinding> bindings = SceneBuffers::bindings(accel, arrays);
+std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(const ShaderFeatures& features,
+                                                               AccelKind accel) {
+  std::vector<KernelBinding> bindings = SceneBuffers::bindings(
+      accel, features.storageBuffers ? SceneArrays::StorageBuffers : SceneArrays::TexelBuffers);
   bindings.push_back({RT_BINDING_ACCUMULATION});
   bindings.push_back({RT_BINDING_ACCUMULATION_ODD});
-  if (countRays) bindings.push_back({RT_BINDING_RAY_COUNTER});
-  if (adaptive) {
+  if (features.countRays) bindings.push_back({RT_BINDING_RAY_COUNTER});
+  if (features.workQueue) bindings.push_back({RT_BINDING_WORK_QUEUE});
+  if (features.adaptiveSampling) {
     bindings.push_back({RT_BINDING_SAMPLE_PLAN});
     bindings.push_back({RT_BINDING_TILE_RAYS});
     bindings.push_back({RT_BINDING_PIXEL_EXTRAS});
@@ -158,14 +171,13 @@ std::vector<KernelBinding> ProgressiveRenderer::kernelBindings(bool countRays, A
 std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
   auto kernel = std::make_unique<ComputeKernel>(
       context_, compiler_.compile("trace.comp", features_.defines()),
-      kernelBindings(rayCounter_.has_value(), flat_.accel, samplePlan_.has_value(),
-                     options_.sceneArrays),
-      static_cast<uint32_t>(sizeof(gpu::GpuFrameParams)));
+      kernelBindings(features_, flat_.accel), static_cast<uint32_t>(sizeof(gpu::GpuFrameParams)));
   sceneBuffers_.bindTo(*kernel);
   kernel->bind(RT_BINDING_ACCUMULATION, accumulation_);
   // Without odd sums the kernel does not declare the binding: it stays unwritten.
   if (oddAccumulation_) kernel->bind(RT_BINDING_ACCUMULATION_ODD, *oddAccumulation_);
   if (rayCounter_) kernel->bind(RT_BINDING_RAY_COUNTER, *rayCounter_);
+  if (workQueue_) kernel->bind(RT_BINDING_WORK_QUEUE, *workQueue_);
   if (samplePlan_) kernel->bind(RT_BINDING_SAMPLE_PLAN, *samplePlan_);
   if (tileRays_) kernel->bind(RT_BINDING_TILE_RAYS, *tileRays_);
   if (pixelExtras_) kernel->bind(RT_BINDING_PIXEL_EXTRAS, *pixelExtras_);
@@ -216,7 +228,20 @@ void ProgressiveRenderer::recordRange(VkCommandBuffer commands, uint32_t row, ui
   const glm::uvec2 groups{divideRoundUp(region_.width, RT_WORKGROUP_SIZE_X),
                           divideRoundUp(rows, RT_WORKGROUP_SIZE_Y)};
   frame.groupStride = {spreadingStride(groups.x), spreadingStride(groups.y)};
-  kernel_->recordDispatch(commands, &frame, groups.x, groups.y);
+  if (!workQueue_) {
+    kernel_->recordDispatch(commands, &frame, groups.x, groups.y);
+    return;
+  }
+  // The queue starts empty; a few workgroups take all its runs (the first
+  // of each driver thread's share does, the others find it empty).
+  vkCmdFillBuffer(commands, workQueue_->handle(), 0, VK_WHOLE_SIZE, 0);
+  VkMemoryBarrier cleared{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  cleared.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  cleared.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &cleared, 0, nullptr, 0,
+                       nullptr);
+  kernel_->recordDispatch(commands, &frame, std::min(groups.x * groups.y, kQueueWorkgroups), 1);
 }
 
 void ProgressiveRenderer::addSamples(uint32_t count) {

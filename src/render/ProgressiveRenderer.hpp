@@ -91,9 +91,8 @@ class ProgressiveRenderer {
 
   const Buffer& accumulation() const { return accumulation_; }
   // Descriptor bindings of the render kernel (trace.comp).
-  static std::vector<KernelBinding> kernelBindings(bool countRays, AccelKind accel = AccelKind::Bvh,
-                                                   bool adaptive = false,
-                                                   SceneArrays arrays = SceneArrays::TexelBuffers);
+  static std::vector<KernelBinding> kernelBindings(const ShaderFeatures& features,
+                                                   AccelKind accel = AccelKind::Bvh);
   // Mean radiance per pixel; alpha = the pixel's sample count.
   ImageF resolve();
   // The accumulation sums of all and of the odd-indexed samples.
@@ -140,6 +139,7 @@ class ProgressiveRenderer {
   // Sums of odd sample indices, for the error estimate (ProgressiveOptions::oddSums).
   std::optional<Buffer> oddAccumulation_;
   std::optional<Buffer> rayCounter_;
+  std::optional<Buffer> workQueue_;     // runs of pixels taken (ShaderFeatures::workQueue)
   std::optional<Buffer> samplePlan_;    // adaptive only
   std::optional<Buffer> tileRays_;      // adaptive only: running counters
   std::vector<uint32_t> tileRaysRead_;  // the counters at the last takeTileRays()

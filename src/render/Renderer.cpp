@@ -22,32 +22,46 @@ namespace {
 
 using Clock = SteadyClock;
 
-// Sizes dispatches from the measured cost of one pixel-sample so that each
-// takes about `target` seconds: several samples over the whole image when
-// that is cheap, otherwise several samples over a band of rows.
+// Sizes passes and dispatches from the measured cost of one pixel-sample:
+// a pass over the image of about `passTarget` seconds, in dispatches of
+// about `dispatchTarget` seconds (bands of rows, or several samples over
+// the whole image when that is cheap).
 class DispatchPlanner {
  public:
-  DispatchPlanner(uint32_t width, uint32_t height, double target, uint32_t maxPassSamples)
-      : width_(width), height_(height), target_(target), maxPassSamples_(maxPassSamples) {}
+  DispatchPlanner(uint32_t width, uint32_t height, double dispatchTarget, double passTarget,
+                  uint32_t maxPassSamples)
+      : width_(width),
+        height_(height),
+        target_(dispatchTarget),
+        passTarget_(passTarget),
+        maxPassSamples_(maxPassSamples) {}
 
   // Samples of the next pass over the image, which has `done` so far. An
   // invocation that adds several samples to its pixel pays its set-up
-  // (scene constants, the accumulation's load and store, the launch) once:
-  // on lavapipe 16 samples a pass rendered the common scene 1.3x faster than
-  // one. Passes double from 1, up to maxPassSamples, so that a render stopped
-  // part way still holds at least half of its samples in every pixel.
+  // (the accumulation's load and store, the pixel's sampler keys) once: on
+  // lavapipe 16 samples a pass rendered the common scene 1.3x faster than
+  // one, and passes of about a second rather than a dispatch's tenth 1.02-
+  // 1.04x. After those, passes double (at most maxPassSamples), so that a
+  // long render stopped part way holds at least half of its samples in
+  // every pixel.
   uint32_t samplesPerPass(uint32_t remaining, uint32_t done) const {
-    uint32_t doubling = std::clamp<uint32_t>(done, 1, std::max(maxPassSamples_, 1u));
+    const uint32_t cap = std::max(maxPassSamples_, 1u);
+    uint32_t doubling = std::clamp<uint32_t>(done, 1, cap);
     double pixels = double(width_) * height_;
-    double affordable = costPerPixelSample_ > 0 ? target_ / costPerPixelSample_ / pixels : 0.0;
+    double affordable = costPerPixelSample_ > 0 ? passTarget_ / costPerPixelSample_ / pixels : 0.0;
     uint32_t samples = std::max(doubling, static_cast<uint32_t>(std::min(affordable, 1e9)));
-    return std::clamp<uint32_t>(samples, 1, remaining);
+    return std::clamp<uint32_t>(samples, 1, std::min(remaining, cap));
   }
 
+  // Whole rows of the kernel's 8x8 workgroups: a band that ends inside one
+  // leaves the lanes of its last rows idle in SIMD vectors that still run
+  // (each run of eight invocations renders a 4x2 block), once per band.
   uint32_t rowsPerDispatch(uint32_t samples) const {
     // Before any measurement, a first band of about 16k pixels finds the cost.
     double rows = workPerDispatch() / (double(width_) * samples);
-    return std::clamp<uint32_t>(static_cast<uint32_t>(rows), 1, height_);
+    const uint32_t groupRows = RT_WORKGROUP_SIZE_Y;
+    uint32_t groups = static_cast<uint32_t>(std::min(rows, double(height_))) / groupRows;
+    return std::max(groups, 1u) * groupRows;
   }
 
   // Pixel-samples one dispatch should add.
@@ -65,6 +79,7 @@ class DispatchPlanner {
   uint32_t width_;
   uint32_t height_;
   double target_;
+  double passTarget_;
   uint32_t maxPassSamples_;
   double costPerPixelSample_ = 0;
 };
@@ -98,7 +113,7 @@ class SampleLoop {
         onProgress_(onProgress),
         stats_(stats),
         planner_(job.region().width, job.region().height, options.secondsPerDispatch,
-                 options.maxPassSamples) {}
+                 options.secondsPerPass, options.maxPassSamples) {}
 
   bool stopRequested() const { return options_.shouldStop && options_.shouldStop(); }
 

@@ -46,8 +46,11 @@ struct RenderOptions : ImageSampling {
   // Fill RenderStats::estimatedError (needs estimateError or adaptive).
   bool keepErrorImage = false;
   double secondsPerDispatch = 0.1;  // target duration of one dispatch
+  // Target duration of one pass over the image (a pass is one or more
+  // dispatches; the render loops in Renderer.cpp).
+  double secondsPerPass = 1.0;
   // The most samples one pass over the image adds (passes double from 1 up
-  // to this; render loops in Renderer.cpp). 1 keeps every pixel within one
+  // to this once they take secondsPerPass). 1 keeps every pixel within one
   // sample of the others whenever shouldStop ends the render (--time).
   uint32_t maxPassSamples = 16;
   // Polled between dispatches; returning true ends the render early with

@@ -82,7 +82,7 @@ TEST_SUITE("shader-compiler") {
       std::vector<KernelBinding> bindings;
       uint32_t pushBytes;
     };
-    std::vector<KernelBinding> render = ProgressiveRenderer::kernelBindings(false);
+    std::vector<KernelBinding> render = ProgressiveRenderer::kernelBindings(ShaderFeatures{});
     std::vector<KernelBinding> batch = SceneBuffers::bindings();
     batch.push_back({RT_BINDING_RAYS});
     batch.push_back({RT_BINDING_HITS});

@@ -346,9 +346,10 @@ TEST_SUITE("render") {
     RenderOptions options;
     options.samplesPerPixel = 7;
     options.seed = 42;
-    options.secondsPerDispatch = 10;  // everything in one dispatch
+    options.secondsPerDispatch = options.secondsPerPass = 10;  // everything in one dispatch
     ImageF whole = test::render(scene, options);
-    options.secondsPerDispatch = 1e-9;  // one sample and one row per dispatch
+    // One sample a pass and eight rows (one row of workgroups) a dispatch.
+    options.secondsPerDispatch = options.secondsPerPass = 1e-9;
     ImageF split = test::render(scene, options);
     CHECK(bitwiseEqual(whole, split));
     options.seed = 43;
@@ -383,9 +384,11 @@ TEST_SUITE("render") {
     test::addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}));
     RenderOptions options;
     options.samplesPerPixel = 50;
-    options.secondsPerDispatch = 1e-9;  // many small dispatches
+    // Bands of eight rows: passes of 1, 1, 2 and 4 samples take 14
+    // dispatches, and the stop comes after the first band of the fifth.
+    options.secondsPerDispatch = options.secondsPerPass = 1e-9;
     int polls = 0;
-    options.shouldStop = [&] { return ++polls > 40; };
+    options.shouldStop = [&] { return ++polls > 15; };
     RenderStats stats;
     ImageF image = Renderer(test::gpu(), test::shaderCompiler()).render(scene, options, {}, &stats);
     CHECK(stats.stoppedEarly);
@@ -403,7 +406,7 @@ TEST_SUITE("render") {
     test::addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}));
     RenderOptions options;
     options.samplesPerPixel = 50;
-    options.secondsPerDispatch = 1e-9;
+    options.secondsPerDispatch = options.secondsPerPass = 1e-9;
     options.maxPassSamples = 1;
     int polls = 0;
     options.shouldStop = [&] { return ++polls > 40; };
@@ -418,12 +421,14 @@ TEST_SUITE("render") {
     test::addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}, 0.8f, 0.4f));
     RenderOptions options;
     options.samplesPerPixel = 23;
-    options.secondsPerDispatch = 1e-9;  // bands of rows, passes 1, 1, 2, 4, 8, 7
+    // Bands of rows, passes 1, 1, 2, 4, 8, 7.
+    options.secondsPerDispatch = options.secondsPerPass = 1e-9;
     ImageF doubling = test::render(scene, options);
     options.maxPassSamples = 1;
     CHECK(bitwiseEqual(doubling, test::render(scene, options)));
     options.maxPassSamples = 64;
-    options.secondsPerDispatch = 10.0;  // after the first pass, one of 22 samples
+    // After the first pass, one of 22 samples.
+    options.secondsPerDispatch = options.secondsPerPass = 10.0;
     CHECK(bitwiseEqual(doubling, test::render(scene, options)));
   }
 
@@ -610,6 +615,55 @@ TEST_SUITE("render") {
     adaptive.adaptive = true;
     adaptive.keepErrorImage = true;
     checkPairedWalksMatch(binary, adaptive, primaryOnly);
+    test::checkNoValidationMessages();
+  }
+}
+
+// On CPU devices subgroups take runs of pixels from a queue (WorkQueue,
+// trace.comp) instead of each workgroup rendering its own block: every
+// pixel is still computed by itself, so the image is the same to the bit,
+// and so is the count of rays.
+TEST_SUITE("render") {
+  void checkWorkQueueMatches(const Scene& scene, RenderOptions options) {
+    options.countRays = true;
+    options.workQueue = WorkQueue::Off;
+    RenderStats gridStats;
+    const ImageF grid = test::render(scene, options, &gridStats);
+    options.workQueue = WorkQueue::OnCpu;
+    RenderStats queueStats;
+    const ImageF queued = test::render(scene, options, &queueStats);
+    CHECK_FALSE(gridStats.features.workQueue);
+    CHECK(queueStats.features.workQueue == (test::gpu().isCpu() && test::gpu().subgroupBallot()));
+    CHECK(bitwiseEqual(grid, queued));
+    CHECK(allFinite(queued));
+    CHECK(gridStats.raysTraced == queueStats.raysTraced);
+  }
+
+  TEST_CASE("the work queue gives the grid's image and ray count") {
+    const Scene glass = test::projectScene("default.json");
+    // A size that is no multiple of the 8x8 workgroups: partial blocks.
+    RenderOptions options;
+    options.width = 61;
+    options.height = 45;
+    options.samplesPerPixel = 3;
+    checkWorkQueueMatches(glass, options);
+    // Bands of eight rows, one dispatch each: the queue starts empty in each.
+    options.secondsPerDispatch = options.secondsPerPass = 1e-9;
+    checkWorkQueueMatches(glass, options);
+    // A region of the image, and adaptive rounds, whose tiles count rays.
+    RenderOptions region;
+    region.width = 64;
+    region.height = 48;
+    region.region = PixelRegion{9, 5, 30, 27};
+    region.samplesPerPixel = 2;
+    checkWorkQueueMatches(glass, region);
+    RenderOptions adaptive;
+    adaptive.width = 64;
+    adaptive.height = 48;
+    adaptive.samplesPerPixel = 3;
+    adaptive.adaptive = true;
+    adaptive.keepErrorImage = true;
+    checkWorkQueueMatches(glass, adaptive);
     test::checkNoValidationMessages();
   }
 }
