@@ -299,11 +299,17 @@ void VulkanContext::pickPhysicalDevice(const ContextOptions& options) {
   description_ = describe(physicalDevice_, *chosen);
   vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
   vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceSubgroupProperties subgroups{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  if (properties_.apiVersion >= VK_API_VERSION_1_2) subgroups.pNext = &driver;
   VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
                                           &subgroups};
   vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
+  // Mesa reports its own version as the driver version (VK_MAKE_VERSION).
+  if (driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE) {
+    lavapipeMesaMajor_ = VK_VERSION_MAJOR(properties_.driverVersion);
+  }
   subgroupArithmetic_ = (subgroups.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
                         (subgroups.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);
   subgroupBallot_ = (subgroups.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&

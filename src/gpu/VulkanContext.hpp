@@ -68,6 +68,8 @@ class VulkanContext {
   // The device is a CPU (lavapipe, SwiftShader): its worker threads each take
   // one contiguous share of a dispatch's workgroups.
   bool isCpu() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+  // The Mesa major version of lavapipe (llvmpipe); nullopt for other drivers.
+  std::optional<uint32_t> lavapipeMesaMajor() const { return lavapipeMesaMajor_; }
   VkSurfaceKHR surface() const { return surface_; }
 
   // Validation warnings and errors reported so far (0 when validation is off).
@@ -106,6 +108,7 @@ class VulkanContext {
   bool rayQueries_ = false;
   bool subgroupArithmetic_ = false;
   bool subgroupBallot_ = false;
+  std::optional<uint32_t> lavapipeMesaMajor_;
   uint32_t validationMessages_ = 0;
 };
 

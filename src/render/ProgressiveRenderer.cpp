@@ -86,8 +86,7 @@ ShaderFeatures featuresFor(const Scene& scene, const FlatScene& flat,
   features.samplerKind = static_cast<int>(gpuSamplerKind(options.sampler));
   features.adaptiveSampling = options.adaptive;
   features.oddSums = options.oddSums;
-  features.workQueue =
-      options.workQueue == WorkQueue::OnCpu && context.isCpu() && context.subgroupBallot();
+  features.workQueue = options.workQueue == WorkQueue::OnCpu && workQueueAvailable(context);
   return features;
 }
 
@@ -103,6 +102,15 @@ FlattenOptions flattenOptionsFor(const ProgressiveOptions& options) {
 }
 
 }  // namespace
+
+// Mesa 22.3's lavapipe miscompiles the loop around the pixels (some pixels
+// of a pass lose samples: Debian 12's own driver, seen in the sample counts
+// of EXR outputs); Mesa 25's renders them bit for bit as the grid does.
+bool workQueueAvailable(const VulkanContext& context) {
+  if (!context.isCpu() || !context.subgroupBallot()) return false;
+  const std::optional<uint32_t> mesa = context.lavapipeMesaMajor();
+  return !mesa || *mesa >= 25;
+}
 
 ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCompiler& compiler,
                                          const Scene& scene, const ProgressiveOptions& options)

@@ -44,6 +44,11 @@ struct ProgressiveOptions : ImageSampling {
   bool adaptive = false;
 };
 
+// Whether render kernels on this device take their pixels from a work queue
+// (ShaderFeatures::workQueue, WorkQueue::OnCpu): CPU devices with subgroup
+// ballots, lavapipe from Mesa 25 on.
+bool workQueueAvailable(const VulkanContext& context);
+
 class ProgressiveRenderer {
  public:
   ProgressiveRenderer(VulkanContext& context, const ShaderCompiler& compiler, const Scene& scene,
