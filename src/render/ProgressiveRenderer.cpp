@@ -33,6 +33,16 @@ uint32_t spreadingStride(uint32_t count) {
 // takes runs until the queue is empty.
 constexpr uint32_t kQueueWorkgroups = 64;
 
+// Buffers filled by transfers are read and written by the kernels after them.
+void recordFillsBeforeKernels(VkCommandBuffer commands) {
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                       nullptr);
+}
+
 // Accumulation buffers: storage buffers to the render kernel, the viewer's
 // display pass and the noise measurement, and cleared and read back by
 // transfers.
@@ -243,12 +253,7 @@ void ProgressiveRenderer::recordRange(VkCommandBuffer commands, uint32_t row, ui
   // The queue starts empty; a few workgroups take all its runs (the first
   // of each driver thread's share does, the others find it empty).
   vkCmdFillBuffer(commands, workQueue_->handle(), 0, VK_WHOLE_SIZE, 0);
-  VkMemoryBarrier cleared{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  cleared.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  cleared.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &cleared, 0, nullptr, 0,
-                       nullptr);
+  recordFillsBeforeKernels(commands);
   kernel_->recordDispatch(commands, &frame, std::min(groups.x * groups.y, kQueueWorkgroups), 1);
 }
 
@@ -265,12 +270,7 @@ void ProgressiveRenderer::recordReset(VkCommandBuffer commands) {
     vkCmdFillBuffer(commands, tileRays_->handle(), 0, VK_WHOLE_SIZE, 0);
     std::fill(tileRaysRead_.begin(), tileRaysRead_.end(), 0u);
   }
-  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0, nullptr, 0,
-                       nullptr);
+  recordFillsBeforeKernels(commands);
   samplesDone_ = options_.firstSample;
 }
 

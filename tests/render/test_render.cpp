@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 
 #include "encode/Conventions.hpp"
 #include "formats/json/JsonSceneLoader.hpp"
@@ -495,6 +496,33 @@ TEST_SUITE("render") {
   }
 }
 
+namespace {
+
+struct StatsOfTwo {
+  RenderStats first;
+  RenderStats second;
+};
+
+// Renders `scene` twice, `first` and then `second` applied to `options`,
+// with rays counted, and checks that the two images are equal to the bit
+// and traced as many rays: for options that must not change the image.
+StatsOfTwo checkSameRender(const Scene& scene, RenderOptions options,
+                           const std::function<void(RenderOptions&)>& first,
+                           const std::function<void(RenderOptions&)>& second) {
+  options.countRays = true;
+  StatsOfTwo stats;
+  first(options);
+  const ImageF firstImage = test::render(scene, options, &stats.first);
+  second(options);
+  const ImageF secondImage = test::render(scene, options, &stats.second);
+  CHECK(bitwiseEqual(firstImage, secondImage));
+  CHECK(allFinite(secondImage));
+  CHECK(stats.first.raysTraced == stats.second.raysTraced);
+  return stats;
+}
+
+}  // namespace
+
 // The scene arrays read as texel buffers or as storage buffers of the same
 // bytes (SceneArrays): the same kernel code around either, so the same image.
 TEST_SUITE("render") {
@@ -504,16 +532,11 @@ TEST_SUITE("render") {
     options.width = 64;
     options.height = 48;
     options.samplesPerPixel = 3;
-    options.sceneArrays = SceneArrays::TexelBuffers;
-    RenderStats texelStats;
-    const ImageF texels = test::render(scene, options, &texelStats);
-    options.sceneArrays = SceneArrays::StorageBuffers;
-    RenderStats storageStats;
-    const ImageF storage = test::render(scene, options, &storageStats);
-    CHECK_FALSE(texelStats.features.storageBuffers);
-    CHECK(storageStats.features.storageBuffers);
-    CHECK(bitwiseEqual(texels, storage));
-    CHECK(allFinite(storage));
+    const StatsOfTwo stats = checkSameRender(
+        scene, options, [](RenderOptions& o) { o.sceneArrays = SceneArrays::TexelBuffers; },
+        [](RenderOptions& o) { o.sceneArrays = SceneArrays::StorageBuffers; });
+    CHECK_FALSE(stats.first.features.storageBuffers);
+    CHECK(stats.second.features.storageBuffers);
   }
 
   TEST_CASE("storage-buffer scene arrays give the texel buffers' image") {
@@ -550,22 +573,15 @@ TEST_SUITE("render") {
     bool primary = false;
   };
 
-  void checkPairedWalksMatch(const Scene& scene, RenderOptions options,
+  void checkPairedWalksMatch(const Scene& scene, const RenderOptions& options,
                              PairsExpected expected = {}) {
-    options.countRays = true;
-    options.walks = Walks::Single;
-    RenderStats singleStats;
-    const ImageF single = test::render(scene, options, &singleStats);
-    options.walks = Walks::Paired;
-    RenderStats pairedStats;
-    const ImageF paired = test::render(scene, options, &pairedStats);
-    CHECK_FALSE(singleStats.features.shadowPairs);
-    CHECK_FALSE(singleStats.features.primaryPairs);
-    CHECK(pairedStats.features.shadowPairs == expected.shadow);
-    CHECK(pairedStats.features.primaryPairs == expected.primary);
-    CHECK(bitwiseEqual(single, paired));
-    CHECK(allFinite(paired));
-    CHECK(singleStats.raysTraced == pairedStats.raysTraced);
+    const StatsOfTwo stats = checkSameRender(
+        scene, options, [](RenderOptions& o) { o.walks = Walks::Single; },
+        [](RenderOptions& o) { o.walks = Walks::Paired; });
+    CHECK_FALSE(stats.first.features.shadowPairs);
+    CHECK_FALSE(stats.first.features.primaryPairs);
+    CHECK(stats.second.features.shadowPairs == expected.shadow);
+    CHECK(stats.second.features.primaryPairs == expected.primary);
   }
 
   // 3 samples: the last of a pixel's pairs of primary rays has one ray.
@@ -625,19 +641,12 @@ TEST_SUITE("render") {
 // pixel is still computed by itself, so the image is the same to the bit,
 // and so is the count of rays.
 TEST_SUITE("render") {
-  void checkWorkQueueMatches(const Scene& scene, RenderOptions options) {
-    options.countRays = true;
-    options.workQueue = WorkQueue::Off;
-    RenderStats gridStats;
-    const ImageF grid = test::render(scene, options, &gridStats);
-    options.workQueue = WorkQueue::OnCpu;
-    RenderStats queueStats;
-    const ImageF queued = test::render(scene, options, &queueStats);
-    CHECK_FALSE(gridStats.features.workQueue);
-    CHECK(queueStats.features.workQueue == workQueueAvailable(test::gpu()));
-    CHECK(bitwiseEqual(grid, queued));
-    CHECK(allFinite(queued));
-    CHECK(gridStats.raysTraced == queueStats.raysTraced);
+  void checkWorkQueueMatches(const Scene& scene, const RenderOptions& options) {
+    const StatsOfTwo stats = checkSameRender(
+        scene, options, [](RenderOptions& o) { o.workQueue = WorkQueue::Off; },
+        [](RenderOptions& o) { o.workQueue = WorkQueue::OnCpu; });
+    CHECK_FALSE(stats.first.features.workQueue);
+    CHECK(stats.second.features.workQueue == workQueueAvailable(test::gpu()));
   }
 
   TEST_CASE("the work queue gives the grid's image and ray count") {
