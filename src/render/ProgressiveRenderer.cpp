@@ -28,9 +28,10 @@ uint32_t spreadingStride(uint32_t count) {
   }
 }
 
-// Workgroups a render dispatch with a work queue launches: at least one
-// per driver thread (lavapipe starts at most 32), each of whose subgroups
-// takes runs until the queue is empty.
+// Workgroups a render dispatch with a work queue launches: each driver
+// thread's share starts with one whose subgroups take runs until the queue
+// is empty (the rest of the share finds it so), on up to 64 threads; past
+// that, threads without a workgroup would idle.
 constexpr uint32_t kQueueWorkgroups = 64;
 
 // Buffers filled by transfers are read and written by the kernels after them.
