@@ -35,14 +35,16 @@ void replaceInFile(const std::filesystem::path& file, const std::string& from,
   std::ofstream(file) << text;
 }
 
-ShaderDefines allFeatures() {
+ShaderFeatures allFeatureFlags() {
   ShaderFeatures features;
   features.spheres = features.triangles = features.cylinders = true;
   features.reflection = features.refraction = features.thinLens = true;
   features.vertices = features.textures = true;
   features.whittedStackSize = 8;
-  return features.defines();
+  return features;
 }
+
+ShaderDefines allFeatures() { return allFeatureFlags().defines(); }
 
 }  // namespace
 
@@ -79,19 +81,28 @@ TEST_SUITE("shader-compiler") {
   TEST_CASE("every kernel compiles with all features, and the device accepts it") {
     struct Entry {
       const char* file;
+      ShaderFeatures features;
       std::vector<KernelBinding> bindings;
       uint32_t pushBytes;
     };
-    std::vector<KernelBinding> render = ProgressiveRenderer::kernelBindings(ShaderFeatures{});
+    // The render kernel also with the work queue of CPU devices, which GPUs
+    // do not build by default.
+    ShaderFeatures queued = allFeatureFlags();
+    queued.workQueue = true;
     std::vector<KernelBinding> batch = SceneBuffers::bindings();
     batch.push_back({RT_BINDING_RAYS});
     batch.push_back({RT_BINDING_HITS});
     const std::vector<Entry> entries = {
-        {"trace.comp", render, sizeof(gpu::GpuFrameParams)},
-        {"intersect_batch.comp", batch, sizeof(gpu::GpuBatchParams)}};
+        {"trace.comp", allFeatureFlags(), ProgressiveRenderer::kernelBindings(allFeatureFlags()),
+         sizeof(gpu::GpuFrameParams)},
+        {"trace.comp", queued, ProgressiveRenderer::kernelBindings(queued),
+         sizeof(gpu::GpuFrameParams)},
+        {"intersect_batch.comp", allFeatureFlags(), batch, sizeof(gpu::GpuBatchParams)}};
     for (const Entry& entry : entries) {
       CAPTURE(entry.file);
-      std::vector<uint32_t> spirv = test::shaderCompiler().compile(entry.file, allFeatures());
+      CAPTURE(entry.features.workQueue);
+      std::vector<uint32_t> spirv =
+          test::shaderCompiler().compile(entry.file, entry.features.defines());
       REQUIRE(spirv.size() > 5);
       CHECK(spirv[0] == 0x07230203u);
       ComputeKernel kernel(test::gpu(), spirv, entry.bindings, entry.pushBytes);
