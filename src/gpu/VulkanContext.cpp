@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstring>
 #include <vector>
@@ -99,6 +100,22 @@ std::string driverText(VkPhysicalDevice device, const VkPhysicalDeviceProperties
   std::string info = driver.driverInfo;
   return info.empty() ? std::string(driver.driverName)
                       : fmt::format("{}, {}", driver.driverName, info);
+}
+
+// The major version in a Mesa driver's info, "Mesa 25.0.7-2~bpo12+1 (LLVM
+// 15.0.6)": lavapipe reports 1 as its driverVersion, so only the text says.
+std::optional<uint32_t> mesaMajorVersion(const std::string& info) {
+  const std::string prefix = "Mesa ";
+  const size_t at = info.find(prefix);
+  if (at == std::string::npos) return std::nullopt;
+  uint32_t major = 0;
+  size_t digits = 0;
+  for (size_t i = at + prefix.size(); i < info.size() && std::isdigit(uint8_t(info[i])); ++i) {
+    major = major * 10 + uint32_t(info[i] - '0');
+    ++digits;
+  }
+  if (digits == 0 || digits > 4) return std::nullopt;
+  return major;
 }
 
 bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
@@ -306,9 +323,8 @@ void VulkanContext::pickPhysicalDevice(const ContextOptions& options) {
   VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
                                           &subgroups};
   vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
-  // Mesa reports its own version as the driver version (VK_MAKE_VERSION).
   if (driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE) {
-    lavapipeMesaMajor_ = VK_VERSION_MAJOR(properties_.driverVersion);
+    lavapipeMesaMajor_ = mesaMajorVersion(driver.driverInfo);
   }
   subgroupArithmetic_ = (subgroups.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
                         (subgroups.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);
