@@ -89,14 +89,22 @@ std::optional<uint32_t> usableQueueFamily(VkPhysicalDevice device, VkSurfaceKHR 
   return std::nullopt;
 }
 
+// The driver's identity (Vulkan 1.2 core); zeroed on older devices.
+VkPhysicalDeviceDriverProperties driverProperties(VkPhysicalDevice device,
+                                                  const VkPhysicalDeviceProperties& props) {
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  if (props.apiVersion < VK_API_VERSION_1_2) return driver;
+  VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  props2.pNext = &driver;
+  vkGetPhysicalDeviceProperties2(device, &props2);
+  return driver;
+}
+
 // Driver name and version as the driver reports them (Vulkan 1.2 core); the
 // version is what sets a CPU driver's speed (Mesa 22.3 vs 25: 2.4-4.3x).
 std::string driverText(VkPhysicalDevice device, const VkPhysicalDeviceProperties& props) {
   if (props.apiVersion < VK_API_VERSION_1_2) return "unknown driver";
-  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
-  VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
-  props2.pNext = &driver;
-  vkGetPhysicalDeviceProperties2(device, &props2);
+  const VkPhysicalDeviceDriverProperties driver = driverProperties(device, props);
   std::string info = driver.driverInfo;
   return info.empty() ? std::string(driver.driverName)
                       : fmt::format("{}, {}", driver.driverName, info);
@@ -316,13 +324,12 @@ void VulkanContext::pickPhysicalDevice(const ContextOptions& options) {
   description_ = describe(physicalDevice_, *chosen);
   vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
   vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
-  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceSubgroupProperties subgroups{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
-  if (properties_.apiVersion >= VK_API_VERSION_1_2) subgroups.pNext = &driver;
   VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
                                           &subgroups};
   vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
+  const VkPhysicalDeviceDriverProperties driver = driverProperties(physicalDevice_, properties_);
   if (driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE) {
     lavapipeMesaMajor_ = mesaMajorVersion(driver.driverInfo);
   }

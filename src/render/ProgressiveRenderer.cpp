@@ -246,8 +246,8 @@ void ProgressiveRenderer::recordRange(VkCommandBuffer commands, uint32_t row, ui
   if (options_.independentHalves) frame.samplerKind |= RT_SAMPLER_REPLICATES;
   const glm::uvec2 groups{divideRoundUp(region_.width, RT_WORKGROUP_SIZE_X),
                           divideRoundUp(rows, RT_WORKGROUP_SIZE_Y)};
-  frame.groupStride = {spreadingStride(groups.x), spreadingStride(groups.y)};
   if (!workQueue_) {
+    frame.groupStride = {spreadingStride(groups.x), spreadingStride(groups.y)};
     kernel_->recordDispatch(commands, &frame, groups.x, groups.y);
     return;
   }

@@ -32,7 +32,7 @@ class DispatchPlanner {
                   uint32_t maxPassSamples)
       : width_(width),
         height_(height),
-        target_(dispatchTarget),
+        dispatchTarget_(dispatchTarget),
         passTarget_(passTarget),
         maxPassSamples_(maxPassSamples) {}
 
@@ -66,7 +66,7 @@ class DispatchPlanner {
 
   // Pixel-samples one dispatch should add.
   double workPerDispatch() const {
-    return costPerPixelSample_ > 0 ? target_ / costPerPixelSample_ : 16384.0;
+    return costPerPixelSample_ > 0 ? dispatchTarget_ / costPerPixelSample_ : 16384.0;
   }
 
   void record(double pixelSamples, double seconds) {
@@ -78,7 +78,7 @@ class DispatchPlanner {
  private:
   uint32_t width_;
   uint32_t height_;
-  double target_;
+  double dispatchTarget_;
   double passTarget_;
   uint32_t maxPassSamples_;
   double costPerPixelSample_ = 0;
