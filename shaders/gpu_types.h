@@ -203,6 +203,11 @@ RT_ASSERT_TEXELS(GpuItem, RT_TEXELS_PER_ITEM);
 // Traversal stack: the farther children waiting at both levels, plus the
 // marker that ends a mesh instance (traverse.glsl).
 #define RT_BVH_STACK_SIZE (2 * RT_BVH_MAX_DEPTH + 8)
+// Of which the top entries are held in registers; a walk pushes at most one
+// entry per level of its path (and the marker), so a scene whose levels and
+// marker come to at most this many never needs the rest
+// (ShaderFeatures::stackInRegisters).
+#define RT_BVH_STACK_REGISTERS 4
 // ---- end of acceleration structure ----
 
 struct GpuMaterial {

@@ -22,6 +22,10 @@
 
 #include "hits.glsl"
 
+#ifdef RT_LANE_VOTES
+#extension GL_KHR_shader_subgroup_vote : require
+#endif
+
 // Reciprocal direction with zero components replaced by a tiny signed value,
 // so the slab test never computes 0 * inf = NaN.
 vec3 safeReciprocal(vec3 d) {
@@ -129,9 +133,23 @@ const uint RT_REF_LEAVE_INSTANCE = RT_REF_LEAF | RT_REF_MESH;
 // indices lane by lane, behind a branch per lane; moving registers is one
 // select each. The bunny's primary rays and the common scene: 1.03-1.07x
 // the walk with the whole stack in the array (README "Benchmarks").
+// Lavapipe runs that lane-by-lane store whenever the push runs at all, for
+// every lane, each lane's mask bit a branch that the CPU mispredicts (10% of
+// the common scene's kernel time in one walk's store): a vote
+// (RT_LANE_VOTES) skips it unless some lane spills, and shallow scenes are
+// built without the array. Together the common scene 1.06x (pinhole) and
+// 1.16x (thin lens), `default.json` 1.35x, the thin-lens study 1.28x
+// (README "Benchmarks"). The array's read on a pop measured no better
+// behind a vote (0.93-1.06x): it is a gather without branches.
+// Scenes whose walks never hold more than the registers' four entries
+// (RT_BVH_STACK_IN_REGISTERS, most coursework scenes) are built without the
+// array.
+#if RT_BVH_STACK_REGISTERS != 4
+#error pushTop and popTop move four registers
+#endif
 struct StackTop {
-  uint entries[4];  // [0] is the top
-  uint size;        // entries in all, registers and array
+  uint entries[RT_BVH_STACK_REGISTERS];  // [0] is the top
+  uint size;                             // entries in all, registers and array
 };
 
 // Pushes `node`; returns the entry that leaves the registers for the array
@@ -157,16 +175,31 @@ uint popTop(inout StackTop top) {
   return node;
 }
 
-#define RT_PUSH(top, spill, node)                  \
-  {                                                \
-    uint leaving = pushTop(top, node);             \
-    if (top.size > 4u) spill[top.size - 5u] = leaving; \
+#ifdef RT_LANE_VOTES
+#define RT_ANY_LANE(condition) subgroupAny(condition)
+#else
+#define RT_ANY_LANE(condition) (condition)
+#endif
+#ifdef RT_BVH_STACK_IN_REGISTERS
+#define RT_PUSH(top, spill, node) \
+  { pushTop(top, node); }
+#define RT_POP(top, spill, node) \
+  { node = popTop(top); }
+#else
+#define RT_PUSH(top, spill, node)                 \
+  {                                               \
+    uint leaving = pushTop(top, node);            \
+    bool spills = top.size > 4u;                  \
+    if (RT_ANY_LANE(spills)) {                    \
+      if (spills) spill[top.size - 5u] = leaving; \
+    }                                             \
   }
 #define RT_POP(top, spill, node)                               \
   {                                                            \
     node = popTop(top);                                        \
     if (top.size >= 4u) top.entries[3] = spill[top.size - 4u]; \
   }
+#endif
 // From an interior node to its nearer child that the ray enters (the other
 // one pushed if it enters both), or to the stack's top if it enters neither.
 // `entries` is childEntries' answer.

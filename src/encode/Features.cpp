@@ -67,6 +67,10 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat) {
     for (const gpu::GpuEmitter& emitter : flat.emitters)
       features.emitterKinds |= 1u << emitter.kind;
   }
+  // A walk pushes at most one entry per level of its path through both
+  // levels, and the marker that ends a placed mesh.
+  uint32_t deepestStack = flat.bvhDepth + (features.instanceTransforms ? 1u : 0u);
+  features.stackInRegisters = deepestStack <= RT_BVH_STACK_REGISTERS;
   bool pairable = !features.hardwareAccel && !features.instanceTransforms;
   features.shadowPairs =
       pairable && lit && flat.info.pointLightCount + flat.info.areaLightSamples >= 2;
@@ -120,6 +124,8 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(shadowPairs, "RT_SHADOW_PAIRS");
   flag(primaryPairs, "RT_PRIMARY_PAIRS");
   flag(workQueue, "RT_WORK_QUEUE");
+  flag(laneVotes, "RT_LANE_VOTES");
+  flag(stackInRegisters, "RT_BVH_STACK_IN_REGISTERS");
   if (samplerKind >= 0) result.emplace_back("RT_SAMPLER_KIND", std::to_string(samplerKind) + "u");
   if (emitterKinds != 0) {
     result.emplace_back("RT_EMITTER_KINDS", std::to_string(emitterKinds) + "u");

@@ -68,6 +68,13 @@ struct ShaderFeatures {
   bool primaryPairs = false;
   // Subgroups take runs of pixels from a queue (WorkQueue; trace.comp).
   bool workQueue = false;
+  // Every walk's stack fits the entries held in registers
+  // (RT_BVH_STACK_REGISTERS): the walk is built without the stack's array.
+  bool stackInRegisters = false;
+  // The BVH walk writes its stack's array only where some lane of the
+  // subgroup must (subgroupAny; shaders/traverse_bvh.glsl): the device has
+  // subgroup votes.
+  bool laneVotes = false;
 
   ShaderDefines defines() const;
   std::string summary() const;  // e.g. "spheres triangles reflection"

@@ -65,6 +65,9 @@ class VulkanContext {
   bool subgroupArithmetic() const { return subgroupArithmetic_; }
   // Compute kernels may elect a lane and broadcast from it (GL_KHR_shader_subgroup_ballot).
   bool subgroupBallot() const { return subgroupBallot_; }
+  // Compute kernels may ask whether any lane of the subgroup holds a
+  // condition (GL_KHR_shader_subgroup_vote).
+  bool subgroupVote() const { return subgroupVote_; }
   // The device is a CPU (lavapipe, SwiftShader): its worker threads each take
   // one contiguous share of a dispatch's workgroups.
   bool isCpu() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
@@ -108,6 +111,7 @@ class VulkanContext {
   bool rayQueries_ = false;
   bool subgroupArithmetic_ = false;
   bool subgroupBallot_ = false;
+  bool subgroupVote_ = false;
   std::optional<uint32_t> lavapipeMesaMajor_;
   uint32_t validationMessages_ = 0;
 };

@@ -6,6 +6,7 @@
 #include "gpu/ComputeKernel.hpp"
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
+#include "render/ProgressiveRenderer.hpp"
 
 namespace rt {
 
@@ -13,8 +14,9 @@ BatchKernel::BatchKernel(VulkanContext& context, const ShaderCompiler& compiler,
                          const std::string& shaderName, const FlattenOptions& options)
     : context_(context), flat_(flattenScene(scene, options)) {
   buffers_ = std::make_unique<SceneBuffers>(context, flat_);
-  std::vector<uint32_t> spirv =
-      compiler.compile(shaderName, detectFeatures(scene, flat_).defines());
+  ShaderFeatures features = detectFeatures(scene, flat_);
+  features.laneVotes = laneVotesPay(context);
+  std::vector<uint32_t> spirv = compiler.compile(shaderName, features.defines());
   std::vector<KernelBinding> bindings = SceneBuffers::bindings(flat_.accel);
   bindings.push_back({RT_BINDING_RAYS});
   bindings.push_back({RT_BINDING_HITS});

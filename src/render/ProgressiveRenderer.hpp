@@ -49,6 +49,11 @@ struct ProgressiveOptions : ImageSampling {
 // ballots, lavapipe from Mesa 25 on.
 bool workQueueAvailable(const VulkanContext& context);
 
+// Whether the BVH walk votes before writing its stack's array
+// (ShaderFeatures::laneVotes): devices with subgroup votes, lavapipe from
+// Mesa 25 on.
+bool laneVotesPay(const VulkanContext& context);
+
 class ProgressiveRenderer {
  public:
   ProgressiveRenderer(VulkanContext& context, const ShaderCompiler& compiler, const Scene& scene,

@@ -13,6 +13,7 @@
 #include "formats/gltf/GltfLoader.hpp"
 #include "formats/json/JsonSceneLoader.hpp"
 #include "render/BatchIntersector.hpp"
+#include "render/ProgressiveRenderer.hpp"
 #include "render/Renderer.hpp"
 #include "scene/ProceduralMesh.hpp"
 #include "support/TestSupport.hpp"
@@ -189,6 +190,52 @@ TEST_SUITE("bvh-gpu") {
     CHECK_FALSE(features.looseTriangles);
     CHECK_FALSE(features.instanceTransforms);
     CHECK_FALSE(features.spheres);
+  }
+
+  TEST_CASE("walks whose stack fits the registers are built without its array, and hit alike") {
+    // Spheres on a jittered grid, more and more of them: the BVH grows a
+    // level at a time. The deepest scene built without the array and the
+    // shallowest built with it must both hit like brute force (whose own
+    // tree is another shape), with rays that cross many boxes.
+    auto cluster = [](uint32_t count) {
+      Scene scene;
+      scene.materials.push_back({});
+      std::mt19937 rng(count);
+      std::uniform_real_distribution<float> jitter(-0.15f, 0.15f);
+      for (uint32_t i = 0; i < count; ++i) {
+        glm::vec3 cell(float(i % 4), float(i / 4 % 4), float(i / 16));
+        glm::vec3 centre = 0.5f * (cell - glm::vec3(1.5f)) + glm::vec3(jitter(rng), jitter(rng), 0);
+        scene.shapes.push_back({Sphere{glm::dvec3(centre), 0.22f}, 0, ""});
+      }
+      return scene;
+    };
+    std::optional<uint32_t> deepestInRegisters, shallowestWithArray;
+    for (uint32_t count = 2; count <= 48; ++count) {
+      Scene scene = cluster(count);
+      FlatScene flat = flattenScene(scene);
+      bool inRegisters = detectFeatures(scene, flat).stackInRegisters;
+      CAPTURE(count);
+      CHECK(inRegisters == (flat.bvhDepth <= RT_BVH_STACK_REGISTERS));
+      if (inRegisters) deepestInRegisters = count;
+      if (!inRegisters && !shallowestWithArray) shallowestWithArray = count;
+    }
+    REQUIRE(deepestInRegisters);
+    REQUIRE(shallowestWithArray);
+    // Deeper walks vote before writing the array where that pays: lavapipe
+    // from Mesa 25 on (the suite runs there), and GPUs.
+    if (const std::optional<uint32_t> mesa = test::gpu().lavapipeMesaMajor()) {
+      CHECK(laneVotesPay(test::gpu()) == (*mesa >= 25));
+    }
+    CHECK(flattenScene(cluster(*deepestInRegisters)).bvhDepth == RT_BVH_STACK_REGISTERS);
+    auto rays = test::raysTowardsOrigin(6000, 14, 1.0f);
+    for (uint32_t count : {*deepestInRegisters, *shallowestWithArray}) {
+      CAPTURE(count);
+      Scene scene = cluster(count);
+      checkSame(
+          compareHits(gpuHits(scene, rays, AccelKind::Bvh), gpuHits(scene, rays, AccelKind::None)),
+          rays.size());
+    }
+    test::checkNoValidationMessages();
   }
 
   TEST_CASE("a shared mesh is stored once: instances cost a few hundred bytes each") {

@@ -57,7 +57,7 @@ TEST_SUITE("shader-compiler") {
     every.spheres = every.triangles = every.cylinders = every.meshes = true;
     every.looseTriangles = every.instanceTransforms = every.reflection = true;
     every.refraction = every.thinLens = every.vertices = every.textures = true;
-    every.areaLights = every.diffuseBounces = true;
+    every.areaLights = every.diffuseBounces = every.laneVotes = true;
     every.emitterKinds = 0xfu;
     every.whittedStackSize = 8;
     size_t files = 0;
@@ -85,10 +85,14 @@ TEST_SUITE("shader-compiler") {
       std::vector<KernelBinding> bindings;
       uint32_t pushBytes;
     };
-    // The render kernel also with the work queue of CPU devices, which GPUs
-    // do not build by default.
+    // The render kernel also as CPU devices build it (the work queue and the
+    // walk's vote on spilling its stack), and for a scene whose walks keep
+    // their stack in registers.
     ShaderFeatures queued = allFeatureFlags();
     queued.workQueue = true;
+    queued.laneVotes = true;
+    ShaderFeatures shallow = allFeatureFlags();
+    shallow.stackInRegisters = true;
     std::vector<KernelBinding> batch = SceneBuffers::bindings();
     batch.push_back({RT_BINDING_RAYS});
     batch.push_back({RT_BINDING_HITS});
@@ -97,10 +101,13 @@ TEST_SUITE("shader-compiler") {
          sizeof(gpu::GpuFrameParams)},
         {"trace.comp", queued, ProgressiveRenderer::kernelBindings(queued),
          sizeof(gpu::GpuFrameParams)},
+        {"trace.comp", shallow, ProgressiveRenderer::kernelBindings(shallow),
+         sizeof(gpu::GpuFrameParams)},
         {"intersect_batch.comp", allFeatureFlags(), batch, sizeof(gpu::GpuBatchParams)}};
     for (const Entry& entry : entries) {
       CAPTURE(entry.file);
       CAPTURE(entry.features.workQueue);
+      CAPTURE(entry.features.stackInRegisters);
       std::vector<uint32_t> spirv =
           test::shaderCompiler().compile(entry.file, entry.features.defines());
       REQUIRE(spirv.size() > 5);
