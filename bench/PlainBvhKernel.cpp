@@ -209,6 +209,7 @@ PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& 
   if (layout.deviceAddress) defines.emplace_back("PLAIN_DEVICE_ADDRESS", "1");
   if (wide) defines.emplace_back("PLAIN_WIDE", "1");
   if (layout.halfWide) defines.emplace_back("PLAIN_WIDE_HALF", "1");
+  if (layout.registerStack) defines.emplace_back("PLAIN_REGISTER_STACK", "1");
   defines.emplace_back("PLAIN_NODE_TEXELS", layout.wide ? "7u" : "4u");
   VkDescriptorType sceneType =
       storageBuffers ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER : VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;

@@ -37,6 +37,9 @@ struct PlainLayout {
   bool halfWide = false;
   // Nodes and triangles read through buffer device addresses (binary only).
   bool deviceAddress = false;
+  // The stack as the renderer keeps it: the top in registers, the array
+  // written only when some lane spills (a subgroup vote).
+  bool registerStack = false;
 };
 
 // `width` x `width` pixels, `samples` dispatches.

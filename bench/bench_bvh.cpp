@@ -189,7 +189,9 @@ void printPlainReference(rt::VulkanContext& context, const rt::TriangleMesh& bun
                               {"4-wide, texel buffers", {false, true, false}},
                               {"4-wide, storage buffers", {true, true, false}},
                               {"4-wide half floats, texel buffers", {false, false, true}},
-                              {"binary, device addresses", {false, false, false, true}}};
+                              {"binary, device addresses", {false, false, false, true}},
+                              {"binary, register stack", {false, false, false, false, true}},
+                              {"4-wide half floats, register stack", {false, false, true, false, true}}};
   for (const Variant& variant : variants) {
     // Device addresses are enabled with ray queries only (VulkanContext).
     if (variant.layout.deviceAddress && !context.rayQueriesEnabled()) continue;

@@ -5,6 +5,9 @@
 // distance (-1: miss). Push constants only enter
 // arithmetic, never a branch: lavapipe would recompile the kernel at every
 // dispatch otherwise.
+#ifdef PLAIN_REGISTER_STACK
+#extension GL_KHR_shader_subgroup_vote : require
+#endif
 #ifdef PLAIN_DEVICE_ADDRESS
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
@@ -58,6 +61,51 @@ layout(std430, set = 0, binding = 2) writeonly buffer Distances { float distance
 
 const uint LEAF = 0x80000000u;
 const uint DONE = 0xffffffffu;
+
+// The walk's stack. With PLAIN_REGISTER_STACK as the renderer keeps it
+// (shaders/traverse_bvh.glsl): the top four entries in registers, the rest
+// in an array written only when some lane of the subgroup spills (lavapipe
+// writes an array at per-lane indices lane by lane, a branch a lane); else
+// the whole stack in the array.
+#ifdef PLAIN_REGISTER_STACK
+struct StackTop {
+  uint e0, e1, e2, e3;
+  uint size;
+};
+#define STACK_DECLARE                                   \
+  StackTop top = StackTop(DONE, DONE, DONE, DONE, 0u); \
+  uint spill[96]
+#define STACK_PUSH(value)                              \
+  {                                                    \
+    uint leaving = top.e3;                             \
+    top.e3 = top.e2;                                   \
+    top.e2 = top.e1;                                   \
+    top.e1 = top.e0;                                   \
+    top.e0 = (value);                                  \
+    ++top.size;                                        \
+    bool spills = top.size > 4u;                       \
+    if (subgroupAny(spills)) {                         \
+      if (spills) spill[top.size - 5u] = leaving;      \
+    }                                                  \
+  }
+#define STACK_POP(node)                                        \
+  {                                                            \
+    node = top.size > 0u ? top.e0 : DONE;                      \
+    top.e0 = top.e1;                                           \
+    top.e1 = top.e2;                                           \
+    top.e2 = top.e3;                                           \
+    top.size = top.size > 0u ? top.size - 1u : 0u;             \
+    if (top.size >= 4u) top.e3 = spill[top.size - 4u];         \
+  }
+#else
+#define STACK_DECLARE \
+  uint stack[96];     \
+  uint stackSize = 0u
+#define STACK_PUSH(value) \
+  { stack[stackSize++] = (value); }
+#define STACK_POP(node) \
+  { node = stackSize > 0u ? stack[--stackSize] : DONE; }
+#endif
 
 // Entry distance into the box [lo, hi] given per axis as (lo.x, hi.x, ...),
 // or a miss (entry > exit).
@@ -113,8 +161,7 @@ float closestHit(vec3 origin, vec3 direction) {
   vec3 invDir = 1.0 / direction;
   vec3 originTimesInv = origin * invDir;
   float tMax = 1e30;
-  uint stack[96];
-  uint stackSize = 0u;
+  STACK_DECLARE;
   uint node = 0u;
   const float MISS = 3e38;
   while (node != DONE) {
@@ -138,6 +185,16 @@ float closestHit(vec3 origin, vec3 direction) {
       sortPair(d0, r0, d1, r1);
       sortPair(d0, r0, d2, r2);
       sortPair(d0, r0, d3, r3);
+#ifdef PLAIN_REGISTER_STACK
+      if (d3 < MISS) STACK_PUSH(r3);
+      if (d2 < MISS) STACK_PUSH(r2);
+      if (d1 < MISS) STACK_PUSH(r1);
+      if (d0 < MISS) {
+        node = r0;
+      } else {
+        STACK_POP(node);
+      }
+#else
       stack[stackSize] = r3;
       stackSize += d3 < MISS ? 1u : 0u;
       stack[stackSize] = r2;
@@ -148,6 +205,7 @@ float closestHit(vec3 origin, vec3 direction) {
       uint top = stack[max(stackSize, 1u) - 1u];
       node = d0 < MISS ? r0 : (pop ? top : DONE);
       stackSize -= pop ? 1u : 0u;
+#endif
     }
     if (node == DONE) break;
     uint first = (node & ~LEAF) >> 3u, count = node & 7u;
@@ -162,7 +220,7 @@ float closestHit(vec3 origin, vec3 direction) {
       float t = dot(e2, q) * inverseDet;
       if (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && t < tMax) tMax = t;
     }
-    node = stackSize > 0u ? stack[--stackSize] : DONE;
+    STACK_POP(node);
   }
   return tMax < 1e30 ? tMax : -1.0;
 }
@@ -171,8 +229,7 @@ float closestHit(vec3 origin, vec3 direction) {
   vec3 invDir = 1.0 / direction;
   vec3 originTimesInv = origin * invDir;
   float tMax = 1e30;
-  uint stack[64];
-  uint stackSize = 0u;
+  STACK_DECLARE;
   uint node = 0u;
   while (node != DONE) {
     while (node < LEAF) {
@@ -183,11 +240,11 @@ float closestHit(vec3 origin, vec3 direction) {
       bool hitA = a.x <= a.y, hitB = b.x <= b.y;
       uint childA = floatBitsToUint(n3.x), childB = floatBitsToUint(n3.y);
       if (!hitA && !hitB) {
-        node = stackSize > 0u ? stack[--stackSize] : DONE;
+        STACK_POP(node);
       } else {
         bool aFirst = !hitB || (hitA && a.x <= b.x);
         node = aFirst ? childA : childB;
-        if (hitA && hitB) stack[stackSize++] = aFirst ? childB : childA;
+        if (hitA && hitB) STACK_PUSH(aFirst ? childB : childA);
       }
     }
     if (node == DONE) break;
@@ -203,7 +260,7 @@ float closestHit(vec3 origin, vec3 direction) {
       float t = dot(e2, q) * inverseDet;
       if (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && t < tMax) tMax = t;
     }
-    node = stackSize > 0u ? stack[--stackSize] : DONE;
+    STACK_POP(node);
   }
   return tMax < 1e30 ? tMax : -1.0;
 }
