@@ -184,14 +184,15 @@ void printPlainReference(rt::VulkanContext& context, const rt::TriangleMesh& bun
     const char* label;
     bench::PlainLayout layout;
   };
-  const Variant variants[] = {{"binary, texel buffers", {false, false, false}},
-                              {"binary, storage buffers", {true, false, false}},
-                              {"4-wide, texel buffers", {false, true, false}},
-                              {"4-wide, storage buffers", {true, true, false}},
-                              {"4-wide half floats, texel buffers", {false, false, true}},
-                              {"binary, device addresses", {false, false, false, true}},
-                              {"binary, register stack", {false, false, false, false, true}},
-                              {"4-wide half floats, register stack", {false, false, true, false, true}}};
+  const Variant variants[] = {
+      {"binary, texel buffers", {}},
+      {"binary, storage buffers", {.storageBuffers = true}},
+      {"4-wide, texel buffers", {.wide = true}},
+      {"4-wide, storage buffers", {.storageBuffers = true, .wide = true}},
+      {"4-wide half floats, texel buffers", {.halfWide = true}},
+      {"binary, device addresses", {.deviceAddress = true}},
+      {"binary, register stack", {.registerStack = true}},
+      {"4-wide half floats, register stack", {.halfWide = true, .registerStack = true}}};
   for (const Variant& variant : variants) {
     // Device addresses are enabled with ray queries only (VulkanContext).
     if (variant.layout.deviceAddress && !context.rayQueriesEnabled()) continue;
