@@ -136,14 +136,13 @@ const uint RT_REF_LEAVE_INSTANCE = RT_REF_LEAF | RT_REF_MESH;
 // Lavapipe runs that lane-by-lane store whenever the push runs at all, for
 // every lane, each lane's mask bit a branch that the CPU mispredicts (10% of
 // the common scene's kernel time in one walk's store): a vote
-// (RT_LANE_VOTES) skips it unless some lane spills, and shallow scenes are
-// built without the array. Together the common scene 1.06x (pinhole) and
-// 1.16x (thin lens), `default.json` 1.35x, the thin-lens study 1.28x
-// (README "Benchmarks"). The array's read on a pop measured no better
-// behind a vote (0.93-1.06x): it is a gather without branches.
-// Scenes whose walks never hold more than the registers' four entries
+// (RT_LANE_VOTES) skips it unless some lane spills, and scenes whose walks
+// never hold more than the registers' four entries
 // (RT_BVH_STACK_IN_REGISTERS, most coursework scenes) are built without the
-// array.
+// array. Together the common scene 1.06x (pinhole) and 1.16x (thin lens),
+// `default.json` 1.35x, the thin-lens study 1.28x (README "Benchmarks").
+// The array's read on a pop measured no better behind a vote (0.93-1.06x):
+// it is a gather without branches.
 #if RT_BVH_STACK_REGISTERS != 4
 #error pushTop and popTop move four registers
 #endif

@@ -113,23 +113,26 @@ FlattenOptions flattenOptionsFor(const ProgressiveOptions& options) {
   return flatten;
 }
 
+// Debian 12's own lavapipe (Mesa 22.3), where the CPU paths below do not pay
+// or are miscompiled.
+bool lavapipeBefore25(const VulkanContext& context) {
+  const std::optional<uint32_t> mesa = context.lavapipeMesaMajor();
+  return mesa && *mesa < 25;
+}
+
 }  // namespace
 
 // Mesa 22.3's lavapipe miscompiles the loop around the pixels (some pixels
 // of a pass lose samples: Debian 12's own driver, seen in the sample counts
 // of EXR outputs); Mesa 25's renders them bit for bit as the grid does.
 bool workQueueAvailable(const VulkanContext& context) {
-  if (!context.isCpu() || !context.subgroupBallot()) return false;
-  const std::optional<uint32_t> mesa = context.lavapipeMesaMajor();
-  return !mesa || *mesa >= 25;
+  return context.isCpu() && context.subgroupBallot() && !lavapipeBefore25(context);
 }
 
 // Mesa 22.3's lavapipe gains nothing from the vote and pays for it: the
 // common scene rendered 0.82x as fast with it there (1.07x on Mesa 25).
 bool laneVotesPay(const VulkanContext& context) {
-  if (!context.subgroupVote()) return false;
-  const std::optional<uint32_t> mesa = context.lavapipeMesaMajor();
-  return !mesa || *mesa >= 25;
+  return context.subgroupVote() && !lavapipeBefore25(context);
 }
 
 ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCompiler& compiler,
