@@ -157,6 +157,38 @@ std::vector<uint32_t> layoutHalfWide(const std::vector<float>& wide) {
   return out;
 }
 
+// The binary nodes with half-float boxes rounded outwards, two texels a node:
+// (ref a, ref b, a.min xy, a.min z a.max x), (a.max yz, b.min xy, b.min z
+// b.max x, b.max yz), as in the renderer's GpuBvhNode.
+std::vector<uint32_t> layoutHalfBinary(const rt::Bvh& bvh) {
+  std::vector<uint32_t> interiorIndex(bvh.nodes.size(), 0);
+  uint32_t interiorCount = 0;
+  for (size_t i = 0; i < bvh.nodes.size(); ++i) {
+    if (bvh.nodes[i].count == 0) interiorIndex[i] = interiorCount++;
+  }
+  auto reference = [&](uint32_t child) {
+    const rt::BvhNode& node = bvh.nodes[child];
+    return node.count == 0 ? interiorIndex[child]
+                           : kLeafBit | node.firstIndex << kCountBits | node.count;
+  };
+  auto pair = [](float low, bool lowUp, float high, bool highUp) {
+    return uint32_t(rt::halfTowards(low, lowUp)) | uint32_t(rt::halfTowards(high, highUp)) << 16;
+  };
+  std::vector<uint32_t> out;
+  out.reserve(size_t(interiorCount) * 8);
+  for (const rt::BvhNode& node : bvh.nodes) {
+    if (node.count != 0) continue;
+    const rt::Aabb& a = bvh.nodes[node.firstIndex].bounds;
+    const rt::Aabb& b = bvh.nodes[node.firstIndex + 1].bounds;
+    uint32_t words[8] = {reference(node.firstIndex),           reference(node.firstIndex + 1),
+                         pair(a.min.x, false, a.min.y, false), pair(a.min.z, false, a.max.x, true),
+                         pair(a.max.y, true, a.max.z, true),   pair(b.min.x, false, b.min.y, false),
+                         pair(b.min.z, false, b.max.x, true),  pair(b.max.y, true, b.max.z, true)};
+    out.insert(out.end(), words, words + 8);
+  }
+  return out;
+}
+
 // Triangles in leaf order as (v0, v1 - v0, v2 - v0), one vec4 each.
 std::vector<float> layoutTriangles(const rt::TriangleMesh& mesh, const rt::Bvh& bvh) {
   std::vector<float> triangles;
@@ -182,20 +214,22 @@ rt::Bvh buildMeshBvh(const rt::TriangleMesh& mesh) {
 PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& mesh,
                             const PlainCamera& camera, const PlainLayout& layout, uint32_t width,
                             uint32_t samples) {
-  const bool storageBuffers = layout.storageBuffers && !layout.halfWide;
+  const bool halfNodeTexels = layout.halfWide || layout.halfBinary;
+  const bool storageBuffers = layout.storageBuffers && !halfNodeTexels;
   rt::Bvh bvh = buildMeshBvh(mesh);
   const bool wide = layout.wide || layout.halfWide;
   std::vector<float> nodes = wide ? layoutWideNodes(bvh) : layoutNodes(bvh);
-  std::vector<uint32_t> halfNodes =
-      layout.halfWide ? layoutHalfWide(nodes) : std::vector<uint32_t>{};
+  std::vector<uint32_t> halfNodes = layout.halfWide     ? layoutHalfWide(nodes)
+                                    : layout.halfBinary ? layoutHalfBinary(bvh)
+                                                        : std::vector<uint32_t>{};
   std::vector<float> triangles = layoutTriangles(mesh, bvh);
   const VkBufferUsageFlags usage =
       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
       (layout.deviceAddress ? VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT : 0);
   // Both node layouts are 32-bit words.
   const void* nodeWords =
-      layout.halfWide ? static_cast<const void*>(halfNodes.data()) : nodes.data();
-  size_t nodeBytes = (layout.halfWide ? halfNodes.size() : nodes.size()) * sizeof(float);
+      halfNodeTexels ? static_cast<const void*>(halfNodes.data()) : nodes.data();
+  size_t nodeBytes = (halfNodeTexels ? halfNodes.size() : nodes.size()) * sizeof(float);
   rt::Buffer nodeBuffer(context, nodeBytes, usage);
   rt::Buffer triangleBuffer(context, triangles.size() * sizeof(float), usage);
   rt::Buffer distances(context, size_t(width) * width * sizeof(float),
@@ -209,6 +243,7 @@ PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& 
   if (layout.deviceAddress) defines.emplace_back("PLAIN_DEVICE_ADDRESS", "1");
   if (wide) defines.emplace_back("PLAIN_WIDE", "1");
   if (layout.halfWide) defines.emplace_back("PLAIN_WIDE_HALF", "1");
+  if (layout.halfBinary) defines.emplace_back("PLAIN_BINARY_HALF", "1");
   if (layout.registerStack) defines.emplace_back("PLAIN_REGISTER_STACK", "1");
   defines.emplace_back("PLAIN_NODE_TEXELS", layout.wide ? "7u" : "4u");
   VkDescriptorType sceneType =
@@ -220,9 +255,8 @@ PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& 
     kernel.bind(0, nodeBuffer);
     kernel.bind(1, triangleBuffer);
   } else {
-    kernel.bindTexels(
-        0, nodeBuffer,
-        layout.halfWide ? VK_FORMAT_R32G32B32A32_UINT : VK_FORMAT_R32G32B32A32_SFLOAT);
+    kernel.bindTexels(0, nodeBuffer,
+                      halfNodeTexels ? VK_FORMAT_R32G32B32A32_UINT : VK_FORMAT_R32G32B32A32_SFLOAT);
     kernel.bindTexels(1, triangleBuffer, VK_FORMAT_R32G32B32A32_SFLOAT);
   }
   kernel.bind(2, distances);

@@ -35,6 +35,9 @@ struct PlainLayout {
   // The four-wide nodes with half-float boxes, four texels a node (texel
   // buffers only).
   bool halfWide = false;
+  // The binary nodes with half-float boxes in two texels, as the renderer
+  // lays them out (GpuBvhNode; texel buffers only).
+  bool halfBinary = false;
   // Nodes and triangles read through buffer device addresses (binary only).
   bool deviceAddress = false;
   // The stack as the renderer keeps it: the top in registers, the array

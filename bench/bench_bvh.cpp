@@ -192,6 +192,7 @@ void printPlainReference(rt::VulkanContext& context, const rt::TriangleMesh& bun
       {"4-wide half floats, texel buffers", {.halfWide = true}},
       {"binary, device addresses", {.deviceAddress = true}},
       {"binary, register stack", {.registerStack = true}},
+      {"binary half floats, register stack", {.halfBinary = true, .registerStack = true}},
       {"4-wide half floats, register stack", {.halfWide = true, .registerStack = true}}};
   for (const Variant& variant : variants) {
     // Device addresses are enabled with ray queries only (VulkanContext).

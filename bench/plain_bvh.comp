@@ -1,7 +1,8 @@
 #version 460
 // The plain reference kernel of PlainBvhKernel.hpp: one primary ray per
-// invocation, a stack walk of Aila and Laine's binary layout (or, with
-// PLAIN_WIDE, of four-wide nodes), Moller-Trumbore triangles; writes the hit
+// invocation, a stack walk of Aila and Laine's binary layout (with
+// PLAIN_BINARY_HALF in the renderer's two-texel half-float nodes; with
+// PLAIN_WIDE, four-wide nodes), Moller-Trumbore triangles; writes the hit
 // distance (-1: miss). Push constants only enter
 // arithmetic, never a branch: lavapipe would recompile the kernel at every
 // dispatch otherwise.
@@ -40,7 +41,7 @@ layout(std430, set = 0, binding = 0) readonly buffer Nodes { vec4 nodes[]; };
 layout(std430, set = 0, binding = 1) readonly buffer Triangles { vec4 triangles[]; };
 vec4 nodeRow(uint node, uint row) { return nodes[node * PLAIN_NODE_TEXELS + row]; }
 vec4 triangleRow(uint triangle, uint row) { return triangles[triangle * 3u + row]; }
-#elif defined(PLAIN_WIDE_HALF)
+#elif defined(PLAIN_WIDE_HALF) || defined(PLAIN_BINARY_HALF)
 layout(set = 0, binding = 0) uniform utextureBuffer halfNodeTexels;
 layout(set = 0, binding = 1) uniform textureBuffer triangleTexels;
 vec4 triangleRow(uint triangle, uint row) {
@@ -233,12 +234,25 @@ float closestHit(vec3 origin, vec3 direction) {
   uint node = 0u;
   while (node != DONE) {
     while (node < LEAF) {
+#ifdef PLAIN_BINARY_HALF
+      uvec4 low = texelFetch(halfNodeTexels, int(node * 2u));
+      uvec4 high = texelFetch(halfNodeTexels, int(node * 2u + 1u));
+      vec2 aMinXY = unpackHalf2x16(low.z), aMinZMaxX = unpackHalf2x16(low.w);
+      vec2 aMaxYZ = unpackHalf2x16(high.x), bMinXY = unpackHalf2x16(high.y);
+      vec2 bMinZMaxX = unpackHalf2x16(high.z), bMaxYZ = unpackHalf2x16(high.w);
+      vec2 a = slabs(vec2(aMinXY.x, aMinZMaxX.y), vec2(aMinXY.y, aMaxYZ.x),
+                     vec2(aMinZMaxX.x, aMaxYZ.y), invDir, originTimesInv, tMax);
+      vec2 b = slabs(vec2(bMinXY.x, bMinZMaxX.y), vec2(bMinXY.y, bMaxYZ.x),
+                     vec2(bMinZMaxX.x, bMaxYZ.y), invDir, originTimesInv, tMax);
+      uint childA = low.x, childB = low.y;
+#else
       vec4 n0 = nodeRow(node, 0u), n1 = nodeRow(node, 1u);
       vec4 n2 = nodeRow(node, 2u), n3 = nodeRow(node, 3u);
       vec2 a = slabs(n0.xy, n0.zw, n2.xy, invDir, originTimesInv, tMax);
       vec2 b = slabs(n1.xy, n1.zw, n2.zw, invDir, originTimesInv, tMax);
-      bool hitA = a.x <= a.y, hitB = b.x <= b.y;
       uint childA = floatBitsToUint(n3.x), childB = floatBitsToUint(n3.y);
+#endif
+      bool hitA = a.x <= a.y, hitB = b.x <= b.y;
       if (!hitA && !hitB) {
         STACK_POP(node);
       } else {
