@@ -337,6 +337,7 @@ void VulkanContext::pickPhysicalDevice(const ContextOptions& options) {
                         (subgroups.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);
   subgroupBallot_ = (subgroups.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
                     (subgroups.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT);
+  subgroupSize_ = subgroups.subgroupSize;
   subgroupVote_ = (subgroups.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
                   (subgroups.supportedOperations & VK_SUBGROUP_FEATURE_VOTE_BIT);
   queueFamily_ = *usableQueueFamily(physicalDevice_, surface_);

@@ -68,6 +68,8 @@ class VulkanContext {
   // Compute kernels may ask whether any lane of the subgroup holds a
   // condition (GL_KHR_shader_subgroup_vote).
   bool subgroupVote() const { return subgroupVote_; }
+  // Invocations in a subgroup (lavapipe: its vector width in 32-bit lanes).
+  uint32_t subgroupSize() const { return subgroupSize_; }
   // The device is a CPU (lavapipe, SwiftShader): its worker threads each take
   // one contiguous share of a dispatch's workgroups.
   bool isCpu() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
@@ -112,6 +114,7 @@ class VulkanContext {
   bool subgroupArithmetic_ = false;
   bool subgroupBallot_ = false;
   bool subgroupVote_ = false;
+  uint32_t subgroupSize_ = 1;
   std::optional<uint32_t> lavapipeMesaMajor_;
   uint32_t validationMessages_ = 0;
 };

@@ -120,6 +120,23 @@ bool lavapipeBefore25(const VulkanContext& context) {
   return mesa && *mesa < 25;
 }
 
+// Mesa 25.0's lavapipe misreads texel buffers at vector widths other than
+// its default 256 bits (LP_NATIVE_VECTOR_WIDTH=128 or 512: subgroups of 4 or
+// 16 lanes; found on Mesa 25.0.7): fetches return other components or zeros,
+// so BVH walks never end (512) or the kernel crashes (128). Storage buffers
+// read right, and give the same image as texel buffers at 256 bits.
+bool texelBuffersMisread(const VulkanContext& context) {
+  const std::optional<uint32_t> mesa = context.lavapipeMesaMajor();
+  return mesa && *mesa >= 25 && context.subgroupSize() != 8;
+}
+
+// `options` with the scene arrays this device reads right.
+ProgressiveOptions withReadableSceneArrays(ProgressiveOptions options,
+                                           const VulkanContext& context) {
+  if (texelBuffersMisread(context)) options.sceneArrays = SceneArrays::StorageBuffers;
+  return options;
+}
+
 }  // namespace
 
 // Mesa 22.3's lavapipe miscompiles the loop around the pixels (some pixels
@@ -139,15 +156,21 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
                                          const Scene& scene, const ProgressiveOptions& options)
     : context_(context),
       compiler_(compiler),
-      options_(options),
+      options_(withReadableSceneArrays(options, context)),
       flat_(flattenScene(scene, flattenOptionsFor(options))),
-      features_(featuresFor(scene, flat_, options, context)),
+      features_(featuresFor(scene, flat_, options_, context)),
       width_(flat_.info.width),
       height_(flat_.info.height),
-      sceneBuffers_(context, flat_, options.sceneArrays),
+      sceneBuffers_(context, flat_, options_.sceneArrays),
       region_(resolveRegion(options.region, width_, height_)),
       accumulation_(context, accumulationBytes(context, flat_), kAccumulationUsage) {
   accumulation_.fillZero();
+  if (options_.sceneArrays != options.sceneArrays) {
+    flat_.warnings.push_back(fmt::format(
+        "lavapipe at {}-bit vectors (LP_NATIVE_VECTOR_WIDTH) misreads texel buffers; the scene "
+        "is read from storage buffers instead (--scene-arrays storage: the same image, slower)",
+        context.subgroupSize() * 32));
+  }
   if (options.oddSums) {
     oddAccumulation_.emplace(context, accumulation_.size(), kAccumulationUsage);
     oddAccumulation_->fillZero();
