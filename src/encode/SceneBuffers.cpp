@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <optional>
+
 #include "gpu/ComputeKernel.hpp"
 #include "gpu/VulkanContext.hpp"
 #include "util/Error.hpp"
@@ -35,6 +37,15 @@ Buffer makeRows(VulkanContext& context, SceneArrays arrays, const SceneBufferLim
 }
 
 }  // namespace
+
+bool texelBuffersMisread(const VulkanContext& context) {
+  const std::optional<uint32_t> mesa = context.lavapipeMesaMajor();
+  return mesa && *mesa >= 25 && context.subgroupSize() != 8;
+}
+
+SceneArrays readableSceneArrays(const VulkanContext& context, SceneArrays requested) {
+  return texelBuffersMisread(context) ? SceneArrays::StorageBuffers : requested;
+}
 
 SceneBuffers::SceneBuffers(VulkanContext& context, const FlatScene& scene, SceneArrays arrays,
                            const SceneBufferLimits& limits)

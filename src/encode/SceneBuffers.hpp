@@ -25,6 +25,19 @@ class VulkanContext;
 // (--scene-arrays) to measure other GPUs.
 enum class SceneArrays { TexelBuffers, StorageBuffers };
 
+// Mesa 25.0's lavapipe misreads texel buffers in the render kernel at
+// vector widths other than its default 256 bits (LP_NATIVE_VECTOR_WIDTH=128
+// or 512: subgroups of 4 or 16 lanes; found on Mesa 25.0.7): the upper
+// lanes' fetches return another component or zeros, even at the kernel's
+// first line, so BVH walks never end (512) or the kernel crashes (128). The
+// batch kernels (BatchKernel), which bind fewer of them, read right. Storage
+// buffers read right everywhere, and give the same image as texel buffers
+// at 256 bits.
+bool texelBuffersMisread(const VulkanContext& context);
+
+// `requested`, or storage buffers where the device misreads texel buffers.
+SceneArrays readableSceneArrays(const VulkanContext& context, SceneArrays requested);
+
 // Largest buffers a scene may use; 0: the device's limit (tests set less).
 struct SceneBufferLimits {
   // Rows per scene array (texels: maxTexelBufferElements; storage-buffer

@@ -120,20 +120,10 @@ bool lavapipeBefore25(const VulkanContext& context) {
   return mesa && *mesa < 25;
 }
 
-// Mesa 25.0's lavapipe misreads texel buffers at vector widths other than
-// its default 256 bits (LP_NATIVE_VECTOR_WIDTH=128 or 512: subgroups of 4 or
-// 16 lanes; found on Mesa 25.0.7): fetches return other components or zeros,
-// so BVH walks never end (512) or the kernel crashes (128). Storage buffers
-// read right, and give the same image as texel buffers at 256 bits.
-bool texelBuffersMisread(const VulkanContext& context) {
-  const std::optional<uint32_t> mesa = context.lavapipeMesaMajor();
-  return mesa && *mesa >= 25 && context.subgroupSize() != 8;
-}
-
 // `options` with the scene arrays this device reads right.
 ProgressiveOptions withReadableSceneArrays(ProgressiveOptions options,
                                            const VulkanContext& context) {
-  if (texelBuffersMisread(context)) options.sceneArrays = SceneArrays::StorageBuffers;
+  options.sceneArrays = readableSceneArrays(context, options.sceneArrays);
   return options;
 }
 

@@ -130,6 +130,9 @@ class Viewer {
   std::unique_ptr<DisplayPass> display_;
   std::unique_ptr<Overlay> overlay_;
   std::unique_ptr<ProgressiveRenderer> renderer_;
+  // The renderer's warnings last printed: renderers rebuilt for a moved
+  // camera repeat them, and they are printed again only when they change.
+  std::vector<std::string> rendererWarnings_;
   std::unique_ptr<BatchIntersector> intersector_;  // built on the first focus click
   std::unique_ptr<SwapchainReadback> readback_;
   std::unique_ptr<FrameSync> frameSync_;  // the one frame in flight

@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "encode/Conventions.hpp"
+#include "encode/SceneBuffers.hpp"
 #include "formats/json/JsonSceneLoader.hpp"
 #include "imaging/Merge.hpp"
 #include "render/ProgressiveRenderer.hpp"
@@ -535,7 +536,9 @@ TEST_SUITE("render") {
     const StatsOfTwo stats = checkSameRender(
         scene, options, [](RenderOptions& o) { o.sceneArrays = SceneArrays::TexelBuffers; },
         [](RenderOptions& o) { o.sceneArrays = SceneArrays::StorageBuffers; });
-    CHECK_FALSE(stats.first.features.storageBuffers);
+    // Texel buffers as asked, unless the device misreads them (lavapipe at
+    // other vector widths than 256 bits), where both renders read storage.
+    CHECK(stats.first.features.storageBuffers == texelBuffersMisread(test::gpu()));
     CHECK(stats.second.features.storageBuffers);
   }
 
