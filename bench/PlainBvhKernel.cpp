@@ -34,21 +34,28 @@ float bitsFloat(uint32_t bits) {
   return value;
 }
 
+// Each binary node's reference as a child in the binary layouts: its index
+// among the interior nodes (which they store in order), or for a leaf
+// kLeafBit | first << kCountBits | count.
+std::vector<uint32_t> childReferences(const rt::Bvh& bvh) {
+  std::vector<uint32_t> references(bvh.nodes.size());
+  uint32_t interior = 0;
+  for (size_t i = 0; i < bvh.nodes.size(); ++i) {
+    const rt::BvhNode& node = bvh.nodes[i];
+    references[i] =
+        node.count == 0 ? interior++ : kLeafBit | node.firstIndex << kCountBits | node.count;
+  }
+  return references;
+}
+
 // Nodes: (a.lo.x, a.hi.x, a.lo.y, a.hi.y), (b.lo.x, b.hi.x, b.lo.y, b.hi.y),
 // (a.lo.z, a.hi.z, b.lo.z, b.hi.z), (child a, child b, 0, 0): interior nodes only.
 std::vector<float> layoutNodes(const rt::Bvh& bvh) {
-  std::vector<uint32_t> interiorIndex(bvh.nodes.size(), 0);
-  uint32_t interiorCount = 0;
-  for (size_t i = 0; i < bvh.nodes.size(); ++i) {
-    if (bvh.nodes[i].count == 0) interiorIndex[i] = interiorCount++;
-  }
-  auto reference = [&](uint32_t child) {
-    const rt::BvhNode& node = bvh.nodes[child];
-    return node.count == 0 ? interiorIndex[child]
-                           : kLeafBit | node.firstIndex << kCountBits | node.count;
-  };
+  const std::vector<uint32_t> reference = childReferences(bvh);
+  const size_t interiorCount = size_t(std::count_if(
+      bvh.nodes.begin(), bvh.nodes.end(), [](const rt::BvhNode& n) { return n.count == 0; }));
   std::vector<float> nodes;
-  nodes.reserve(size_t(interiorCount) * 16);
+  nodes.reserve(interiorCount * 16);
   for (const rt::BvhNode& node : bvh.nodes) {
     if (node.count != 0) continue;
     const rt::Aabb& a = bvh.nodes[node.firstIndex].bounds;
@@ -65,8 +72,8 @@ std::vector<float> layoutNodes(const rt::Bvh& bvh) {
                      a.max.z,
                      b.min.z,
                      b.max.z,
-                     bitsFloat(reference(node.firstIndex)),
-                     bitsFloat(reference(node.firstIndex + 1)),
+                     bitsFloat(reference[node.firstIndex]),
+                     bitsFloat(reference[node.firstIndex + 1]),
                      0.0f,
                      0.0f};
     nodes.insert(nodes.end(), row, row + 16);
@@ -161,26 +168,19 @@ std::vector<uint32_t> layoutHalfWide(const std::vector<float>& wide) {
 // (ref a, ref b, a.min xy, a.min z a.max x), (a.max yz, b.min xy, b.min z
 // b.max x, b.max yz), as in the renderer's GpuBvhNode.
 std::vector<uint32_t> layoutHalfBinary(const rt::Bvh& bvh) {
-  std::vector<uint32_t> interiorIndex(bvh.nodes.size(), 0);
-  uint32_t interiorCount = 0;
-  for (size_t i = 0; i < bvh.nodes.size(); ++i) {
-    if (bvh.nodes[i].count == 0) interiorIndex[i] = interiorCount++;
-  }
-  auto reference = [&](uint32_t child) {
-    const rt::BvhNode& node = bvh.nodes[child];
-    return node.count == 0 ? interiorIndex[child]
-                           : kLeafBit | node.firstIndex << kCountBits | node.count;
-  };
+  const std::vector<uint32_t> reference = childReferences(bvh);
+  const size_t interiorCount = size_t(std::count_if(
+      bvh.nodes.begin(), bvh.nodes.end(), [](const rt::BvhNode& n) { return n.count == 0; }));
   auto pair = [](float low, bool lowUp, float high, bool highUp) {
     return uint32_t(rt::halfTowards(low, lowUp)) | uint32_t(rt::halfTowards(high, highUp)) << 16;
   };
   std::vector<uint32_t> out;
-  out.reserve(size_t(interiorCount) * 8);
+  out.reserve(interiorCount * 8);
   for (const rt::BvhNode& node : bvh.nodes) {
     if (node.count != 0) continue;
     const rt::Aabb& a = bvh.nodes[node.firstIndex].bounds;
     const rt::Aabb& b = bvh.nodes[node.firstIndex + 1].bounds;
-    uint32_t words[8] = {reference(node.firstIndex),           reference(node.firstIndex + 1),
+    uint32_t words[8] = {reference[node.firstIndex],           reference[node.firstIndex + 1],
                          pair(a.min.x, false, a.min.y, false), pair(a.min.z, false, a.max.x, true),
                          pair(a.max.y, true, a.max.z, true),   pair(b.min.x, false, b.min.y, false),
                          pair(b.min.z, false, b.max.x, true),  pair(b.max.y, true, b.max.z, true)};
