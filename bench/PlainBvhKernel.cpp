@@ -214,7 +214,7 @@ rt::Bvh buildMeshBvh(const rt::TriangleMesh& mesh) {
 PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& mesh,
                             const PlainCamera& camera, const PlainLayout& layout, uint32_t width,
                             uint32_t samples) {
-  const bool halfNodeTexels = layout.halfWide || layout.halfBinary;
+  const bool halfNodeTexels = layout.halfWide || (layout.halfBinary && !layout.storageBuffers);
   const bool storageBuffers = layout.storageBuffers && !halfNodeTexels;
   rt::Bvh bvh = buildMeshBvh(mesh);
   const bool wide = layout.wide || layout.halfWide;
@@ -226,10 +226,10 @@ PlainResult measurePlainBvh(rt::VulkanContext& context, const rt::TriangleMesh& 
   const VkBufferUsageFlags usage =
       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
       (layout.deviceAddress ? VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT : 0);
-  // Both node layouts are 32-bit words.
-  const void* nodeWords =
-      halfNodeTexels ? static_cast<const void*>(halfNodes.data()) : nodes.data();
-  size_t nodeBytes = (halfNodeTexels ? halfNodes.size() : nodes.size()) * sizeof(float);
+  // Every node layout is 32-bit words.
+  const bool halfWords = layout.halfWide || layout.halfBinary;
+  const void* nodeWords = halfWords ? static_cast<const void*>(halfNodes.data()) : nodes.data();
+  size_t nodeBytes = (halfWords ? halfNodes.size() : nodes.size()) * sizeof(float);
   rt::Buffer nodeBuffer(context, nodeBytes, usage);
   rt::Buffer triangleBuffer(context, triangles.size() * sizeof(float), usage);
   rt::Buffer distances(context, size_t(width) * width * sizeof(float),

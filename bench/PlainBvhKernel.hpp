@@ -35,8 +35,9 @@ struct PlainLayout {
   // The four-wide nodes with half-float boxes, four texels a node (texel
   // buffers only).
   bool halfWide = false;
-  // The binary nodes with half-float boxes in two texels, as the renderer
-  // lays them out (GpuBvhNode; texel buffers only).
+  // The binary nodes with half-float boxes in two 16-byte rows, as the
+  // renderer lays them out (GpuBvhNode); texel buffers, or storage buffers
+  // with storageBuffers.
   bool halfBinary = false;
   // Nodes and triangles read through buffer device addresses (binary only).
   bool deviceAddress = false;

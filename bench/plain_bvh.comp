@@ -234,9 +234,14 @@ float closestHit(vec3 origin, vec3 direction) {
   uint node = 0u;
   while (node != DONE) {
     while (node < LEAF) {
-#ifdef PLAIN_BINARY_HALF
+#if defined(PLAIN_BINARY_HALF) && defined(PLAIN_STORAGE_BUFFERS)
+      uvec4 low = floatBitsToUint(nodes[node * 2u]);
+      uvec4 high = floatBitsToUint(nodes[node * 2u + 1u]);
+#elif defined(PLAIN_BINARY_HALF)
       uvec4 low = texelFetch(halfNodeTexels, int(node * 2u));
       uvec4 high = texelFetch(halfNodeTexels, int(node * 2u + 1u));
+#endif
+#ifdef PLAIN_BINARY_HALF
       vec2 aMinXY = unpackHalf2x16(low.z), aMinZMaxX = unpackHalf2x16(low.w);
       vec2 aMaxYZ = unpackHalf2x16(high.x), bMinXY = unpackHalf2x16(high.y);
       vec2 bMinZMaxX = unpackHalf2x16(high.z), bMaxYZ = unpackHalf2x16(high.w);
