@@ -116,7 +116,9 @@ void addSceneArraysOption(CLI::App& app, std::string& name) {
   app.add_option("--scene-arrays", name,
                  "How kernels read the scene: texel (texel buffers, the default: the faster on "
                  "lavapipe and on an NVIDIA H200) or storage (storage buffers of the same bytes, "
-                 "to measure other GPUs); the image is the same")
+                 "to measure other GPUs); the image is the same. Mesa 25's lavapipe at vector "
+                 "widths other than 256 bits (LP_NATIVE_VECTOR_WIDTH) misreads texel buffers: "
+                 "there storage buffers are always used, with a warning")
       ->check(CLI::IsMember({"texel", "storage"}));
 }
 
