@@ -155,8 +155,9 @@ ProgressiveRenderer::ProgressiveRenderer(VulkanContext& context, const ShaderCom
       region_(resolveRegion(options.region, width_, height_)),
       accumulation_(context, accumulationBytes(context, flat_), kAccumulationUsage) {
   accumulation_.fillZero();
+  warnings_ = flat_.warnings;
   if (options_.sceneArrays != options.sceneArrays) {
-    flat_.warnings.push_back(fmt::format(
+    warnings_.push_back(fmt::format(
         "lavapipe at {}-bit vectors (LP_NATIVE_VECTOR_WIDTH) misreads texel buffers; the scene "
         "is read from storage buffers instead (--scene-arrays storage: the same image, slower)",
         context.subgroupSize() * 32));

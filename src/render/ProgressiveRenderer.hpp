@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "encode/Features.hpp"
@@ -64,6 +65,9 @@ class ProgressiveRenderer {
   uint32_t samplesDone() const { return samplesDone_; }
   const FlatScene& flatScene() const { return flat_; }
   const ShaderFeatures& features() const { return features_; }
+  // What the render leaves out or reads differently: the flat scene's
+  // warnings, then the device's (scene arrays it misreads).
+  const std::vector<std::string>& warnings() const { return warnings_; }
 
   // The rendered pixels (the whole image unless ProgressiveOptions::region).
   const PixelRegion& region() const { return region_; }
@@ -141,6 +145,7 @@ class ProgressiveRenderer {
   ProgressiveOptions options_;
   FlatScene flat_;
   ShaderFeatures features_;
+  std::vector<std::string> warnings_;
   uint32_t width_;
   uint32_t height_;
   SceneBuffers sceneBuffers_;

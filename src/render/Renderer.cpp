@@ -330,7 +330,7 @@ ImageF Renderer::render(const Scene& scene, const RenderOptions& options,
   s.primitives = job.flatScene().info.primitiveCount;
   s.bvhNodes = job.flatScene().info.bvhNodeCount;
   s.bvhDepth = job.flatScene().bvhDepth;
-  s.warnings = job.flatScene().warnings;
+  s.warnings = job.warnings();
   s.features = job.features();
   s.setupSeconds = secondsSince(start);
 

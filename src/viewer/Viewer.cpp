@@ -160,7 +160,7 @@ std::unique_ptr<ProgressiveRenderer> Viewer::makeRenderer(glm::uvec2 size) const
 
 void Viewer::useRenderer(std::unique_ptr<ProgressiveRenderer> renderer) {
   renderer_ = std::move(renderer);  // no frame in flight: the old one can go
-  const std::vector<std::string>& warnings = renderer_->flatScene().warnings;
+  const std::vector<std::string>& warnings = renderer_->warnings();
   if (warnings != rendererWarnings_) {
     for (const std::string& warning : warnings)
       std::fprintf(stderr, "warning: %s\n", warning.c_str());
