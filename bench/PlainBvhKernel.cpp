@@ -34,6 +34,12 @@ float bitsFloat(uint32_t bits) {
   return value;
 }
 
+// Interior nodes of the binary tree: the nodes of the binary layouts.
+size_t interiorNodeCount(const rt::Bvh& bvh) {
+  return size_t(std::count_if(bvh.nodes.begin(), bvh.nodes.end(),
+                              [](const rt::BvhNode& n) { return n.count == 0; }));
+}
+
 // Each binary node's reference as a child in the binary layouts: its index
 // among the interior nodes (which they store in order), or for a leaf
 // kLeafBit | first << kCountBits | count.
@@ -52,8 +58,7 @@ std::vector<uint32_t> childReferences(const rt::Bvh& bvh) {
 // (a.lo.z, a.hi.z, b.lo.z, b.hi.z), (child a, child b, 0, 0): interior nodes only.
 std::vector<float> layoutNodes(const rt::Bvh& bvh) {
   const std::vector<uint32_t> reference = childReferences(bvh);
-  const size_t interiorCount = size_t(std::count_if(
-      bvh.nodes.begin(), bvh.nodes.end(), [](const rt::BvhNode& n) { return n.count == 0; }));
+  const size_t interiorCount = interiorNodeCount(bvh);
   std::vector<float> nodes;
   nodes.reserve(interiorCount * 16);
   for (const rt::BvhNode& node : bvh.nodes) {
@@ -169,8 +174,7 @@ std::vector<uint32_t> layoutHalfWide(const std::vector<float>& wide) {
 // b.max x, b.max yz), as in the renderer's GpuBvhNode.
 std::vector<uint32_t> layoutHalfBinary(const rt::Bvh& bvh) {
   const std::vector<uint32_t> reference = childReferences(bvh);
-  const size_t interiorCount = size_t(std::count_if(
-      bvh.nodes.begin(), bvh.nodes.end(), [](const rt::BvhNode& n) { return n.count == 0; }));
+  const size_t interiorCount = interiorNodeCount(bvh);
   auto pair = [](float low, bool lowUp, float high, bool highUp) {
     return uint32_t(rt::halfTowards(low, lowUp)) | uint32_t(rt::halfTowards(high, highUp)) << 16;
   };
