@@ -174,4 +174,20 @@ void applyConventionsOption(const std::string& name, Scene& scene) {
   setConventions(scene, *conventions, "--conventions");
 }
 
+void addLightSamplesOption(CLI::App& app, std::optional<uint32_t>& samples) {
+  app.add_option("--light-samples", samples,
+                 "Shadow rays per area light and hit, for every area light (overrides the "
+                 "scene's samples: fewer noisy shadows a sample, more time a sample; in the "
+                 "coursework shading model, which clamps a hit's summed light, the image too)")
+      ->check(CLI::Range(1u, kMaxLightSamples));
+}
+
+void applyLightSamplesOption(const std::optional<uint32_t>& samples, Scene& scene) {
+  if (!samples) return;
+  if (scene.areaLights.empty()) {
+    std::fprintf(stderr, "warning: --light-samples: the scene has no area lights\n");
+  }
+  for (AreaLight& light : scene.areaLights) light.samples = *samples;
+}
+
 }  // namespace rt::cli

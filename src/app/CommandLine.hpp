@@ -75,4 +75,10 @@ void addStrictOption(CLI::App& app, bool& strict);
 // Gives a loaded scene the conventions --conventions named, if any.
 void applyConventionsOption(const std::string& name, Scene& scene);
 
+// --light-samples N into `samples`: shadow rays per area light and hit.
+void addLightSamplesOption(CLI::App& app, std::optional<uint32_t>& samples);
+// Gives every area light of a loaded scene the count --light-samples named,
+// if any (a warning when the scene has none).
+void applyLightSamplesOption(const std::optional<uint32_t>& samples, Scene& scene);
+
 }  // namespace rt::cli

@@ -52,6 +52,7 @@ struct CommandLine {
   std::string shading;
   std::optional<float> roulette;
   std::optional<float> bailout;
+  std::optional<uint32_t> lightSamples;
   std::string conventions;
   std::string device;
   std::string shaderDir;
@@ -137,6 +138,7 @@ int run(const CommandLine& cli) {
   rt::Scene scene = rt::loadSceneFile(cli.scenePath, {cli.strict});
   if (cli.roulette) scene.settings.rouletteWeight = *cli.roulette;
   if (cli.bailout) scene.settings.branchBailout = *cli.bailout;
+  rt::cli::applyLightSamplesOption(cli.lightSamples, scene);
   rt::cli::applyConventionsOption(cli.conventions, scene);
   rt::ConvergenceSetup setup = convergenceSetup(cli, scene);
   std::vector<uint32_t> counts = sampleCounts(cli);
@@ -246,6 +248,7 @@ void addOptions(CLI::App& app, CommandLine& cli) {
       ->check(CLI::Range(0.0f, 1.0f));
   app.add_option("--bailout", cli.bailout, "Ray-tree bailout weight (as the render command)")
       ->check(CLI::Range(0.0f, 1.0f));
+  rt::cli::addLightSamplesOption(app, cli.lightSamples);
   app.add_option("--shading", cli.shading, "Shading model (default: the conventions')")
       ->check(CLI::IsMember({"standard", "coursework"}));
   rt::cli::addConventionsOption(app, cli.conventions);

@@ -52,6 +52,7 @@ struct CommandLine {
   std::optional<float> indirectClamp;
   std::optional<float> roulette;
   std::optional<float> bailout;
+  std::optional<uint32_t> lightSamples;
   std::string sampleRange;
   std::string region;
   std::string cameraPath;
@@ -270,6 +271,7 @@ int run(const CommandLine& cli) {
   if (cli.indirectClamp) scene.settings.indirectClamp = *cli.indirectClamp;
   if (cli.roulette) scene.settings.rouletteWeight = *cli.roulette;
   if (cli.bailout) scene.settings.branchBailout = *cli.bailout;
+  rt::cli::applyLightSamplesOption(cli.lightSamples, scene);
   rt::RenderOptions options = renderOptions(cli, scene);
   if (options.adaptive && cli.sampler.empty() && scene.settings.samplerGiven &&
       scene.settings.sampler != options.sampler) {
@@ -369,6 +371,7 @@ int runRenderCommand(int argc, char** argv) {
                  "in steps of the written image; default 1/255; 0 traces every ray down to "
                  "weight 1e-4; not in the path tracer)")
       ->check(CLI::Range(0.0f, 1.0f));
+  rt::cli::addLightSamplesOption(app, cli.lightSamples);
   app.add_option("--samples", cli.sampleRange,
                  "Render only sample indices FROM:TO of the --spp samples (merge the pieces "
                  "with `raytracer merge`; write .exr, whose alpha holds the sample count)");

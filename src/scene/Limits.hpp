@@ -9,5 +9,6 @@ namespace rt {
 constexpr uint32_t kMaxImageSide = 16384;  // pixels per side of an image
 constexpr uint32_t kMaxBounces = 64;       // nbounces, distributed bounces
 constexpr uint32_t kMaxSamplesPerPixel = 1u << 20;
+constexpr uint32_t kMaxLightSamples = 4096;  // shadow rays per area light and hit
 
 }  // namespace rt

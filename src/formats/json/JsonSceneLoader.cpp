@@ -739,12 +739,10 @@ PointLight readPointLight(JsonObject& light) {
 }
 
 // Shadow rays per shading point; the students wrote `samples` or `nsamples`.
-constexpr int64_t kMaxLightSamples = 4096;
-
 uint32_t readLightSamples(JsonObject& light) {
   const std::optional<JsonNode> node =
       light.optionalOneOf({"samples", "nsamples", "num_samples", "samplesize"});
-  return node ? static_cast<uint32_t>(node->integer(1, kMaxLightSamples)) : 1u;
+  return node ? static_cast<uint32_t>(node->integer(1, int64_t{kMaxLightSamples})) : 1u;
 }
 
 // Every random dimension draws from the scene's one sampler; a light's own
