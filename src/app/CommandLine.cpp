@@ -187,7 +187,7 @@ void applyLightSamplesOption(const std::optional<uint32_t>& samples, Scene& scen
   if (scene.areaLights.empty()) {
     std::fprintf(stderr, "warning: --light-samples: the scene has no area lights\n");
   }
-  for (AreaLight& light : scene.areaLights) light.samples = *samples;
+  setAreaLightSamples(scene, *samples);
 }
 
 }  // namespace rt::cli

@@ -33,6 +33,10 @@ uint32_t addEmitterShape(Scene& scene, Geometry geometry, std::string label) {
   return static_cast<uint32_t>(scene.shapes.size() - 1);
 }
 
+void setAreaLightSamples(Scene& scene, uint32_t samples) {
+  for (AreaLight& light : scene.areaLights) light.samples = samples;
+}
+
 std::optional<Conventions> conventionsNamed(const std::string& name) {
   if (name == "coursework-a") return Conventions::CourseworkA;
   if (name == "coursework-b") return Conventions::CourseworkB;

@@ -252,4 +252,8 @@ void setConventions(Scene& scene, Conventions conventions, std::string reason);
 // the shape's index, for AreaLight::shape.
 uint32_t addEmitterShape(Scene& scene, Geometry geometry, std::string label);
 
+// Gives every area light `samples` shadow rays a hit (`--light-samples`, the
+// viewer's control): fewer noisy shadows a sample for more time a sample.
+void setAreaLightSamples(Scene& scene, uint32_t samples);
+
 }  // namespace rt

@@ -16,6 +16,8 @@ namespace rt::viewer {
 namespace {
 
 constexpr int kMaxSamplesTarget = 1 << 20;
+// The slider's range; the command line's --light-samples goes to kMaxLightSamples.
+constexpr int kMaxSliderLightSamples = 32;
 const ImVec4 kErrorColor(1.0f, 0.45f, 0.4f, 1.0f);
 
 void checkImGuiVulkanResult(VkResult result) {
@@ -54,6 +56,14 @@ void editRenderSettings(OverlaySettings& settings, OverlayActions& actions) {
   ImGui::SliderFloat("clamp indirect", &settings.indirectClamp, 0.0f, 100.0f,
                      settings.indirectClamp > 0.0f ? "%.3f" : "off", ImGuiSliderFlags_Logarithmic);
   actions.clampChanged = ImGui::IsItemDeactivatedAfterEdit();
+  if (settings.areaLights) {
+    // A new count rebuilds the renderer too.
+    ImGui::SliderInt("light samples", &settings.lightSamples, 0, kMaxSliderLightSamples,
+                     settings.lightSamples > 0 ? "%d" : "scene's");
+    settings.lightSamples =
+        std::clamp(settings.lightSamples, 0, static_cast<int>(kMaxLightSamples));
+    actions.lightSamplesChanged = ImGui::IsItemDeactivatedAfterEdit();
+  }
   ImGui::SliderFloat("exposure", &settings.exposure, 0.01f, 100.0f, "%.3f",
                      ImGuiSliderFlags_Logarithmic);
 }

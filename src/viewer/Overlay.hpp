@@ -39,6 +39,10 @@ struct OverlaySettings {
   bool adaptive = false;  // adaptive sampling: samplesTarget is the mean budget
   int bounces = 4;
   float indirectClamp = 0.0f;  // firefly clamp, 0: off (RenderSettings::indirectClamp)
+  // Every area light's shadow rays a hit; 0: each light's own (the scene's).
+  // Shown only for scenes with area lights.
+  int lightSamples = 0;
+  bool areaLights = false;
   float exposure = 1.0f;
   float apertureRadius = 0.0f;
   float focusDistance = 1.0f;
@@ -59,6 +63,7 @@ struct OverlayActions {
   bool targetChanged = false;
   bool bouncesChanged = false;
   bool clampChanged = false;
+  bool lightSamplesChanged = false;
   bool lensChanged = false;
   bool save = false;
   bool resetCamera = false;

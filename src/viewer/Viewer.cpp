@@ -115,6 +115,8 @@ void Viewer::initialiseSettings() {
       options_.samplesTarget ? *options_.samplesTarget : (fromScene ? fromScene : kDefaultSamples));
   values.bounces = static_cast<int>(scene_.settings.maxBounces);
   values.indirectClamp = scene_.settings.indirectClamp;
+  values.lightSamples = static_cast<int>(options_.lightSamples.value_or(0));
+  values.areaLights = !scene_.areaLights.empty();
   values.adaptive = options_.adaptive || scene_.settings.adaptive;
   SamplerKind sampler =
       options_.sampler.value_or(samplerUnlessAsked(scene_.settings, values.adaptive));
@@ -138,6 +140,8 @@ std::unique_ptr<ProgressiveRenderer> Viewer::makeRenderer(glm::uvec2 size) const
   Scene scene = scene_;
   scene.settings.maxBounces = static_cast<uint32_t>(values.bounces);
   scene.settings.indirectClamp = std::max(values.indirectClamp, 0.0f);
+  if (values.lightSamples > 0)
+    setAreaLightSamples(scene, static_cast<uint32_t>(values.lightSamples));
   scene.camera = camera_.camera();
   ProgressiveOptions options;
   options.width = size.x;

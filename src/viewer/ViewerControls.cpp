@@ -135,6 +135,7 @@ void Viewer::reloadScene() {
   if (fresh.settings.indirectClamp != previous.settings.indirectClamp) {
     values.indirectClamp = fresh.settings.indirectClamp;
   }
+  values.areaLights = !fresh.areaLights.empty();
   scene_ = std::move(fresh);
   if (!rebuildRenderer({renderer_->width(), renderer_->height()})) {
     scene_ = std::move(previous);
@@ -234,8 +235,8 @@ void Viewer::applyPathStep(const PathStep& step) {
 
 void Viewer::applyOverlayActions(const OverlayActions& actions) {
   glm::uvec2 size{renderer_->width(), renderer_->height()};
-  if (actions.bouncesChanged || actions.clampChanged || actions.samplerChanged ||
-      actions.adaptiveChanged) {
+  if (actions.bouncesChanged || actions.clampChanged || actions.lightSamplesChanged ||
+      actions.samplerChanged || actions.adaptiveChanged) {
     rebuildRenderer(size);
   } else if (actions.targetChanged) {
     // The jittered sampler stratifies for the target count: a new target is

@@ -33,6 +33,7 @@ struct ViewerOptions {
   std::optional<Conventions> conventions;  // default: what the scene's keys say
   std::optional<ToneCurve> toneCurve;      // default: the scene's
   float exposure = 1.0f;                   // extra factor on the scene's exposure
+  std::optional<uint32_t> lightSamples;    // every area light's shadow rays a hit
   bool verbose = false;                    // a log line every frame (otherwise about once a second)
 };
 

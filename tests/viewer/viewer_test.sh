@@ -143,6 +143,21 @@ case_offscreen_match() {
   compare "small window: overlay covers" "$SCRATCH/overlay-small.png" "$SCRATCH/offline-320.png" \
     --max-differing 0.1
 
+  # --light-samples: the window's area lights take the count the render command's do (the
+  # area-light study, whose coursework shading clamps each hit's light: another image).
+  local study="$SOURCE/scenes/study-arealight.json"
+  "$RAYTRACER" "$study" "$SCRATCH/study-1.png" --size $SIZE --spp $SPP -q || fail "study render"
+  "$RAYTRACER" "$study" "$SCRATCH/study-3.png" --size $SIZE --spp $SPP --light-samples 3 -q ||
+    fail "study render with --light-samples 3"
+  xvfb_run "$RAYTRACER" view "$study" --size $SIZE --max-spp $SPP --spp-per-frame 1 --frames 6 \
+    --no-overlay --no-watch --validation --light-samples 3 --screenshot "$SCRATCH/study-window.png" \
+    >"$SCRATCH/log-study" 2>"$SCRATCH/err-study" ||
+    fail "viewer with --light-samples: $(cat "$SCRATCH/err-study")"
+  compare "--light-samples 3: window vs offline" "$SCRATCH/study-window.png" \
+    "$SCRATCH/study-3.png" --max-diff 0
+  compare "--light-samples 3 vs the scene's 1" "$SCRATCH/study-3.png" "$SCRATCH/study-1.png" \
+    --max-psnr 45
+
   # A second scene with textures and thin features, when the shared data is there.
   local example="$SOURCE/../shared/scene-format/official/cg-path-of-light-2021-2023/examples/example.json"
   if [[ -f $example ]]; then
