@@ -16,6 +16,7 @@ from rtfarm.localcluster import LocalCluster
 
 REPOSITORY = Path(__file__).resolve().parents[2]
 DEFAULT_SCENE = REPOSITORY / "scenes" / "default.json"
+AREA_LIGHT_SCENE = REPOSITORY / "scenes" / "study-arealight.json"
 RTFARM = [sys.executable, "-m", "rtfarm"]
 # Every farm command in these tests ends long before this; a hang fails.
 FARM_TIMEOUT_SECONDS = 180

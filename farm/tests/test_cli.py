@@ -45,6 +45,12 @@ def outputs(folder):
         ),
         ("bad size", ["render", "{scene}", "{out}.png", "--size", "32by24"], 2, r"argument --size"),
         (
+            "zero light samples",
+            ["render", "{scene}", "{out}.png", "--light-samples", "0"],
+            2,
+            r"^error: argument --light-samples: expected a whole number 1\.\.4096, got '0'",
+        ),
+        (
             "unknown sampler",
             ["render", "{scene}", "{out}.png", "--sampler", "halton"],
             2,

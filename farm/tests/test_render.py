@@ -5,8 +5,10 @@ import re
 import numpy as np
 
 from conftest import (
+    AREA_LIGHT_SCENE,
     DEFAULT_SCENE,
     assert_same_image,
+    read_exr,
     render_single,
     run_farm,
     write_scene_with_files,
@@ -61,6 +63,20 @@ def test_tiles_when_the_tasks_outnumber_the_samples(cluster, raytracer, tmp_path
     )
     assert_same_image(tmp_path / "farm.exr", tmp_path / "single.exr", 2)
     assert PROGRESS_DONE.findall(done.stderr)[-1] == ("6", "6")  # 2 ranges x 3 tiles
+
+
+def test_light_samples_reach_every_part(cluster, raytracer, tmp_path):
+    """--light-samples goes to every part: the farm's image is the single render's with it,
+    which is not the scene's own (its coursework shading clamps each hit's summed light)."""
+    size = ["--size", "32x24", "--spp", 4]
+    farm_render(
+        cluster, AREA_LIGHT_SCENE, tmp_path / "farm.exr", *size, "--tasks", 2, "--light-samples", 3
+    )
+    render_single(raytracer, AREA_LIGHT_SCENE, tmp_path / "three.exr", *size, "--light-samples", 3)
+    render_single(raytracer, AREA_LIGHT_SCENE, tmp_path / "one.exr", *size)
+    assert_same_image(tmp_path / "farm.exr", tmp_path / "three.exr", 4)
+    three, one = read_exr(tmp_path / "three.exr"), read_exr(tmp_path / "one.exr")
+    assert np.abs(three[..., :3] - one[..., :3]).max() > 1e-2 * np.abs(one[..., :3]).max()
 
 
 def test_meshes_and_textures_travel_with_the_scene(cluster, raytracer, tmp_path):

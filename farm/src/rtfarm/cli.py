@@ -18,6 +18,7 @@ from rtfarm.errors import FarmError
 
 MAX_IMAGE_SIDE = 16384
 MAX_SAMPLES = 1 << 20
+MAX_LIGHT_SAMPLES = 4096  # src/scene/Limits.hpp kMaxLightSamples
 
 
 class _Parser(argparse.ArgumentParser):
@@ -88,6 +89,11 @@ def _add_render_options(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--conventions", choices=["coursework-a", "coursework-b", "textbook"])
     group.add_argument("--exposure", type=_positive, help="extra linear exposure")
     group.add_argument("--clamp-indirect", type=_non_negative, help="firefly clamp (biased)")
+    group.add_argument(
+        "--light-samples",
+        type=_count(1, MAX_LIGHT_SAMPLES),
+        help="shadow rays per area light and hit, for every area light",
+    )
     group.add_argument("--accel", choices=["bvh", "none"])
 
 

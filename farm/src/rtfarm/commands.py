@@ -51,6 +51,7 @@ def _render_args(arguments, spp: int) -> list[str]:
         ("--conventions", arguments.conventions),
         ("--exposure", arguments.exposure),
         ("--clamp-indirect", arguments.clamp_indirect),
+        ("--light-samples", arguments.light_samples),
         ("--accel", arguments.accel),
     ):
         if value is not None:
