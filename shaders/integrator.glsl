@@ -251,22 +251,6 @@ vec3 clampedContribution(vec3 contribution, PendingRay job) {
 #endif
 }
 
-// A hit's own light from its direct light, by the conventions: plus the
-// ambient term; for family B clamped to 1 and weighted by what the mirror
-// and refraction branches leave (a full mirror shows only its reflection).
-vec3 localLight(ShadingContext context, vec3 direct) {
-  vec3 local = direct + sceneInfo.ambient * context.color;
-  if (sceneInfo.mirrorsReplaceLocalLight == 0u) return local;
-  float mirrorWeight = 0.0;
-#ifdef RT_FEATURE_REFLECTION
-  mirrorWeight += context.material.reflectivity;
-#endif
-#ifdef RT_FEATURE_REFRACTION
-  mirrorWeight += context.material.transmission;
-#endif
-  return min(local, vec3(1.0)) * max(1.0 - mirrorWeight, 0.0);
-}
-
 // Everything a path does at a hit: emitted and direct light, continuations.
 // Returns true with `job` set to the ray the walk goes on with.
 bool shadeHit(inout RayStack stack, inout vec3 radiance, inout PendingRay job, SurfaceHit hit,
@@ -287,8 +271,7 @@ bool shadeHit(inout RayStack stack, inout vec3 radiance, inout PendingRay job, S
   // With sampled diffuse bounces, light through glass arrives along them
   // (caustics); straight shadow rays through glass would count it twice.
   bool throughGlass = limits.diffuse == 0u;
-  vec3 local = localLight(
-      context, directLighting(context, pixelSample, vertex, throughGlass, maxComponent(job.weight)));
+  vec3 local = hitLocalLight(context, pixelSample, vertex, throughGlass, maxComponent(job.weight));
   radiance += clampedContribution(job.weight * local, job);
 #if defined(RT_FEATURE_REFLECTION) || defined(RT_FEATURE_REFRACTION) || \
     defined(RT_FEATURE_DIFFUSE_BOUNCES)

@@ -198,16 +198,31 @@ LightSample pointLightSample(ShadingContext context, uint index) {
 }
 
 #ifdef RT_FEATURE_AREA_LIGHTS
+// Light splitting (RenderSettings::lightSplit): each hit's area-light
+// estimate is made this many times over, each replica with its own shadow
+// rays and through the hit's whole shading (clamps included), and the
+// replicas are averaged. Where the shading clamps a hit's summed light (the
+// coursework model, family B's local light) that average converges to the
+// image of one replica, where more samples per light would not.
+#ifdef RT_LIGHT_REPLICAS
+const uint RT_REPLICAS = RT_LIGHT_REPLICAS;
+#else
+const uint RT_REPLICAS = 1u;
+#endif
+
 // Next-event estimation of area light `lightIndex`: sample `sub` of its
-// `samples` per pixel sample, lighting like a point light with its share of
-// the intensity.
+// `samples` per pixel sample in replica `replica`, lighting like a point
+// light with its share of the intensity. Replica r takes the light's sub-
+// samples r * samples.. of RT_REPLICAS * samples, so the replicas stratify
+// against each other; each is still the one-replica estimate in expectation.
 LightSample areaLightSample(ShadingContext context, GpuAreaLight light, uint lightIndex, uint sub,
-                            uvec2 pixelSample, uint vertexDepth) {
+                            uint replica, uvec2 pixelSample, uint vertexDepth) {
   LightSample lit;
   lit.reflected = vec3(0.0);
   vec3 p = context.surface.position;
   uint dimension = vertexDimension(vertexDepth, RT_VERTEX_DIM_LIGHTS + 2u * lightIndex);
-  vec2 u = sampleSubPair(frame.samplerKind, pixelSample.x, pixelSample.y, sub, light.samples,
+  vec2 u = sampleSubPair(frame.samplerKind, pixelSample.x, pixelSample.y,
+                         replica * light.samples + sub, RT_REPLICAS * light.samples,
                          frame.samplesTotal, dimension, frame.seed);
   LightPoint point = samplePointOnLight(light, p, u);
   vec3 toLight = point.position - p;
@@ -248,12 +263,14 @@ vec3 emittedRadiance(GpuMaterial material, SurfaceHit hit, vec3 direction) {
 #endif
 
 // The light samples of one shading point, in order: every point light,
-// then each area light's samples.
+// then each area light's samples (with light splitting, all of them once
+// per replica, replica by replica).
 struct LightCursor {
   uint next;  // index of the next sample
 #ifdef RT_FEATURE_AREA_LIGHTS
   uint areaLight;  // the area light of the next area sample, and its sample
   uint sub;
+  uint replica;
   GpuAreaLight light;
 #endif
 };
@@ -264,9 +281,20 @@ LightCursor firstLight() {
 #ifdef RT_FEATURE_AREA_LIGHTS
   cursor.areaLight = 0u;
   cursor.sub = 0u;
+  cursor.replica = 0u;
   if (sceneInfo.areaLightCount > 0u) cursor.light = loadAreaLight(0u);
 #endif
   return cursor;
+}
+
+// Light samples of one shading point: the point lights', then the area
+// lights' of every replica.
+uint lightSampleCount() {
+  uint samples = sceneInfo.pointLightCount;
+#ifdef RT_FEATURE_AREA_LIGHTS
+  samples += RT_REPLICAS * sceneInfo.areaLightSamples;
+#endif
+  return samples;
 }
 
 LightSample nextLightSample(inout LightCursor cursor, ShadingContext context, uvec2 pixelSample,
@@ -275,10 +303,16 @@ LightSample nextLightSample(inout LightCursor cursor, ShadingContext context, uv
 #ifdef RT_FEATURE_AREA_LIGHTS
   if (k >= sceneInfo.pointLightCount) {
     LightSample lit = areaLightSample(context, cursor.light, cursor.areaLight, cursor.sub,
-                                      pixelSample, vertexDepth);
-    if (++cursor.sub >= cursor.light.samples && ++cursor.areaLight < sceneInfo.areaLightCount) {
+                                      cursor.replica, pixelSample, vertexDepth);
+    if (++cursor.sub >= cursor.light.samples) {
       cursor.sub = 0u;
-      cursor.light = loadAreaLight(cursor.areaLight);
+      if (++cursor.areaLight >= sceneInfo.areaLightCount && RT_REPLICAS > 1u) {
+        cursor.areaLight = 0u;
+        ++cursor.replica;
+      }
+      if (cursor.areaLight < sceneInfo.areaLightCount) {
+        cursor.light = loadAreaLight(cursor.areaLight);
+      }
     }
     return lit;
   }
@@ -302,39 +336,103 @@ vec3 sampleContribution(LightSample lit, float negligible, float visibility) {
   return visibility * lit.reflected;
 }
 
-// Light reflected towards the viewer from a surface already facing it, from
-// every point light and every sample of every area light, in one loop (see
-// lightVisibility). `throughGlass`: shadow rays pass transmissive surfaces.
-// `pathWeight` is what the hit's light is worth in the pixel: a sample that
-// could add less than the bailout's share of it (all samples of the hit
-// together at most the bailout) is not traced but counted at half its
-// unshadowed light, in error by at most half that share whether it was lit
-// or not; so glass, whose highlight is dark nearly everywhere, traces
-// almost no shadow rays (README "Speed vs accuracy"). With RT_SHADOW_PAIRS
-// the samples go two by two, their shadow rays walked together; the sums
-// are made in the same order, so the image is the same.
-vec3 directLighting(ShadingContext context, uvec2 pixelSample, uint vertexDepth,
-                    bool throughGlass, float pathWeight) {
-  vec3 radiance = vec3(0.0);
-  uint samples = sceneInfo.pointLightCount;
+// The light a hit's summed light samples send the viewer: the coursework
+// model clamps the light reaching the eye first, then tints it (highlights
+// included) by the normalised diffuse colour, or by the texture colour as it
+// is.
+vec3 shadedDirect(ShadingContext context, vec3 radiance) {
+  if (!context.coursework) return radiance;
+  return courseworkDiffuseTint(context) * min(radiance, vec3(1.0));
+}
+
+// A hit's own light from its direct light, by the conventions: plus the
+// ambient term; for family B clamped to 1 and weighted by what the mirror
+// and refraction branches leave (a full mirror shows only its reflection).
+vec3 localLight(ShadingContext context, vec3 direct) {
+  vec3 local = direct + sceneInfo.ambient * context.color;
+  if (sceneInfo.mirrorsReplaceLocalLight == 0u) return local;
+  float mirrorWeight = 0.0;
+#ifdef RT_FEATURE_REFLECTION
+  mirrorWeight += context.material.reflectivity;
+#endif
+#ifdef RT_FEATURE_REFRACTION
+  mirrorWeight += context.material.transmission;
+#endif
+  return min(local, vec3(1.0)) * max(1.0 - mirrorWeight, 0.0);
+}
+
+// A hit's light samples summed as they come in.
+struct LightSums {
+  vec3 current;  // of the samples so far (with splitting: of this replica)
+#ifdef RT_LIGHT_REPLICAS
+  vec3 pointLights;    // the point lights' part, which every replica shares
+  vec3 replicas;       // the local light of the replicas done
+  uint replicaLeft;    // area samples still to come in this replica
+#endif
+};
+
+LightSums noLightSums() {
+#ifdef RT_LIGHT_REPLICAS
+  return LightSums(vec3(0.0), vec3(0.0), vec3(0.0), sceneInfo.areaLightSamples);
+#else
+  return LightSums(vec3(0.0));
+#endif
+}
+
+// Adds light sample k's contribution. With splitting, a replica ends after
+// its area samples: its sum goes through the hit's shading on its own, and
+// the next replica starts again from the point lights' part (traced once).
+void addLightSample(inout LightSums sums, ShadingContext context, uint k, vec3 contribution) {
+  sums.current += contribution;
+#ifdef RT_LIGHT_REPLICAS
+  if (k + 1u == sceneInfo.pointLightCount) sums.pointLights = sums.current;
+  if (k < sceneInfo.pointLightCount || --sums.replicaLeft > 0u) return;
+  sums.replicas += localLight(context, shadedDirect(context, sums.current));
+  sums.current = sums.pointLights;
+  sums.replicaLeft = sceneInfo.areaLightSamples;
+#endif
+}
+
+// A hit's own light (localLight) from every point light and every sample of
+// every area light, in one loop (see lightVisibility). `throughGlass`:
+// shadow rays pass transmissive surfaces. `pathWeight` is what the hit's
+// light is worth in the pixel: a sample that could add less than the
+// bailout's share of it (all samples of the hit together at most the
+// bailout) is not traced but counted at half its unshadowed light, in error
+// by at most half that share whether it was lit or not; so glass, whose
+// highlight is dark nearly everywhere, traces almost no shadow rays (README
+// "Speed vs accuracy"). With RT_SHADOW_PAIRS the samples go two by two,
+// their shadow rays walked together; the sums are made in the same order,
+// so the image is the same.
+vec3 hitLocalLight(ShadingContext context, uvec2 pixelSample, uint vertexDepth, bool throughGlass,
+                   float pathWeight) {
+  LightSums sums = noLightSums();
+  uint samples = lightSampleCount();
+  // The share of one replica's samples: each sample's decision is the one
+  // it gets without splitting.
+  uint replicaSamples = sceneInfo.pointLightCount;
 #ifdef RT_FEATURE_AREA_LIGHTS
-  samples += sceneInfo.areaLightSamples;
+  replicaSamples += sceneInfo.areaLightSamples;
 #endif
   LightCursor cursor = firstLight();
   // `--bailout 0` (the floor) traces every sample.
-  float share = sceneInfo.branchBailout / (max(pathWeight, 1e-30) * float(max(samples, 1u)));
+  float share =
+      sceneInfo.branchBailout / (max(pathWeight, 1e-30) * float(max(replicaSamples, 1u)));
   float negligible = sceneInfo.branchBailout > RT_MIN_BRANCH_WEIGHT ? share : 0.0;
 #ifdef RT_SHADOW_PAIRS
   for (uint k = 0u; k < samples; k += 2u) {
     LightSample first = nextLightSample(cursor, context, pixelSample, vertexDepth);
     LightSample second = first;  // past the last sample: not traced, adds nothing
     second.reflected = vec3(0.0);
-    if (k + 1u < samples) second = nextLightSample(cursor, context, pixelSample, vertexDepth);
+    bool hasSecond = k + 1u < samples;
+    if (hasSecond) second = nextLightSample(cursor, context, pixelSample, vertexDepth);
     vec2 visibility = lightVisibilityPair(
         first.shadowRay, shadowRayTraced(first, negligible) ? first.tMax : -1.0,
         second.shadowRay, shadowRayTraced(second, negligible) ? second.tMax : -1.0, throughGlass);
-    radiance += sampleContribution(first, negligible, visibility.x);
-    radiance += sampleContribution(second, negligible, visibility.y);
+    addLightSample(sums, context, k, sampleContribution(first, negligible, visibility.x));
+    if (hasSecond) {
+      addLightSample(sums, context, k + 1u, sampleContribution(second, negligible, visibility.y));
+    }
   }
 #else
   for (uint k = 0u; k < samples; ++k) {
@@ -343,14 +441,14 @@ vec3 directLighting(ShadingContext context, uvec2 pixelSample, uint vertexDepth,
     if (shadowRayTraced(lit, negligible)) {
       visibility = lightVisibility(lit.shadowRay, lit.tMax, throughGlass);
     }
-    radiance += sampleContribution(lit, negligible, visibility);
+    addLightSample(sums, context, k, sampleContribution(lit, negligible, visibility));
   }
 #endif
-  // The coursework model clamps the light reaching the eye first, then tints
-  // it (highlights included) by the normalised diffuse colour, or by the
-  // texture colour as it is.
-  if (!context.coursework) return radiance;
-  return courseworkDiffuseTint(context) * min(radiance, vec3(1.0));
+#ifdef RT_LIGHT_REPLICAS
+  return sums.replicas / float(RT_REPLICAS);
+#else
+  return localLight(context, shadedDirect(context, sums.current));
+#endif
 }
 
 #endif

@@ -154,7 +154,8 @@ int run(const CommandLine& cli) {
   printList("warnings (defaults taken, files missing, keys ignored)", scene.warnings);
   const rt::FlatScene flat = rt::flattenScene(scene);
   printList("left out on the GPU", flat.warnings);
-  std::printf("kernel features: %s\n", rt::detectFeatures(scene, flat).summary().c_str());
+  std::printf("kernel features: %s\n",
+              rt::detectFeatures(scene, flat, scene.settings.adaptive).summary().c_str());
   return 0;
 }
 

@@ -190,4 +190,21 @@ void applyLightSamplesOption(const std::optional<uint32_t>& samples, Scene& scen
   setAreaLightSamples(scene, *samples);
 }
 
+void addLightSplitOption(CLI::App& app, std::optional<uint32_t>& replicas) {
+  app.add_option("--light-split", replicas,
+                 "Light splitting: each hit's area-light estimate is made K times over, each "
+                 "with its own shadow rays and through the hit's whole shading, and averaged: "
+                 "less shadow noise a sample for more time a sample, and the same image (where "
+                 "--light-samples changes it in the coursework shading model); default 1")
+      ->check(CLI::Range(1u, kMaxLightSplit));
+}
+
+void applyLightSplitOption(const std::optional<uint32_t>& replicas, Scene& scene) {
+  if (!replicas) return;
+  if (scene.areaLights.empty()) {
+    std::fprintf(stderr, "warning: --light-split: the scene has no area lights\n");
+  }
+  scene.settings.lightSplit = *replicas;
+}
+
 }  // namespace rt::cli

@@ -81,4 +81,10 @@ void addLightSamplesOption(CLI::App& app, std::optional<uint32_t>& samples);
 // if any (a warning when the scene has none).
 void applyLightSamplesOption(const std::optional<uint32_t>& samples, Scene& scene);
 
+// --light-split K into `replicas`: each hit's area-light estimate K times over.
+void addLightSplitOption(CLI::App& app, std::optional<uint32_t>& replicas);
+// Gives a loaded scene the light splitting --light-split named, if any (a
+// warning when the scene has no area lights).
+void applyLightSplitOption(const std::optional<uint32_t>& replicas, Scene& scene);
+
 }  // namespace rt::cli

@@ -53,6 +53,7 @@ struct CommandLine {
   std::optional<float> roulette;
   std::optional<float> bailout;
   std::optional<uint32_t> lightSamples;
+  std::optional<uint32_t> lightSplit;
   std::string conventions;
   std::string device;
   std::string shaderDir;
@@ -139,6 +140,7 @@ int run(const CommandLine& cli) {
   if (cli.roulette) scene.settings.rouletteWeight = *cli.roulette;
   if (cli.bailout) scene.settings.branchBailout = *cli.bailout;
   rt::cli::applyLightSamplesOption(cli.lightSamples, scene);
+  rt::cli::applyLightSplitOption(cli.lightSplit, scene);
   rt::cli::applyConventionsOption(cli.conventions, scene);
   rt::ConvergenceSetup setup = convergenceSetup(cli, scene);
   std::vector<uint32_t> counts = sampleCounts(cli);
@@ -249,6 +251,7 @@ void addOptions(CLI::App& app, CommandLine& cli) {
   app.add_option("--bailout", cli.bailout, "Ray-tree bailout weight (as the render command)")
       ->check(CLI::Range(0.0f, 1.0f));
   rt::cli::addLightSamplesOption(app, cli.lightSamples);
+  rt::cli::addLightSplitOption(app, cli.lightSplit);
   app.add_option("--shading", cli.shading, "Shading model (default: the conventions')")
       ->check(CLI::IsMember({"standard", "coursework"}));
   rt::cli::addConventionsOption(app, cli.conventions);

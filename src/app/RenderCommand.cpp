@@ -53,6 +53,7 @@ struct CommandLine {
   std::optional<float> roulette;
   std::optional<float> bailout;
   std::optional<uint32_t> lightSamples;
+  std::optional<uint32_t> lightSplit;
   std::string sampleRange;
   std::string region;
   std::string cameraPath;
@@ -272,6 +273,7 @@ int run(const CommandLine& cli) {
   if (cli.roulette) scene.settings.rouletteWeight = *cli.roulette;
   if (cli.bailout) scene.settings.branchBailout = *cli.bailout;
   rt::cli::applyLightSamplesOption(cli.lightSamples, scene);
+  rt::cli::applyLightSplitOption(cli.lightSplit, scene);
   rt::RenderOptions options = renderOptions(cli, scene);
   if (options.adaptive && cli.sampler.empty() && scene.settings.samplerGiven &&
       scene.settings.sampler != options.sampler) {
@@ -372,6 +374,7 @@ int runRenderCommand(int argc, char** argv) {
                  "weight 1e-4; not in the path tracer)")
       ->check(CLI::Range(0.0f, 1.0f));
   rt::cli::addLightSamplesOption(app, cli.lightSamples);
+  rt::cli::addLightSplitOption(app, cli.lightSplit);
   app.add_option("--samples", cli.sampleRange,
                  "Render only sample indices FROM:TO of the --spp samples (merge the pieces "
                  "with `raytracer merge`; write .exr, whose alpha holds the sample count)");

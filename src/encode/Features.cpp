@@ -38,9 +38,25 @@ bool movesRayIntoObjectSpace(const gpu::GpuPrimitive& primitive) {
           primitive.c != glm::vec4(0, 0, 1, 0));
 }
 
+// Light splitting where the scene does not set it (RenderSettings::lightSplit
+// 0): adaptive renders trace at least four area-light shadow rays a hit.
+// Their rounds go to the noisiest tiles, penumbrae among them, where the
+// light's sampling is the noise: on the area-light study four replicas took
+// adaptive sampling to RMSE 0.01 in 0.062 CPU-seconds against 0.094 with
+// one, 0.085 with two, 0.078 with eight (uniform jittered: 0.087, and no
+// faster with four); the common scene's thin lens within noise of one
+// (README "Adaptive sampling").
+uint32_t lightReplicasFor(const RenderSettings& settings, bool adaptive,
+                          uint32_t areaLightSamples) {
+  constexpr uint32_t kAdaptiveAreaShadowRays = 4;
+  if (settings.lightSplit > 0) return settings.lightSplit;
+  if (!adaptive || areaLightSamples == 0) return 1;
+  return (kAdaptiveAreaShadowRays + areaLightSamples - 1) / areaLightSamples;
+}
+
 }  // namespace
 
-ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat) {
+ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool adaptive) {
   ShaderFeatures features;
   for (const Shape& shape : scene.shapes) addGeometryFeatures(shape, features);
   for (const gpu::GpuPrimitive& primitive : flat.primitives) {
@@ -66,6 +82,10 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat) {
   if (features.areaLights) {
     for (const gpu::GpuEmitter& emitter : flat.emitters)
       features.emitterKinds |= 1u << emitter.kind;
+    if (flat.info.areaLightSamples > 0) {
+      features.lightReplicas =
+          lightReplicasFor(scene.settings, adaptive, flat.info.areaLightSamples);
+    }
   }
   // A walk pushes at most one entry per level of its path through both
   // levels, and the marker that ends a placed mesh.
@@ -73,7 +93,8 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat) {
   features.stackInRegisters = deepestStack <= RT_BVH_STACK_REGISTERS;
   bool pairable = !features.hardwareAccel && !features.instanceTransforms;
   features.shadowPairs =
-      pairable && lit && flat.info.pointLightCount + flat.info.areaLightSamples >= 2;
+      pairable && lit &&
+      flat.info.pointLightCount + features.lightReplicas * flat.info.areaLightSamples >= 2;
   features.primaryPairs = pairable && features.binaryOnly;
   features.pathTracer = scene.settings.mode == RenderMode::PathTracer;
   features.diffuseBounces =
@@ -131,6 +152,8 @@ ShaderDefines ShaderFeatures::defines() const {
     result.emplace_back("RT_EMITTER_KINDS", std::to_string(emitterKinds) + "u");
   }
   result.emplace_back("RT_WHITTED_STACK_SIZE", std::to_string(whittedStackSize));
+  if (lightReplicas > 1)
+    result.emplace_back("RT_LIGHT_REPLICAS", std::to_string(lightReplicas) + "u");
   if (rouletteWeight > 0.0f) {
     result.emplace_back("RT_ROULETTE_WEIGHT", fmt::format("{:.9g}", rouletteWeight));
   }
@@ -143,6 +166,7 @@ std::string ShaderFeatures::summary() const {
     if (name.rfind("RT_FEATURE_", 0) != 0) continue;
     text += (text.empty() ? "" : " ") + lowercase(name.substr(11));
   }
+  if (lightReplicas > 1) text += fmt::format(" light_split({})", lightReplicas);
   return text.empty() ? "none" : text;
 }
 

@@ -60,6 +60,8 @@ struct ShaderFeatures {
   uint32_t whittedStackSize = 1;
   // RenderSettings::rouletteWeight where the tree branches.
   float rouletteWeight = 0.0f;
+  // RenderSettings::lightSplit where the scene has area lights (1: off).
+  uint32_t lightReplicas = 1;
   // Rays walked two by two (traversePair in shaders/traverse_bvh.glsl),
   // through the renderer's own BVH, without instance transforms: a shading
   // point's shadow rays where a hit has two or more light samples, and
@@ -82,6 +84,8 @@ struct ShaderFeatures {
 
 // `flat` is the scene flattened for the GPU (it knows which triangles carry
 // vertex data and which textures are drawn).
-ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat);
+// `adaptive`: for adaptive sampling (render/AdaptiveSampling.hpp), which
+// splits the light automatically.
+ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool adaptive = false);
 
 }  // namespace rt

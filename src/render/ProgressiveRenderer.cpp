@@ -88,7 +88,7 @@ VkDeviceSize accumulationBytes(VulkanContext& context, const FlatScene& flat) {
 
 ShaderFeatures featuresFor(const Scene& scene, const FlatScene& flat,
                            const ProgressiveOptions& options, const VulkanContext& context) {
-  ShaderFeatures features = detectFeatures(scene, flat);
+  ShaderFeatures features = detectFeatures(scene, flat, options.adaptive);
   features.storageBuffers = options.sceneArrays == SceneArrays::StorageBuffers;
   features.shadowPairs &= options.walks == Walks::Paired;
   features.primaryPairs &= options.walks == Walks::Paired;

@@ -204,6 +204,15 @@ struct RenderSettings {
   // ignores it: its weights are whole path throughputs, which fall below
   // 1/255 on long diffuse paths that matter.
   float branchBailout = 1.0f / 255.0f;
+  // Light splitting (`--light-split`): each hit's area-light estimate is
+  // made this many times over, with its own shadow rays, each through the
+  // hit's whole shading (clamps included), and averaged: less noise from
+  // the lights a sample for more shadow rays, converging to the image of
+  // one (shading.glsl hitLocalLight). More samples per light
+  // (`--light-samples`) change the image where the shading clamps a hit's
+  // summed light; this does not. 0: automatic (encode/Features.cpp
+  // lightReplicasFor: adaptive renders only), 1: off.
+  uint32_t lightSplit = 0;
   uint32_t samplesPerPixel = 0;  // 0: not given in the file
   SamplerKind sampler = SamplerKind::Jittered;
   bool samplerGiven = false;  // the file names a sampler (see samplerUnlessAsked)

@@ -96,6 +96,32 @@ awk -v a="$one" -v b="$four" 'BEGIN { exit !(a > 0 && b > 0 && b < 0.8 * a) }' &
 expect_error "--light-samples 0" '--light-samples' "$SCRATCH/good.json" "$SCRATCH/out.png" --light-samples 0
 expect_error "--light-samples too large" '--light-samples' "$SCRATCH/good.json" "$SCRATCH/out.png" --light-samples 5000
 
+# --- --light-split: replicas of a hit's area-light estimate, the same image ----------------
+# Against a one-replica reference at 256 Sobol samples: four replicas 0.0009 (the noise; another
+# seed of one replica 0.0011), four light samples 0.0054 (the coursework model clamps a hit's
+# summed light, so the image differs). The seeds are fixed, so the figures repeat.
+"$RAYTRACER" "$AREA_STUDY" "$SCRATCH/split-reference.exr" --size 96x72 --spp 1024 --sampler sobol -q
+rmse_at_256() { # OPTIONS...: the RMSE of 256 Sobol samples against that reference
+  "$RAYTRACER" converge "$AREA_STUDY" --size 96x72 --samplers sobol --spp-list 128,256 \
+    --reference "$SCRATCH/split-reference.exr" --out "$SCRATCH/split" -q "$@" >/dev/null 2>&1 &&
+    awk -F, '$1 == "sobol" && $2 == 256 { print $5 }' "$SCRATCH/split.csv"
+}
+split=$(rmse_at_256 --light-split 4) more=$(rmse_at_256 --light-samples 4)
+awk -v a="$split" -v b="$more" 'BEGIN { exit !(a > 0 && b > 0 && a < 0.3 * b) }' && pass ||
+  fail "--light-split 4: RMSE $split to the one-replica image, not below 0.3x --light-samples 4's $more"
+"$RAYTRACER" "$AREA_STUDY" "$SCRATCH/split.png" --size 32x24 --spp 1 --light-split 3 2>"$SCRATCH/stderr" &&
+  grep -q "light_split(3)" "$SCRATCH/stderr" && pass || fail "--light-split 3: named in the summary"
+"$RAYTRACER" "$AREA_STUDY" "$SCRATCH/split.png" --size 32x24 --spp 2 --adaptive 2>"$SCRATCH/stderr" &&
+  grep -q "light_split(4)" "$SCRATCH/stderr" && pass || fail "--adaptive with one light sample: four replicas"
+"$RAYTRACER" "$AREA_STUDY" "$SCRATCH/split.png" --size 32x24 --spp 2 --adaptive --light-split 1 \
+  2>"$SCRATCH/stderr" && ! grep -q "light_split" "$SCRATCH/stderr" && pass ||
+  fail "--adaptive --light-split 1: no replicas"
+"$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/nolights.png" --spp 1 --light-split 2 2>"$SCRATCH/stderr" &&
+  grep -q "^warning: --light-split: the scene has no area lights" "$SCRATCH/stderr" && pass ||
+  fail "--light-split on a scene without area lights: a warning"
+expect_error "--light-split 0" '--light-split' "$SCRATCH/good.json" "$SCRATCH/out.png" --light-split 0
+expect_error "--light-split too large" '--light-split' "$SCRATCH/good.json" "$SCRATCH/out.png" --light-split 65
+
 # --- split renders, budgets, interruption -----------------------------------
 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/a.exr" --spp 6 --samples 0:2 -q &&
   "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/b.exr" --spp 6 --samples 2:6 -q &&

@@ -3,9 +3,12 @@
 // two modes agreeing where they must.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/constants.hpp>
 
+#include "encode/Features.hpp"
+#include "encode/FlatScene.hpp"
 #include "formats/json/JsonSceneLoader.hpp"
 #include "render/Renderer.hpp"
 #include "support/TestSupport.hpp"
@@ -256,6 +259,33 @@ TEST_SUITE("area lights") {
                  intensity, 1);
     CHECK(pixel(test::render(mirrored, standardShading(4)), 16, 16).x ==
           doctest::Approx(expected).epsilon(1e-3).scale(0));
+  }
+}
+
+TEST_SUITE("light splitting") {
+  TEST_CASE("replicas as asked, or four area-light shadow rays a hit in adaptive renders") {
+    Scene scene = test::projectScene("study-arealight.json");  // one light, one sample
+    auto replicas = [&](bool adaptive) {
+      return detectFeatures(scene, flattenScene(scene), adaptive).lightReplicas;
+    };
+    CHECK(replicas(false) == 1);
+    CHECK(replicas(true) == 4);
+    setAreaLightSamples(scene, 3);
+    CHECK(replicas(true) == 2);
+    setAreaLightSamples(scene, 4);
+    CHECK(replicas(true) == 1);
+    scene.settings.lightSplit = 3;
+    CHECK(replicas(false) == 3);
+    CHECK(replicas(true) == 3);
+    ShaderDefines defines = detectFeatures(scene, flattenScene(scene)).defines();
+    CHECK(std::count(defines.begin(), defines.end(),
+                     std::pair<std::string, std::string>("RT_LIGHT_REPLICAS", "3u")) == 1);
+    scene.settings.lightSplit = 1;
+    CHECK(replicas(true) == 1);
+
+    Scene unlit = wallScene(8);  // no area light: nothing to split
+    unlit.settings.lightSplit = 3;
+    CHECK(detectFeatures(unlit, flattenScene(unlit), true).lightReplicas == 1);
   }
 }
 
