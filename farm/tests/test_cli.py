@@ -51,6 +51,12 @@ def outputs(folder):
             r"^error: argument --light-samples: expected a whole number 1\.\.4096, got '0'",
         ),
         (
+            "too many light replicas",
+            ["render", "{scene}", "{out}.png", "--light-split", "65"],
+            2,
+            r"^error: argument --light-split: expected a whole number 1\.\.64, got '65'",
+        ),
+        (
             "unknown sampler",
             ["render", "{scene}", "{out}.png", "--sampler", "halton"],
             2,

@@ -79,6 +79,20 @@ def test_light_samples_reach_every_part(cluster, raytracer, tmp_path):
     assert np.abs(three[..., :3] - one[..., :3]).max() > 1e-2 * np.abs(one[..., :3]).max()
 
 
+def test_light_split_reaches_every_part(cluster, raytracer, tmp_path):
+    """--light-split goes to every part: the farm's image is the single render's with it, which
+    differs from one replica's (other shadow rays) though it converges to the same image."""
+    size = ["--size", "32x24", "--spp", 4]
+    farm_render(
+        cluster, AREA_LIGHT_SCENE, tmp_path / "farm.exr", *size, "--tasks", 2, "--light-split", 3
+    )
+    render_single(raytracer, AREA_LIGHT_SCENE, tmp_path / "three.exr", *size, "--light-split", 3)
+    render_single(raytracer, AREA_LIGHT_SCENE, tmp_path / "one.exr", *size)
+    assert_same_image(tmp_path / "farm.exr", tmp_path / "three.exr", 4)
+    three, one = read_exr(tmp_path / "three.exr"), read_exr(tmp_path / "one.exr")
+    assert np.abs(three[..., :3] - one[..., :3]).max() > 1e-2 * np.abs(one[..., :3]).max()
+
+
 def test_meshes_and_textures_travel_with_the_scene(cluster, raytracer, tmp_path):
     scene = write_scene_with_files(tmp_path)
     farm_render(

@@ -19,6 +19,7 @@ from rtfarm.errors import FarmError
 MAX_IMAGE_SIDE = 16384
 MAX_SAMPLES = 1 << 20
 MAX_LIGHT_SAMPLES = 4096  # src/scene/Limits.hpp kMaxLightSamples
+MAX_LIGHT_SPLIT = 64  # src/scene/Limits.hpp kMaxLightSplit
 
 
 class _Parser(argparse.ArgumentParser):
@@ -93,6 +94,11 @@ def _add_render_options(parser: argparse.ArgumentParser) -> None:
         "--light-samples",
         type=_count(1, MAX_LIGHT_SAMPLES),
         help="shadow rays per area light and hit, for every area light",
+    )
+    group.add_argument(
+        "--light-split",
+        type=_count(1, MAX_LIGHT_SPLIT),
+        help="replicas of each hit's area-light estimate (less noise, the same image)",
     )
     group.add_argument("--accel", choices=["bvh", "none"])
 

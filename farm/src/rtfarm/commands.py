@@ -52,6 +52,7 @@ def _render_args(arguments, spp: int) -> list[str]:
         ("--exposure", arguments.exposure),
         ("--clamp-indirect", arguments.clamp_indirect),
         ("--light-samples", arguments.light_samples),
+        ("--light-split", arguments.light_split),
         ("--accel", arguments.accel),
     ):
         if value is not None:
