@@ -3,6 +3,7 @@
 import re
 
 import numpy as np
+import pytest
 
 from conftest import (
     AREA_LIGHT_SCENE,
@@ -65,28 +66,15 @@ def test_tiles_when_the_tasks_outnumber_the_samples(cluster, raytracer, tmp_path
     assert PROGRESS_DONE.findall(done.stderr)[-1] == ("6", "6")  # 2 ranges x 3 tiles
 
 
-def test_light_samples_reach_every_part(cluster, raytracer, tmp_path):
-    """--light-samples goes to every part: the farm's image is the single render's with it,
-    which is not the scene's own (its coursework shading clamps each hit's summed light)."""
+@pytest.mark.parametrize("option", ["--light-samples", "--light-split"])
+def test_light_options_reach_every_part(cluster, raytracer, tmp_path, option):
+    """--light-samples and --light-split go to every part: the farm's image is the single
+    render's with the option, which differs from the scene's own (other shadow rays; with
+    --light-samples also another image, since coursework shading clamps each hit's summed
+    light)."""
     size = ["--size", "32x24", "--spp", 4]
-    farm_render(
-        cluster, AREA_LIGHT_SCENE, tmp_path / "farm.exr", *size, "--tasks", 2, "--light-samples", 3
-    )
-    render_single(raytracer, AREA_LIGHT_SCENE, tmp_path / "three.exr", *size, "--light-samples", 3)
-    render_single(raytracer, AREA_LIGHT_SCENE, tmp_path / "one.exr", *size)
-    assert_same_image(tmp_path / "farm.exr", tmp_path / "three.exr", 4)
-    three, one = read_exr(tmp_path / "three.exr"), read_exr(tmp_path / "one.exr")
-    assert np.abs(three[..., :3] - one[..., :3]).max() > 1e-2 * np.abs(one[..., :3]).max()
-
-
-def test_light_split_reaches_every_part(cluster, raytracer, tmp_path):
-    """--light-split goes to every part: the farm's image is the single render's with it, which
-    differs from one replica's (other shadow rays) though it converges to the same image."""
-    size = ["--size", "32x24", "--spp", 4]
-    farm_render(
-        cluster, AREA_LIGHT_SCENE, tmp_path / "farm.exr", *size, "--tasks", 2, "--light-split", 3
-    )
-    render_single(raytracer, AREA_LIGHT_SCENE, tmp_path / "three.exr", *size, "--light-split", 3)
+    farm_render(cluster, AREA_LIGHT_SCENE, tmp_path / "farm.exr", *size, "--tasks", 2, option, 3)
+    render_single(raytracer, AREA_LIGHT_SCENE, tmp_path / "three.exr", *size, option, 3)
     render_single(raytracer, AREA_LIGHT_SCENE, tmp_path / "one.exr", *size)
     assert_same_image(tmp_path / "farm.exr", tmp_path / "three.exr", 4)
     three, one = read_exr(tmp_path / "three.exr"), read_exr(tmp_path / "one.exr")

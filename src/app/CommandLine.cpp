@@ -44,6 +44,13 @@ CLI::Validator finiteNumberAbove(double low, bool lowAllowed, const std::string&
       name);
 }
 
+// The light options change nothing in a scene without area lights.
+void warnWithoutAreaLights(const char* option, const Scene& scene) {
+  if (scene.areaLights.empty()) {
+    std::fprintf(stderr, "warning: %s: the scene has no area lights\n", option);
+  }
+}
+
 }  // namespace
 
 CLI::Validator positiveFiniteNumber() {
@@ -184,9 +191,7 @@ void addLightSamplesOption(CLI::App& app, std::optional<uint32_t>& samples) {
 
 void applyLightSamplesOption(const std::optional<uint32_t>& samples, Scene& scene) {
   if (!samples) return;
-  if (scene.areaLights.empty()) {
-    std::fprintf(stderr, "warning: --light-samples: the scene has no area lights\n");
-  }
+  warnWithoutAreaLights("--light-samples", scene);
   setAreaLightSamples(scene, *samples);
 }
 
@@ -195,15 +200,14 @@ void addLightSplitOption(CLI::App& app, std::optional<uint32_t>& replicas) {
                  "Light splitting: each hit's area-light estimate is made K times over, each "
                  "with its own shadow rays and through the hit's whole shading, and averaged: "
                  "less shadow noise a sample for more time a sample, and the same image (where "
-                 "--light-samples changes it in the coursework shading model); default 1")
+                 "--light-samples changes it in the coursework shading model); default 1, "
+                 "and in adaptive renders enough for four area-light shadow rays a hit")
       ->check(CLI::Range(1u, kMaxLightSplit));
 }
 
 void applyLightSplitOption(const std::optional<uint32_t>& replicas, Scene& scene) {
   if (!replicas) return;
-  if (scene.areaLights.empty()) {
-    std::fprintf(stderr, "warning: --light-split: the scene has no area lights\n");
-  }
+  warnWithoutAreaLights("--light-split", scene);
   scene.settings.lightSplit = *replicas;
 }
 

@@ -90,11 +90,15 @@ rmse_at_one() { # LIGHT_SAMPLES: the RMSE of one Sobol sample a pixel, from conv
 one=$(rmse_at_one 1) four=$(rmse_at_one 4)
 awk -v a="$one" -v b="$four" 'BEGIN { exit !(a > 0 && b > 0 && b < 0.8 * a) }' && pass ||
   fail "--light-samples 4: the one-sample RMSE $four is not below 0.8x of one light sample's $one"
-"$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/nolights.png" --spp 1 --light-samples 2 2>"$SCRATCH/stderr" &&
-  grep -q "^warning: --light-samples: the scene has no area lights" "$SCRATCH/stderr" && pass ||
-  fail "--light-samples on a scene without area lights: a warning"
-expect_error "--light-samples 0" '--light-samples' "$SCRATCH/good.json" "$SCRATCH/out.png" --light-samples 0
-expect_error "--light-samples too large" '--light-samples' "$SCRATCH/good.json" "$SCRATCH/out.png" --light-samples 5000
+# Both light options: a warning on a scene without area lights, one error line out of range.
+for option in "--light-samples 5000" "--light-split 65"; do
+  read -r name too_large <<<"$option"
+  "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/nolights.png" --spp 1 "$name" 2 2>"$SCRATCH/stderr" &&
+    grep -q "^warning: $name: the scene has no area lights" "$SCRATCH/stderr" && pass ||
+    fail "$name on a scene without area lights: a warning"
+  expect_error "$name 0" "$name" "$SCRATCH/good.json" "$SCRATCH/out.png" "$name" 0
+  expect_error "$name too large" "$name" "$SCRATCH/good.json" "$SCRATCH/out.png" "$name" "$too_large"
+done
 
 # --- --light-split: replicas of a hit's area-light estimate, the same image ----------------
 # Against a one-replica reference at 256 Sobol samples: four replicas 0.0009 (the noise; another
@@ -116,11 +120,6 @@ awk -v a="$split" -v b="$more" 'BEGIN { exit !(a > 0 && b > 0 && a < 0.3 * b) }'
 "$RAYTRACER" "$AREA_STUDY" "$SCRATCH/split.png" --size 32x24 --spp 2 --adaptive --light-split 1 \
   2>"$SCRATCH/stderr" && ! grep -q "light_split" "$SCRATCH/stderr" && pass ||
   fail "--adaptive --light-split 1: no replicas"
-"$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/nolights.png" --spp 1 --light-split 2 2>"$SCRATCH/stderr" &&
-  grep -q "^warning: --light-split: the scene has no area lights" "$SCRATCH/stderr" && pass ||
-  fail "--light-split on a scene without area lights: a warning"
-expect_error "--light-split 0" '--light-split' "$SCRATCH/good.json" "$SCRATCH/out.png" --light-split 0
-expect_error "--light-split too large" '--light-split' "$SCRATCH/good.json" "$SCRATCH/out.png" --light-split 65
 
 # --- split renders, budgets, interruption -----------------------------------
 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/a.exr" --spp 6 --samples 0:2 -q &&
