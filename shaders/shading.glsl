@@ -365,9 +365,9 @@ vec3 localLight(ShadingContext context, vec3 direct) {
 struct LightSums {
   vec3 current;  // of the samples so far (with splitting: of this replica)
 #ifdef RT_LIGHT_REPLICAS
-  vec3 pointLights;    // the point lights' part, which every replica shares
-  vec3 replicas;       // the local light of the replicas done
-  uint replicaLeft;    // area samples still to come in this replica
+  vec3 pointLights;  // the point lights' part, which every replica shares
+  vec3 replicas;     // the local light of the replicas done
+  uint replicaLeft;  // area samples still to come in this replica
 #endif
 };
 
