@@ -39,18 +39,21 @@ bool movesRayIntoObjectSpace(const gpu::GpuPrimitive& primitive) {
 }
 
 // Light splitting where the scene does not set it (RenderSettings::lightSplit
-// 0): adaptive renders trace at least four area-light shadow rays a hit.
-// Their rounds go to the noisiest tiles, penumbrae among them, where the
-// light's sampling is the noise: on the area-light study four replicas took
-// adaptive sampling to RMSE 0.01 in 0.062 CPU-seconds against 0.094 with
-// one, 0.085 with two, 0.078 with eight (uniform jittered: 0.087, and no
-// faster with four); the common scene's thin lens within noise of one
-// (README "Adaptive sampling").
-uint32_t lightReplicasFor(const RenderSettings& settings, bool adaptive,
+// 0): adaptive renders of direct light (no sampled diffuse bounces) trace at
+// least four area-light shadow rays a hit. Their rounds go to the noisiest
+// tiles, penumbrae among them, where the light's sampling is the noise: on
+// the area-light study four replicas took adaptive sampling to RMSE 0.01 in
+// 0.062 CPU-seconds against 0.094 with one, 0.085 with two, 0.078 with
+// eight (uniform jittered: 0.087, and no faster with four); the common
+// scene's thin lens within noise of one. Where paths bounce, the indirect
+// light is the noise: the path-traced Cornell box's adaptive renders had the
+// same error with four replicas at 1.7x the time (README "Speed vs
+// accuracy").
+uint32_t lightReplicasFor(const RenderSettings& settings, bool adaptive, bool bounces,
                           uint32_t areaLightSamples) {
   constexpr uint32_t kAdaptiveAreaShadowRays = 4;
   if (settings.lightSplit > 0) return settings.lightSplit;
-  if (!adaptive || areaLightSamples == 0) return 1;
+  if (!adaptive || bounces || areaLightSamples == 0) return 1;
   return (kAdaptiveAreaShadowRays + areaLightSamples - 1) / areaLightSamples;
 }
 
@@ -82,10 +85,10 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
   if (features.areaLights) {
     for (const gpu::GpuEmitter& emitter : flat.emitters)
       features.emitterKinds |= 1u << emitter.kind;
-    if (flat.info.areaLightSamples > 0) {
-      features.lightReplicas =
-          lightReplicasFor(scene.settings, adaptive, flat.info.areaLightSamples);
-    }
+    bool bounces =
+        scene.settings.mode == RenderMode::PathTracer || flat.info.distributedBounces > 0;
+    features.lightReplicas =
+        lightReplicasFor(scene.settings, adaptive, bounces, flat.info.areaLightSamples);
   }
   // A walk pushes at most one entry per level of its path through both
   // levels, and the marker that ends a placed mesh.

@@ -282,6 +282,14 @@ TEST_SUITE("light splitting") {
                      std::pair<std::string, std::string>("RT_LIGHT_REPLICAS", "3u")) == 1);
     scene.settings.lightSplit = 1;
     CHECK(replicas(true) == 1);
+    scene.settings.lightSplit = 0;  // automatic
+    setAreaLightSamples(scene, 1);
+    REQUIRE(replicas(true) == 4);
+    scene.settings.mode = RenderMode::PathTracer;  // indirect light is the noise
+    CHECK(replicas(true) == 1);
+    scene.settings.mode = RenderMode::Phong;
+    scene.settings.distributedBounces = 1;
+    CHECK(replicas(true) == 1);
 
     Scene unlit = wallScene(8);  // no area light: nothing to split
     unlit.settings.lightSplit = 3;
