@@ -98,6 +98,7 @@ int runViewCommand(int argc, char** argv) {
   rt::cli::addConventionsOption(app, cli.conventions);
   rt::cli::addToneCurveOption(app, cli.toneCurve);
   rt::cli::addLightSamplesOption(app, options.lightSamples);
+  rt::cli::addLightSplitOption(app, options.lightSplit);
   app.add_option("--exposure", options.exposure, "Extra exposure factor")
       ->check(rt::cli::positiveFiniteNumber());
   app.add_flag("-v,--verbose", options.verbose, "Log every frame (default: about once a second)");

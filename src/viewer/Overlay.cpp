@@ -16,8 +16,10 @@ namespace rt::viewer {
 namespace {
 
 constexpr int kMaxSamplesTarget = 1 << 20;
-// The slider's range; the command line's --light-samples goes to kMaxLightSamples.
+// The sliders' ranges; the command line's --light-samples goes to kMaxLightSamples,
+// --light-split to kMaxLightSplit.
 constexpr int kMaxSliderLightSamples = 32;
+constexpr int kMaxSliderLightSplit = 16;
 const ImVec4 kErrorColor(1.0f, 0.45f, 0.4f, 1.0f);
 
 void checkImGuiVulkanResult(VkResult result) {
@@ -63,6 +65,10 @@ void editRenderSettings(OverlaySettings& settings, OverlayActions& actions) {
     settings.lightSamples =
         std::clamp(settings.lightSamples, 0, static_cast<int>(kMaxLightSamples));
     actions.lightSamplesChanged = ImGui::IsItemDeactivatedAfterEdit();
+    ImGui::SliderInt("light split", &settings.lightSplit, 0, kMaxSliderLightSplit,
+                     settings.lightSplit > 0 ? "%d" : "auto");
+    settings.lightSplit = std::clamp(settings.lightSplit, 0, static_cast<int>(kMaxLightSplit));
+    actions.lightSplitChanged = ImGui::IsItemDeactivatedAfterEdit();
   }
   ImGui::SliderFloat("exposure", &settings.exposure, 0.01f, 100.0f, "%.3f",
                      ImGuiSliderFlags_Logarithmic);

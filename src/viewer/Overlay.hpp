@@ -42,6 +42,9 @@ struct OverlaySettings {
   // Every area light's shadow rays a hit; 0: each light's own (the scene's).
   // Shown only for scenes with area lights.
   int lightSamples = 0;
+  // Replicas of a hit's area-light estimate (RenderSettings::lightSplit); 0:
+  // the renderer's choice (four shadow rays a hit in adaptive renders).
+  int lightSplit = 0;
   bool areaLights = false;
   float exposure = 1.0f;
   float apertureRadius = 0.0f;
@@ -64,6 +67,7 @@ struct OverlayActions {
   bool bouncesChanged = false;
   bool clampChanged = false;
   bool lightSamplesChanged = false;
+  bool lightSplitChanged = false;
   bool lensChanged = false;
   bool save = false;
   bool resetCamera = false;

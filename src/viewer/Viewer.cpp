@@ -116,6 +116,7 @@ void Viewer::initialiseSettings() {
   values.bounces = static_cast<int>(scene_.settings.maxBounces);
   values.indirectClamp = scene_.settings.indirectClamp;
   values.lightSamples = static_cast<int>(options_.lightSamples.value_or(0));
+  values.lightSplit = static_cast<int>(options_.lightSplit.value_or(0));
   values.areaLights = !scene_.areaLights.empty();
   values.adaptive = options_.adaptive || scene_.settings.adaptive;
   SamplerKind sampler =
@@ -142,6 +143,7 @@ std::unique_ptr<ProgressiveRenderer> Viewer::makeRenderer(glm::uvec2 size) const
   scene.settings.indirectClamp = std::max(values.indirectClamp, 0.0f);
   if (values.lightSamples > 0)
     setAreaLightSamples(scene, static_cast<uint32_t>(values.lightSamples));
+  if (values.lightSplit > 0) scene.settings.lightSplit = static_cast<uint32_t>(values.lightSplit);
   scene.camera = camera_.camera();
   ProgressiveOptions options;
   options.width = size.x;

@@ -236,7 +236,7 @@ void Viewer::applyPathStep(const PathStep& step) {
 void Viewer::applyOverlayActions(const OverlayActions& actions) {
   glm::uvec2 size{renderer_->width(), renderer_->height()};
   if (actions.bouncesChanged || actions.clampChanged || actions.lightSamplesChanged ||
-      actions.samplerChanged || actions.adaptiveChanged) {
+      actions.lightSplitChanged || actions.samplerChanged || actions.adaptiveChanged) {
     rebuildRenderer(size);
   } else if (actions.targetChanged) {
     // The jittered sampler stratifies for the target count: a new target is

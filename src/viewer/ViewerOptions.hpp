@@ -34,6 +34,7 @@ struct ViewerOptions {
   std::optional<ToneCurve> toneCurve;      // default: the scene's
   float exposure = 1.0f;                   // extra factor on the scene's exposure
   std::optional<uint32_t> lightSamples;    // every area light's shadow rays a hit
+  std::optional<uint32_t> lightSplit;      // replicas of a hit's area-light estimate
   bool verbose = false;                    // a log line every frame (otherwise about once a second)
 };
 

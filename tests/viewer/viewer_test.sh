@@ -157,6 +157,18 @@ case_offscreen_match() {
     "$SCRATCH/study-3.png" --max-diff 0
   compare "--light-samples 3 vs the scene's 1" "$SCRATCH/study-3.png" "$SCRATCH/study-1.png" \
     --max-psnr 45
+  # --light-split: the window splits as the render command does (other shadow rays, the
+  # same image in the limit).
+  "$RAYTRACER" "$study" "$SCRATCH/split-3.png" --size $SIZE --spp $SPP --light-split 3 -q ||
+    fail "study render with --light-split 3"
+  xvfb_run "$RAYTRACER" view "$study" --size $SIZE --max-spp $SPP --spp-per-frame 1 --frames 6 \
+    --no-overlay --no-watch --validation --light-split 3 --screenshot "$SCRATCH/split-window.png" \
+    >"$SCRATCH/log-split" 2>"$SCRATCH/err-split" ||
+    fail "viewer with --light-split: $(cat "$SCRATCH/err-split")"
+  compare "--light-split 3: window vs offline" "$SCRATCH/split-window.png" \
+    "$SCRATCH/split-3.png" --max-diff 0
+  compare "--light-split 3 vs one replica" "$SCRATCH/split-3.png" "$SCRATCH/study-1.png" \
+    --max-psnr 45
 
   # A second scene with textures and thin features, when the shared data is there.
   local example="$SOURCE/../shared/scene-format/official/cg-path-of-light-2021-2023/examples/example.json"
