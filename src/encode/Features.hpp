@@ -60,7 +60,8 @@ struct ShaderFeatures {
   uint32_t whittedStackSize = 1;
   // RenderSettings::rouletteWeight where the tree branches.
   float rouletteWeight = 0.0f;
-  // RenderSettings::lightSplit where the scene has area lights (1: off).
+  // Replicas of a hit's area-light estimate (RenderSettings::lightSplit, or
+  // the automatic choice of lightReplicasFor in Features.cpp; 1: off).
   uint32_t lightReplicas = 1;
   // Rays walked two by two (traversePair in shaders/traverse_bvh.glsl),
   // through the renderer's own BVH, without instance transforms: a shading

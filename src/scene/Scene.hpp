@@ -211,7 +211,7 @@ struct RenderSettings {
   // one (shading.glsl hitLocalLight). More samples per light
   // (`--light-samples`) change the image where the shading clamps a hit's
   // summed light; this does not. 0: automatic (encode/Features.cpp
-  // lightReplicasFor: adaptive renders only), 1: off.
+  // lightReplicasFor: in adaptive renders of direct light), 1: off.
   uint32_t lightSplit = 0;
   uint32_t samplesPerPixel = 0;  // 0: not given in the file
   SamplerKind sampler = SamplerKind::Jittered;
