@@ -197,19 +197,20 @@ LightSample pointLightSample(ShadingContext context, uint index) {
   return lit;
 }
 
-#ifdef RT_FEATURE_AREA_LIGHTS
 // Light splitting (RenderSettings::lightSplit): each hit's area-light
 // estimate is made this many times over, each replica with its own shadow
 // rays and through the hit's whole shading (clamps included), and the
 // replicas are averaged. Where the shading clamps a hit's summed light (the
 // coursework model, family B's local light) that average converges to the
-// image of one replica, where more samples per light would not.
+// image of one replica, where more samples per light would not. The host
+// sets RT_LIGHT_REPLICAS only for scenes with area lights.
 #ifdef RT_LIGHT_REPLICAS
 const uint RT_REPLICAS = RT_LIGHT_REPLICAS;
 #else
 const uint RT_REPLICAS = 1u;
 #endif
 
+#ifdef RT_FEATURE_AREA_LIGHTS
 // Next-event estimation of area light `lightIndex`: sample `sub` of its
 // `samples` per pixel sample in replica `replica`, lighting like a point
 // light with its share of the intensity. Replica r takes the light's sub-
@@ -287,12 +288,12 @@ LightCursor firstLight() {
   return cursor;
 }
 
-// Light samples of one shading point: the point lights', then the area
-// lights' of every replica.
-uint lightSampleCount() {
+// Light samples of one shading point with `replicas` replicas: the point
+// lights', then the area lights' of every replica.
+uint lightSampleCount(uint replicas) {
   uint samples = sceneInfo.pointLightCount;
 #ifdef RT_FEATURE_AREA_LIGHTS
-  samples += RT_REPLICAS * sceneInfo.areaLightSamples;
+  samples += replicas * sceneInfo.areaLightSamples;
 #endif
   return samples;
 }
@@ -407,13 +408,10 @@ void addLightSample(inout LightSums sums, ShadingContext context, uint k, vec3 c
 vec3 hitLocalLight(ShadingContext context, uvec2 pixelSample, uint vertexDepth, bool throughGlass,
                    float pathWeight) {
   LightSums sums = noLightSums();
-  uint samples = lightSampleCount();
+  uint samples = lightSampleCount(RT_REPLICAS);
   // The share of one replica's samples: each sample's decision is the one
   // it gets without splitting.
-  uint replicaSamples = sceneInfo.pointLightCount;
-#ifdef RT_FEATURE_AREA_LIGHTS
-  replicaSamples += sceneInfo.areaLightSamples;
-#endif
+  uint replicaSamples = lightSampleCount(1u);
   LightCursor cursor = firstLight();
   // `--bailout 0` (the floor) traces every sample.
   float share =

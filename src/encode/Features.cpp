@@ -40,14 +40,14 @@ bool movesRayIntoObjectSpace(const gpu::GpuPrimitive& primitive) {
 
 // Light splitting where the scene does not set it (RenderSettings::lightSplit
 // 0): adaptive renders of direct light (no path tracer, no sampled diffuse
-// bounces) trace at least four area-light shadow rays a hit. Their rounds go to the noisiest
-// tiles, penumbrae among them, where the light's sampling is the noise: on
-// the area-light study four replicas took adaptive sampling to RMSE 0.01 in
-// 0.062 CPU-seconds against 0.094 with one, 0.085 with two, 0.078 with
-// eight (uniform jittered: 0.087, and no faster with four); the common
-// scene's thin lens within noise of one. Where paths bounce, the indirect
-// light is the noise: the path-traced Cornell box's adaptive renders had the
-// same error with four replicas at 1.7x the time (README "Speed vs
+// bounces) trace at least four area-light shadow rays a hit. Their rounds go
+// to the noisiest tiles, penumbrae among them, where the light's sampling is
+// the noise: on the area-light study four replicas took adaptive sampling to
+// RMSE 0.01 in 0.062 CPU-seconds against 0.094 with one, 0.085 with two,
+// 0.078 with eight (uniform jittered: 0.087, and no faster with four); the
+// common scene's thin lens within noise of one. Where paths bounce, the
+// indirect light is the noise: the path-traced Cornell box's adaptive renders
+// had the same error with four replicas at 1.7x the time (README "Speed vs
 // accuracy").
 uint32_t lightReplicasFor(const RenderSettings& settings, bool adaptive, bool bounces,
                           uint32_t areaLightSamples) {

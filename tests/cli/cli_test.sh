@@ -80,14 +80,17 @@ expect_error "bad --walks" '--walks' "$SCRATCH/good.json" "$SCRATCH/out.png" --w
 
 # --- --light-samples: every area light's shadow rays a hit, in render and converge ---
 AREA_STUDY="$(dirname "${BASH_SOURCE[0]}")/../../scenes/study-arealight.json"
+sobol_rmse() { # COUNTS COUNT OPTIONS...: the study's RMSE at COUNT of the Sobol COUNTS, at 96x72
+  local counts=$1 count=$2
+  shift 2
+  "$RAYTRACER" converge "$AREA_STUDY" --size 96x72 --samplers sobol --spp-list "$counts" \
+    --out "$SCRATCH/rmse" -q "$@" >/dev/null 2>&1 &&
+    awk -F, -v n="$count" '$1 == "sobol" && $2 == n { print $5 }' "$SCRATCH/rmse.csv"
+}
 # Four shadow rays a hit: the one-sample error against each count's own reference falls
 # (0.0446 -> 0.0302 here; the seeds are fixed, so the figures repeat).
-rmse_at_one() { # LIGHT_SAMPLES: the RMSE of one Sobol sample a pixel, from converge's CSV
-  "$RAYTRACER" converge "$AREA_STUDY" --size 96x72 --samplers sobol --spp-list 1,2 \
-    --reference-spp 512 --light-samples "$1" --out "$SCRATCH/light$1" -q >/dev/null 2>&1 &&
-    awk -F, '$1 == "sobol" && $2 == 1 { print $5 }' "$SCRATCH/light$1.csv"
-}
-one=$(rmse_at_one 1) four=$(rmse_at_one 4)
+one=$(sobol_rmse 1,2 1 --reference-spp 512 --light-samples 1)
+four=$(sobol_rmse 1,2 1 --reference-spp 512 --light-samples 4)
 awk -v a="$one" -v b="$four" 'BEGIN { exit !(a > 0 && b > 0 && b < 0.8 * a) }' && pass ||
   fail "--light-samples 4: the one-sample RMSE $four is not below 0.8x of one light sample's $one"
 # Both light options: a warning on a scene without area lights, one error line out of range.
@@ -105,12 +108,8 @@ done
 # seed of one replica 0.0011), four light samples 0.0054 (the coursework model clamps a hit's
 # summed light, so the image differs). The seeds are fixed, so the figures repeat.
 "$RAYTRACER" "$AREA_STUDY" "$SCRATCH/split-reference.exr" --size 96x72 --spp 1024 --sampler sobol -q
-rmse_at_256() { # OPTIONS...: the RMSE of 256 Sobol samples against that reference
-  "$RAYTRACER" converge "$AREA_STUDY" --size 96x72 --samplers sobol --spp-list 128,256 \
-    --reference "$SCRATCH/split-reference.exr" --out "$SCRATCH/split" -q "$@" >/dev/null 2>&1 &&
-    awk -F, '$1 == "sobol" && $2 == 256 { print $5 }' "$SCRATCH/split.csv"
-}
-split=$(rmse_at_256 --light-split 4) more=$(rmse_at_256 --light-samples 4)
+split=$(sobol_rmse 128,256 256 --reference "$SCRATCH/split-reference.exr" --light-split 4)
+more=$(sobol_rmse 128,256 256 --reference "$SCRATCH/split-reference.exr" --light-samples 4)
 awk -v a="$split" -v b="$more" 'BEGIN { exit !(a > 0 && b > 0 && a < 0.3 * b) }' && pass ||
   fail "--light-split 4: RMSE $split to the one-replica image, not below 0.3x --light-samples 4's $more"
 "$RAYTRACER" "$AREA_STUDY" "$SCRATCH/split.png" --size 32x24 --spp 1 --light-split 3 2>"$SCRATCH/stderr" &&

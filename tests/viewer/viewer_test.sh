@@ -143,32 +143,24 @@ case_offscreen_match() {
   compare "small window: overlay covers" "$SCRATCH/overlay-small.png" "$SCRATCH/offline-320.png" \
     --max-differing 0.1
 
-  # --light-samples: the window's area lights take the count the render command's do (the
-  # area-light study, whose coursework shading clamps each hit's light: another image).
-  local study="$SOURCE/scenes/study-arealight.json"
+  # The light options: the window's area lights take the count (--light-samples) and the
+  # replicas (--light-split) the render command's do, on the area-light study, and either
+  # differs from the scene's own (another image where its coursework shading clamps each
+  # hit's light, other shadow rays where the replicas keep it).
+  local study="$SOURCE/scenes/study-arealight.json" option
   "$RAYTRACER" "$study" "$SCRATCH/study-1.png" --size $SIZE --spp $SPP -q || fail "study render"
-  "$RAYTRACER" "$study" "$SCRATCH/study-3.png" --size $SIZE --spp $SPP --light-samples 3 -q ||
-    fail "study render with --light-samples 3"
-  xvfb_run "$RAYTRACER" view "$study" --size $SIZE --max-spp $SPP --spp-per-frame 1 --frames 6 \
-    --no-overlay --no-watch --validation --light-samples 3 --screenshot "$SCRATCH/study-window.png" \
-    >"$SCRATCH/log-study" 2>"$SCRATCH/err-study" ||
-    fail "viewer with --light-samples: $(cat "$SCRATCH/err-study")"
-  compare "--light-samples 3: window vs offline" "$SCRATCH/study-window.png" \
-    "$SCRATCH/study-3.png" --max-diff 0
-  compare "--light-samples 3 vs the scene's 1" "$SCRATCH/study-3.png" "$SCRATCH/study-1.png" \
-    --max-psnr 45
-  # --light-split: the window splits as the render command does (other shadow rays, the
-  # same image in the limit).
-  "$RAYTRACER" "$study" "$SCRATCH/split-3.png" --size $SIZE --spp $SPP --light-split 3 -q ||
-    fail "study render with --light-split 3"
-  xvfb_run "$RAYTRACER" view "$study" --size $SIZE --max-spp $SPP --spp-per-frame 1 --frames 6 \
-    --no-overlay --no-watch --validation --light-split 3 --screenshot "$SCRATCH/split-window.png" \
-    >"$SCRATCH/log-split" 2>"$SCRATCH/err-split" ||
-    fail "viewer with --light-split: $(cat "$SCRATCH/err-split")"
-  compare "--light-split 3: window vs offline" "$SCRATCH/split-window.png" \
-    "$SCRATCH/split-3.png" --max-diff 0
-  compare "--light-split 3 vs one replica" "$SCRATCH/split-3.png" "$SCRATCH/study-1.png" \
-    --max-psnr 45
+  for option in --light-samples --light-split; do
+    "$RAYTRACER" "$study" "$SCRATCH/study$option.png" --size $SIZE --spp $SPP "$option" 3 -q ||
+      fail "study render with $option 3"
+    xvfb_run "$RAYTRACER" view "$study" --size $SIZE --max-spp $SPP --spp-per-frame 1 --frames 6 \
+      --no-overlay --no-watch --validation "$option" 3 --screenshot "$SCRATCH/window$option.png" \
+      >"$SCRATCH/log$option" 2>"$SCRATCH/err$option" ||
+      fail "viewer with $option: $(cat "$SCRATCH/err$option")"
+    compare "$option 3: window vs offline" "$SCRATCH/window$option.png" \
+      "$SCRATCH/study$option.png" --max-diff 0
+    compare "$option 3 vs the scene's own" "$SCRATCH/study$option.png" "$SCRATCH/study-1.png" \
+      --max-psnr 45
+  done
 
   # A second scene with textures and thin features, when the shared data is there.
   local example="$SOURCE/../shared/scene-format/official/cg-path-of-light-2021-2023/examples/example.json"
