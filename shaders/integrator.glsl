@@ -102,8 +102,7 @@ void rouletteContinuations(inout Continuations next, float u) {
 // follows, y the Fresnel branch of the path tracer (and drives roulette).
 // The path tracer and roulette read them at every hit; a Whitted tree only
 // where a full stack must choose (nextContinuation), which is rare: drawn at
-// every hit, the stratified samplers cost 3-9% of a Whitted render (README
-// "Benchmarks").
+// every hit, the stratified samplers cost 3-9% of a Whitted render (bench/README.md).
 #if defined(RT_FEATURE_PATH_TRACER) || defined(RT_ROULETTE_WEIGHT)
 #define RT_LOBE_AT_EVERY_HIT
 #endif

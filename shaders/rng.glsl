@@ -111,7 +111,7 @@ vec2 jitteredCellPoint(uint s, uint count, uint key, uvec2 cell, uvec2 sub, uvec
 // Behind a branch that is the same for every lane (the count is the
 // render's). A kernel without its walk, 64 samples a pixel: 1.75x the random
 // sampler's time through the general grid's square root, quotients and walk
-// loops, 1.15x through this path (README "Benchmarks").
+// loops, 1.15x through this path (bench/README.md).
 vec2 jitteredPointPowerOfTwo(uint s, uint count, uint key) {
   uint k = uint(findMSB(count));
   uint columnBits = (k + 1u) / 2u, rowBits = k / 2u;
@@ -134,7 +134,7 @@ vec2 jitteredPointPowerOfTwo(uint s, uint count, uint key) {
 // s < count. Where the grid is not a power of two the permutations walk,
 // which a SIMD driver runs until its slowest lane has found its value (when
 // 32 samples still had 6 x 6 cells, the common scene took 1.23x the random
-// sampler's render time, on 8 x 8 at 64 samples 1.09x; README "Benchmarks").
+// sampler's render time, on 8 x 8 at 64 samples 1.09x; bench/README.md).
 vec2 jitteredPoint(uint s, uint count, uint key) {
   if ((count & (count - 1u)) == 0u) return jitteredPointPowerOfTwo(s, count, key);
   uint columns = uint(ceil(sqrt(float(count))));

@@ -19,14 +19,14 @@ layout(local_size_x = RT_WORKGROUP_SIZE_X, local_size_y = RT_WORKGROUP_SIZE_Y) i
 // lavapipe a texel buffer's imageStore cost about 15 ns of wall time a pixel
 // (2 cores) against 3-7 ns for a storage buffer's store, which made a pass of
 // one sample over a 2048x2048 image with an empty sample loop 1.7x slower
-// (README "Benchmarks").
+// (bench/README.md).
 layout(std430, set = 0, binding = RT_BINDING_ACCUMULATION) restrict buffer AccumulationBuffer {
   vec4 accumulation[];  // rgb: sum of sample radiance, a: number of samples
 };
 #ifdef RT_ODD_SUMS
 // Only where an error estimate reads them (ProgressiveOptions::oddSums): the
 // second load and store a pixel and pass made a one-sample render of the
-// official binary_primitves.json 1.24x slower (README "Benchmarks").
+// official binary_primitves.json 1.24x slower (bench/README.md).
 layout(std430, set = 0, binding = RT_BINDING_ACCUMULATION_ODD) restrict buffer
     OddAccumulationBuffer {
   vec4 oddAccumulation[];  // the same over odd sample indices only
@@ -82,7 +82,7 @@ layout(std430, set = 0, binding = RT_BINDING_WORK_QUEUE) restrict buffer WorkQue
 // invocations (one SIMD vector on lavapipe, a quarter of a 32-wide GPU
 // wave) takes a 4x2 block rather than a row of eight, so its rays stay
 // closer together and walk more of the same BVH nodes: 1.03-1.08x on the
-// common scene and the thin-lens study (README "Benchmarks"). The image does
+// common scene and the thin-lens study (bench/README.md). The image does
 // not change: every pixel is still computed by itself.
 #if RT_WORKGROUP_SIZE_X != 8 || RT_WORKGROUP_SIZE_Y != 8
 #error pixelInGroup lays out 8x8 groups
@@ -143,7 +143,7 @@ void renderPixel(uvec2 group, uint index) {
   uint end = range.x + range.y;
 #ifdef RT_PRIMARY_PAIRS
   // Two samples at a time, their primary rays walked together: the bunny's
-  // primary rays 1.11x (README "Benchmarks").
+  // primary rays 1.11x (bench/README.md).
   for (uint s = range.x; s < end; s += 2u) {
     bool hasSecond = s + 1u < end;
     Ray first = sampleRay(pixel, pixelIndex, s);

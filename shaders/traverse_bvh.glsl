@@ -10,13 +10,13 @@
 // loop branches on the two box tests: on Mesa 25 that measured 1.01-1.09x
 // the branchless select-and-store form that Mesa 22.3 (which ran both sides
 // of every branch) wanted (bunny primary, default.json, the common scene and
-// the area-light study; README "Benchmarks"). Both levels of the BVH share the two loops: a
+// the area-light study; bench/README.md). Both levels of the BVH share the two loops: a
 // leaf says whether it holds mesh triangles or one top-level item, and
 // entering a mesh built in world space only moves to its root. Each leaf
 // carries only the code of the kinds the scene has (RT_FEATURE_*). 1.4x the
 // bunny's primary rays per CPU-second of the walk before it, which rebuilt
 // the ray and tested every kind at every leaf; 1.8x a walk with its own loop
-// per mesh inside the top-level one (README "Benchmarks").
+// per mesh inside the top-level one (bench/README.md).
 #ifndef RT_TRAVERSE_BVH_GLSL
 #define RT_TRAVERSE_BVH_GLSL
 
@@ -132,7 +132,7 @@ const uint RT_REF_LEAVE_INSTANCE = RT_REF_LEAF | RT_REF_MESH;
 // that only deep paths touch. A SIMD driver writes an array at per-lane
 // indices lane by lane, behind a branch per lane; moving registers is one
 // select each. The bunny's primary rays and the common scene: 1.03-1.07x
-// the walk with the whole stack in the array (README "Benchmarks").
+// the walk with the whole stack in the array (bench/README.md).
 // Lavapipe runs that lane-by-lane store whenever the push runs at all, for
 // every lane, each lane's mask bit a branch that the CPU mispredicts (10% of
 // the common scene's kernel time in one walk's store): a vote
@@ -140,7 +140,7 @@ const uint RT_REF_LEAVE_INSTANCE = RT_REF_LEAF | RT_REF_MESH;
 // never hold more than the registers' four entries
 // (RT_BVH_STACK_IN_REGISTERS, most coursework scenes) are built without the
 // array. Together the common scene 1.06x (pinhole) and 1.16x (thin lens),
-// `default.json` 1.35x, the thin-lens study 1.28x (README "Benchmarks").
+// `default.json` 1.35x, the thin-lens study 1.28x (bench/README.md).
 // The array's read on a pop measured no better behind a vote (0.93-1.06x):
 // it is a gather without branches.
 #if RT_BVH_STACK_REGISTERS != 4
@@ -250,8 +250,7 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
 #ifdef RT_FEATURE_MESHES
   // The last instance entered: mesh nodes are reached only through it (the
   // stack holds a mesh's entries above those that were there before). A lone
-  // instance is entered at once: the bunny's primary rays 1.06x (README
-  // "Benchmarks").
+  // instance is entered at once: the bunny's primary rays 1.06x (bench/README.md).
   uint instance = sceneInfo.soleInstance;
   if (instance != RT_NO_INSTANCE) node = 1u + instance;
 #endif

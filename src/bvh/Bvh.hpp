@@ -58,7 +58,7 @@ struct BvhBuildOptions {
   // traversal visits a node and tests a leaf item in the same loop
   // iteration, so nodes are dear: 4 gives leaves of about 3 triangles (1
   // gave about 1), a BVH with a third of the nodes that builds about 1.5x
-  // faster and renders as fast (README "Benchmarks").
+  // faster and renders as fast (bench/README.md).
   float traversalCost = 4.0f;
   uint32_t threads = 0;  // 0: one per hardware thread
 };

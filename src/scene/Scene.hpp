@@ -188,8 +188,8 @@ struct RenderSettings {
   // a branch whose weight is below this survives with probability
   // weight / rouletteWeight, reweighted to rouletteWeight (unbiased). On
   // default.json 0.03 made samples 1.27x faster for 4-6% more error at equal
-  // samples, but its lanes disagree: no faster on lavapipe (README
-  // "Benchmarks"). Off (0: every branch is traced) unless asked for
+  // samples, but its lanes disagree: no faster on lavapipe (bench/README.md).
+  // Off (0: every branch is traced) unless asked for
   // (`--roulette`).
   float rouletteWeight = 0.0f;
   // Bailout of the Whitted tree (`--bailout`, POV-Ray's adc_bailout): mirror,
