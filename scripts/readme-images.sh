@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Renders the README's scene images (assets/readme/) with this build, each
-# with the command its caption names, so that they show what the renderer
-# draws today: run it after a change that alters images (conventions,
+# Renders the README's scene images (assets/readme/) with this build, the
+# command of each in one place, so that they show what the renderer draws
+# today: run it after a change that alters images (conventions,
 # shading, sampling) and look at the result before committing it. On
 # demand, never from the tests; about six minutes on two cores, most of it
 # the path-traced Cornell box at 1024 samples. The plots and adaptive
