@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# The Markdown files' local links and images point at files that exist, and
+# The Markdown files' local links and images point at files that exist;
 # every image in assets/readme/ is shown by one of them (an image the README
-# stopped showing is deleted, not left to go stale).
+# stopped showing is deleted, not left to go stale); and every section that
+# a source file cites as README "Section" is a heading of the README.
 #   links_test.sh SOURCE_DIR
 set -uo pipefail
+shopt -s nullglob
 root=${1:?usage: links_test.sh SOURCE_DIR}
 cd "$root" || exit 1
 failures=0
@@ -38,8 +40,19 @@ for image in assets/readme/*; do
   fi
 done
 
+# Sections cited from the sources, a comment's line break allowed between
+# README and the name; a heading matches when it starts with the name.
+while IFS= read -r section; do
+  if ! grep -q -E "^#+ $(printf '%s' "$section" | sed 's/[][().*^$]/\\&/g')" README.md; then
+    echo "FAIL: the sources cite README \"$section\", which is no heading of README.md"
+    failures=$((failures + 1))
+  fi
+done < <(git ls-files src shaders tests bench scripts farm 2>/dev/null | grep -v '^tests/docs/' |
+  xargs perl -0777 -ne 'while (/README\s*(?:\/\/|#|\*)?\s*["\x27]([A-Z][^"\x27\n]+)["\x27]/g) { print "$1\n" }' |
+  sort -u)
+
 if ((failures > 0)); then
   echo "$failures broken or unused"
   exit 1
 fi
-echo "links: all local links resolve and every README image is shown"
+echo "docs: local links resolve, every README image is shown, every cited section exists"
