@@ -6,6 +6,8 @@
 #include <cstring>
 #include <thread>
 
+#include "util/Arithmetic.hpp"
+
 namespace rt {
 namespace {
 
@@ -84,7 +86,7 @@ struct BinMapping {
 template <typename Body>
 void forChunks(uint32_t begin, uint32_t end, uint32_t parts, const Body& body) {
   std::vector<std::thread> workers;
-  uint32_t size = (end - begin + parts - 1) / parts;
+  uint32_t size = divideRoundUp(end - begin, parts);
   for (uint32_t part = 1; part < parts; ++part) {
     uint32_t from = std::min(end, begin + part * size);
     uint32_t to = std::min(end, from + size);

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <variant>
 
+#include "util/Arithmetic.hpp"
 #include "util/Text.hpp"
 
 namespace rt {
@@ -54,7 +55,7 @@ uint32_t lightReplicasFor(const RenderSettings& settings, bool adaptive, bool bo
   constexpr uint32_t kAdaptiveAreaShadowRays = 4;
   if (settings.lightSplit > 0) return settings.lightSplit;
   if (!adaptive || bounces || areaLightSamples == 0) return 1;
-  return (kAdaptiveAreaShadowRays + areaLightSamples - 1) / areaLightSamples;
+  return divideRoundUp(kAdaptiveAreaShadowRays, areaLightSamples);
 }
 
 }  // namespace
