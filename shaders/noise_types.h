@@ -17,6 +17,7 @@ namespace rt::gpu {
 #define RT_NOISE_BINDING_ACCUMULATION_ODD 1  // the same over the odd sample indices
 #define RT_NOISE_BINDING_TILES 2             // GpuTileNoise per tile, row-major
 #define RT_NOISE_BINDING_PIXEL_EXTRAS 3      // uint per pixel: its edge-round samples
+#define RT_NOISE_BINDING_TILE_LIST 4         // uint per listed tile: the tiles to measure
 
 #define RT_NOISE_WORKGROUP_SIZE 64  // tiles a workgroup measures, one an invocation
 
@@ -45,9 +46,11 @@ struct GpuTileNoiseParams {
   float exposure;     // the display mapping (tone_mapping.h)
   uint toneCurve;
   uint srgbEncode;
-  uint edges;  // 1: the pixel extras hold an edge round's samples (else unread)
+  // 1: a pixel extras buffer is bound (an adaptive render's: zero until its
+  // edge round, and after a reset), 0: none, unread
+  uint hasPixelExtras;
+  uint listedTiles;  // 0: every tile, one an invocation; else the tile list's first this many
   uint pad0;
-  uint pad1;
 };
 RT_ASSERT_STD430_SIZE(GpuTileNoiseParams, 48);
 

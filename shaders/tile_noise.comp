@@ -26,10 +26,20 @@ layout(std430, set = 0, binding = RT_NOISE_BINDING_TILES) writeonly buffer Tiles
 layout(std430, set = 0, binding = RT_NOISE_BINDING_PIXEL_EXTRAS) readonly buffer PixelExtras {
   uint pixelExtras[];
 };
+// The tiles whose sums changed since the last measurement (params.listedTiles
+// of them): an adaptive round after the first samples few of the tiles, and
+// the others keep what the last measurement wrote.
+layout(std430, set = 0, binding = RT_NOISE_BINDING_TILE_LIST) readonly buffer TileList {
+  uint tileList[];
+};
 
 void main() {
   uvec2 grid = adaptiveTileGrid(params.size);
   uint index = gl_GlobalInvocationID.x;
+  if (params.listedTiles != 0u) {
+    if (index >= params.listedTiles) return;
+    index = tileList[index];
+  }
   if (index >= grid.x * grid.y) return;
   uvec2 corner = uvec2(index % grid.x, index / grid.x) * RT_ADAPTIVE_TILE_SIZE;
   uvec2 start = max(corner, params.regionStart);
@@ -50,7 +60,7 @@ void main() {
       float squared = pixelSquaredError(sum, oddSums[pixel], params.exposure, params.toneCurve,
                                         params.srgbEncode);
       if (squared >= 0.0) {
-        if (params.edges != 0u && pixelExtras[pixel] > 0u) {
+        if (params.hasPixelExtras != 0u && pixelExtras[pixel] > 0u) {
           tile.edgeVarianceSum += squared * sum.w;
         } else {
           tile.varianceSum += squared * sum.w;

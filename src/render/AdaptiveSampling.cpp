@@ -582,6 +582,17 @@ double AdaptiveRounds::rowWork(uint32_t y, uint32_t end) const {
   return work;
 }
 
+std::vector<uint32_t> AdaptiveRounds::roundTiles() const {
+  std::vector<uint32_t> tiles;
+  for (uint32_t i = 0; i < plan_.tileCount(); ++i) {
+    if (plan_.tilePixels(i) == 0) continue;
+    const bool sampled = edgeRound_ ? edgeRound_->common[i] > 0 || edgeRound_->extraSums[i] > 0
+                                    : round_[i] > 0 || pairRound_;
+    if (sampled) tiles.push_back(i);
+  }
+  return tiles;
+}
+
 const std::vector<uint32_t>& AdaptiveRounds::pixelExtras() const {
   static const std::vector<uint32_t> none;
   return edgeRound_ ? edgeRound_->pixels : none;

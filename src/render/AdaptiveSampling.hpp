@@ -247,11 +247,12 @@ class AdaptiveRounds {
     return plan_.kernelRanges(edgeRound_ ? edgeRound_->common : round_, pairRound_,
                               edgeRound_.has_value());
   }
+  // The tiles (row-major indices) the current round adds samples to: the
+  // only ones whose sums it changes.
+  std::vector<uint32_t> roundTiles() const;
   // In the edge round its samples per pixel (for the kernel's pixel
   // extras), else empty.
   const std::vector<uint32_t>& pixelExtras() const;
-  // The pixel extras hold samples: the edge round is rendered or under way.
-  bool hasEdgeSamples() const { return edgeRound_ || plan_.edgesRendered(); }
   // The end of a band of whole tile rows from image row `y` (in the region)
   // holding about `work` pixel-samples of this round (at least one tile row).
   uint32_t bandEnd(uint32_t y, double work) const;

@@ -236,6 +236,7 @@ std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
 void ProgressiveRenderer::recordSamples(VkCommandBuffer commands, uint32_t row, uint32_t rows,
                                         uint32_t count) const {
   if (samplePlan_) throw Error("an adaptive render kernel takes its samples from the plan");
+  sumsChangedOutsideRounds_ = true;
   recordRange(commands, row, rows, samplesDone_, count);
 }
 
@@ -291,8 +292,12 @@ void ProgressiveRenderer::addSamples(uint32_t count) {
 }
 
 void ProgressiveRenderer::recordReset(VkCommandBuffer commands) {
+  sumsChangedOutsideRounds_ = true;
   vkCmdFillBuffer(commands, accumulation_.handle(), 0, VK_WHOLE_SIZE, 0);
   if (oddAccumulation_) vkCmdFillBuffer(commands, oddAccumulation_->handle(), 0, VK_WHOLE_SIZE, 0);
+  // The noise measurement reads the extras of every pixel of an adaptive
+  // render: none until an edge round renders some.
+  if (pixelExtras_) vkCmdFillBuffer(commands, pixelExtras_->handle(), 0, VK_WHOLE_SIZE, 0);
   if (tileRays_) {
     vkCmdFillBuffer(commands, tileRays_->handle(), 0, VK_WHOLE_SIZE, 0);
     std::fill(tileRaysRead_.begin(), tileRaysRead_.end(), 0u);
@@ -360,25 +365,36 @@ std::optional<double> ProgressiveRenderer::estimateRmse(const ToneMapping& mappi
   return estimatedRmse(tileNoise(mapping), uint64_t(region_.width) * region_.height);
 }
 
-std::vector<gpu::GpuTileNoise> ProgressiveRenderer::tileNoise(const ToneMapping& mapping,
-                                                              bool edges) {
+std::vector<gpu::GpuTileNoise> ProgressiveRenderer::tileNoise(const ToneMapping& mapping) {
+  return measureTiles(mapping, nullptr);
+}
+
+std::vector<gpu::GpuTileNoise> ProgressiveRenderer::measureTiles(
+    const ToneMapping& mapping, const std::vector<uint32_t>* roundTiles) {
   if (!halvesIndependent())
     throw Error("tile noise: the halves of this render are not independent");
   if (!tileNoise_) {
     tileNoise_ = std::make_unique<TileNoiseKernel>(context_, compiler_, width_, height_);
   }
-  if (edges && !pixelExtras_) throw Error("tile noise: not an adaptive render");
-  return tileNoise_->measure(accumulation_, *oddAccumulation_, edges ? &*pixelExtras_ : nullptr,
-                             region_, mapping);
+  // Without other changes since the last measurement, only the round's
+  // tiles changed.
+  const std::vector<uint32_t>* changed = sumsChangedOutsideRounds_ ? nullptr : roundTiles;
+  std::vector<gpu::GpuTileNoise> tiles =
+      tileNoise_->measure(accumulation_, *oddAccumulation_, pixelExtras_ ? &*pixelExtras_ : nullptr,
+                          region_, mapping, changed);
+  sumsChangedOutsideRounds_ = false;
+  return tiles;
 }
 
 void ProgressiveRenderer::finishAdaptiveRound(AdaptiveRounds& rounds, const ToneMapping& mapping) {
   const AdaptiveRounds::ImageReader image{[this] { return sampleSums(); }, mapping};
-  rounds.finishRound(tileNoise(mapping, rounds.hasEdgeSamples()), takeTileRays(), &image);
+  const std::vector<uint32_t> roundTiles = rounds.roundTiles();
+  rounds.finishRound(measureTiles(mapping, &roundTiles), takeTileRays(), &image);
 }
 
 void ProgressiveRenderer::stopAdaptiveRound(AdaptiveRounds& rounds, const ToneMapping& mapping) {
-  rounds.measureStop(tileNoise(mapping, rounds.hasEdgeSamples()));
+  const std::vector<uint32_t> roundTiles = rounds.roundTiles();
+  rounds.measureStop(measureTiles(mapping, &roundTiles));
 }
 
 std::vector<uint32_t> ProgressiveRenderer::takeTileRays() {

@@ -117,10 +117,9 @@ class ProgressiveRenderer {
   std::optional<double> estimateRmse(const ToneMapping& mapping);
   // Per tile (row-major over the image) the noise of the region's pixels so
   // far, measured on the device (TileNoiseKernel); needs halvesIndependent().
-  // `edges`: the pixel extras hold the samples of an adaptive edge round
-  // (AdaptiveRounds::hasEdgeSamples), whose pixels are measured apart.
-  // No dispatch may be in flight.
-  std::vector<gpu::GpuTileNoise> tileNoise(const ToneMapping& mapping, bool edges = false);
+  // In an adaptive render the pixels with edge-round samples (pixel extras)
+  // are measured apart. No dispatch may be in flight.
+  std::vector<gpu::GpuTileNoise> tileNoise(const ToneMapping& mapping);
   bool halvesIndependent() const;
   // Adaptive kernels only: per tile, the rays traced since the last call (or
   // reset). No dispatch may be in flight.
@@ -137,6 +136,10 @@ class ProgressiveRenderer {
 
  private:
   std::unique_ptr<ComputeKernel> buildKernel() const;
+  // tileNoise, where `roundTiles` (or null) are the tiles an adaptive round
+  // just sampled: the only ones measured again when nothing else changed.
+  std::vector<gpu::GpuTileNoise> measureTiles(const ToneMapping& mapping,
+                                              const std::vector<uint32_t>* roundTiles);
   void recordRange(VkCommandBuffer commands, uint32_t row, uint32_t rows, uint32_t first,
                    uint32_t count) const;
 
@@ -162,6 +165,10 @@ class ProgressiveRenderer {
   std::unique_ptr<ComputeKernel> kernel_;
   std::vector<std::unique_ptr<ComputeKernel>> retired_;
   std::unique_ptr<TileNoiseKernel> tileNoise_;  // for halvesIndependent() renders
+  // The sums changed other than by adaptive rounds (a reset, a uniform pass)
+  // since the tiles' noise was last measured: the next measurement covers
+  // every tile, not only a round's. Set where such work is recorded.
+  mutable bool sumsChangedOutsideRounds_ = true;
   uint32_t samplesDone_ = 0;
   uint64_t raysTraced_ = 0;
 };

@@ -31,11 +31,16 @@ class TileNoiseKernel {
   // Per tile, row-major over the whole image, the sums over its pixels in
   // `region` (resolved) of the sums in `all` and `odd` (one vec4 per
   // pixel); `pixelExtras` (one uint per pixel, or null): the edge round's
-  // samples, whose pixels are measured apart. Submits and waits: no dispatch
-  // may be in flight on the buffers.
+  // samples, whose pixels are measured apart. `changedTiles` (or null: all
+  // of them): the only tiles whose sums changed since the previous call,
+  // which the caller vouches for; the others keep that call's figures where
+  // it measured with the same region, mapping and extras, and are measured
+  // again where it did not. Submits and waits: no dispatch may be in flight
+  // on the buffers.
   std::vector<gpu::GpuTileNoise> measure(const Buffer& all, const Buffer& odd,
                                          const Buffer* pixelExtras, const PixelRegion& region,
-                                         const ToneMapping& mapping);
+                                         const ToneMapping& mapping,
+                                         const std::vector<uint32_t>* changedTiles = nullptr);
 
  private:
   VulkanContext& context_;
@@ -45,6 +50,9 @@ class TileNoiseKernel {
   ComputeKernel kernel_;
   Buffer tiles_;
   Buffer noExtras_;  // bound when there are no pixel extras (never read then)
+  Buffer tileList_;  // the changed tiles of a listed measurement
+  // The parameters tiles_ holds every tile's figures for (listedTiles 0).
+  std::optional<gpu::GpuTileNoiseParams> measuredWith_;
 };
 
 // The image's estimated RMSE (estimateDisplayRmse's figure) from its tiles,

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <numeric>
@@ -16,6 +17,7 @@
 #include "formats/json/JsonSceneLoader.hpp"
 #include "imaging/ImageError.hpp"
 #include "render/AdaptiveSampling.hpp"
+#include "render/ProgressiveRenderer.hpp"
 #include "render/Renderer.hpp"
 #include "render/TileNoise.hpp"
 #include "support/TestSupport.hpp"
@@ -755,6 +757,102 @@ TEST_SUITE("adaptive sampling") {
     CAPTURE(std::sqrt(estimateSquared / 3));
     CHECK(std::sqrt(estimateSquared / truthSquared) < 1.12);
     CHECK(std::sqrt(estimateSquared / truthSquared) > 0.88);
+  }
+
+  TEST_CASE("a measurement of the changed tiles alone equals a measurement of every tile") {
+    // 24x16 pixels, 3x2 tiles, every pixel with both halves; tiles 1 and 4
+    // change between the measurements.
+    const uint32_t width = 24, height = 16;
+    SampleSums sums{width, height, std::vector<glm::vec4>(width * height),
+                    std::vector<glm::vec4>(width * height)};
+    auto fill = [&](uint32_t x0, uint32_t y0, float spread) {
+      for (uint32_t y = y0; y < y0 + 8; ++y) {
+        for (uint32_t x = x0; x < x0 + 8; ++x) {
+          const size_t i = y * width + x;
+          const float odd = 0.3f + spread * float((x * 7 + y * 3) % 5);
+          sums.odd[i] = glm::vec4(glm::vec3(2 * odd), 2);
+          sums.all[i] = sums.odd[i] + glm::vec4(glm::vec3(0.8f), 2);
+        }
+      }
+    };
+    for (uint32_t tile = 0; tile < 6; ++tile) fill(tile % 3 * 8, tile / 3 * 8, 0.01f * float(tile));
+    const VkDeviceSize bytes = sums.all.size() * sizeof(glm::vec4);
+    Buffer all(test::gpu(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    Buffer odd(test::gpu(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    auto upload = [&] {
+      all.upload(sums.all.data(), bytes);
+      odd.upload(sums.odd.data(), bytes);
+    };
+    auto sameTiles = [](const std::vector<gpu::GpuTileNoise>& a,
+                        const std::vector<gpu::GpuTileNoise>& b) {
+      return a.size() == b.size() &&
+             std::memcmp(a.data(), b.data(), a.size() * sizeof(gpu::GpuTileNoise)) == 0;
+    };
+    const PixelRegion whole{0, 0, width, height};
+    upload();
+    TileNoiseKernel listed(test::gpu(), test::shaderCompiler(), width, height);
+    const std::vector<gpu::GpuTileNoise> before = listed.measure(all, odd, nullptr, whole, {});
+    fill(8, 0, 0.2f);
+    fill(8, 8, 0.3f);
+    upload();
+    const std::vector<uint32_t> changed{1, 4};
+    const std::vector<gpu::GpuTileNoise> after =
+        listed.measure(all, odd, nullptr, whole, {}, &changed);
+    const std::vector<gpu::GpuTileNoise> expected = measureOnDevice(sums);
+    CHECK(sameTiles(after, expected));
+    CHECK_FALSE(sameTiles(before, expected));  // the test measures a change
+    // Another display mapping measures every tile whatever the list says.
+    ToneMapping brighter;
+    brighter.exposure = 2.0f;
+    brighter.srgbEncode = true;
+    const std::vector<uint32_t> none;
+    CHECK(sameTiles(listed.measure(all, odd, nullptr, whole, brighter, &none),
+                    measureOnDevice(sums, brighter)));
+    test::checkNoValidationMessages();
+  }
+
+  TEST_CASE("each round's measurement of the tiles it sampled equals a full measurement") {
+    // The rounds measure only the tiles they sampled (the edge round's, and
+    // the few that later rounds give samples); a stale tile would show in
+    // the estimate, which sums every tile's figures.
+    Scene scene = test::projectScene("default.json");
+    const ToneMapping mapping = toneMappingFor(scene);
+    ProgressiveOptions options;
+    options.width = 96;
+    options.height = 72;
+    options.samplesTotal = 3;
+    options.sampler = SamplerKind::Sobol;
+    options.independentHalves = true;
+    options.adaptive = true;
+    ProgressiveRenderer job(test::gpu(), test::shaderCompiler(), scene, options);
+    const PixelRegion whole{0, 0, options.width, options.height};
+    const AdaptivePlan geometry(options.width, options.height, whole);
+    // Renders the rounds and returns their estimates.
+    auto renderRounds = [&] {
+      AdaptiveRounds rounds(options.width, options.height, whole, {3, 0.0, 1024});
+      std::vector<double> estimates;
+      std::set<size_t> sampledTiles;
+      while (!rounds.finished()) {
+        sampledTiles.insert(rounds.roundTiles().size());
+        job.setSamplePlan(rounds.kernelRanges(), rounds.pixelExtras());
+        test::gpu().submitAndWait([&](VkCommandBuffer commands) {
+          job.recordPlannedSamples(commands, 0, options.height);
+        });
+        job.finishAdaptiveRound(rounds, mapping);
+        REQUIRE(rounds.rmseEstimate());
+        CHECK(geometry.measureNoise(job.tileNoise(mapping)).rmse == rounds.rmseEstimate());
+        estimates.push_back(*rounds.rmseEstimate());
+      }
+      CHECK(*sampledTiles.begin() < geometry.tileCount());  // some round skipped tiles
+      return estimates;
+    };
+    const std::vector<double> first = renderRounds();
+    CHECK(first.size() >= 3);  // the first pass, the edge round and one more
+    // After a reset (the viewer's, when the camera moves) no tile keeps the
+    // last render's figures, nor a pixel its edge samples.
+    job.reset();
+    CHECK(renderRounds() == first);
+    test::checkNoValidationMessages();
   }
 
   TEST_CASE("an adaptive render cannot be split into sample ranges") {
