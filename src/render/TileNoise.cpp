@@ -70,14 +70,17 @@ std::vector<gpu::GpuTileNoise> TileNoiseKernel::measure(const Buffer& all, const
   // thin-lens study's third round at 320x240 about 10%), and measuring them
   // all cost about 30 ns of CPU time a pixel on lavapipe, a sixth of one of
   // its samples, every round (bench/README.md).
-  const bool listed = changedTiles && measuredWith_ && sameParams(params, *measuredWith_);
+  const std::array<VkBuffer, 3> buffers{all.handle(), odd.handle(),
+                                        pixelExtras ? pixelExtras->handle() : VK_NULL_HANDLE};
+  const bool listed = changedTiles && measuredWith_ && sameParams(params, measuredWith_->params) &&
+                      buffers == measuredWith_->buffers;
   uint32_t invocations = tileCount_;
   if (listed) {
     invocations = static_cast<uint32_t>(changedTiles->size());
     if (invocations > tileCount_) throw Error("tile noise: more changed tiles than tiles");
     if (invocations > 0) tileList_.upload(changedTiles->data(), invocations * sizeof(uint32_t));
   }
-  measuredWith_ = params;
+  measuredWith_ = Measured{params, buffers};
   params.listedTiles = listed ? invocations : 0u;
   kernel_.bind(RT_NOISE_BINDING_ACCUMULATION, all);
   kernel_.bind(RT_NOISE_BINDING_ACCUMULATION_ODD, odd);

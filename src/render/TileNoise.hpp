@@ -7,6 +7,7 @@
 // about 0.25 s on the H200's host, where a round renders in milliseconds).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -34,8 +35,8 @@ class TileNoiseKernel {
   // samples, whose pixels are measured apart. `changedTiles` (or null: all
   // of them): the only tiles whose sums changed since the previous call,
   // which the caller vouches for; the others keep that call's figures where
-  // it measured with the same region, mapping and extras, and are measured
-  // again where it did not. Submits and waits: no dispatch may be in flight
+  // it measured the same buffers with the same region and mapping, and are
+  // measured again where it did not. Submits and waits: no dispatch may be in flight
   // on the buffers.
   std::vector<gpu::GpuTileNoise> measure(const Buffer& all, const Buffer& odd,
                                          const Buffer* pixelExtras, const PixelRegion& region,
@@ -51,8 +52,13 @@ class TileNoiseKernel {
   Buffer tiles_;
   Buffer noExtras_;  // bound when there are no pixel extras (never read then)
   Buffer tileList_;  // the changed tiles of a listed measurement
-  // The parameters tiles_ holds every tile's figures for (listedTiles 0).
-  std::optional<gpu::GpuTileNoiseParams> measuredWith_;
+  // What tiles_ holds every tile's figures for: the parameters (listedTiles
+  // 0) and the buffers measured.
+  struct Measured {
+    gpu::GpuTileNoiseParams params;
+    std::array<VkBuffer, 3> buffers;  // all, odd, pixel extras (or none)
+  };
+  std::optional<Measured> measuredWith_;
 };
 
 // The image's estimated RMSE (estimateDisplayRmse's figure) from its tiles,

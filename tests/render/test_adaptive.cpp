@@ -808,6 +808,14 @@ TEST_SUITE("adaptive sampling") {
     const std::vector<uint32_t> none;
     CHECK(sameTiles(listed.measure(all, odd, nullptr, whole, brighter, &none),
                     measureOnDevice(sums, brighter)));
+    // So do other buffers: here the first sums again, in buffers of their own.
+    for (uint32_t tile = 0; tile < 6; ++tile) fill(tile % 3 * 8, tile / 3 * 8, 0.01f * float(tile));
+    Buffer otherAll(test::gpu(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    Buffer otherOdd(test::gpu(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    otherAll.upload(sums.all.data(), bytes);
+    otherOdd.upload(sums.odd.data(), bytes);
+    CHECK(sameTiles(listed.measure(otherAll, otherOdd, nullptr, whole, brighter, &none),
+                    measureOnDevice(sums, brighter)));
     test::checkNoValidationMessages();
   }
 
