@@ -65,23 +65,9 @@ std::vector<gpu::GpuTileNoise> TileNoiseKernel::measure(const Buffer& all, const
   params.toneCurve = static_cast<uint32_t>(mapping.curve);
   params.srgbEncode = mapping.srgbEncode ? 1u : 0u;
   params.hasPixelExtras = pixelExtras ? 1u : 0u;
-  // Only the changed tiles where the others' figures are those of the same
-  // parameters: an adaptive round after the first samples few tiles (the
-  // thin-lens study's third round at 320x240 about 10%), and measuring them
-  // all cost about 30 ns of CPU time a pixel on lavapipe, a sixth of one of
-  // its samples, every round (bench/README.md).
-  const std::array<VkBuffer, 3> buffers{all.handle(), odd.handle(),
-                                        pixelExtras ? pixelExtras->handle() : VK_NULL_HANDLE};
-  const bool listed = changedTiles && measuredWith_ && sameParams(params, measuredWith_->params) &&
-                      buffers == measuredWith_->buffers;
-  uint32_t invocations = tileCount_;
-  if (listed) {
-    invocations = static_cast<uint32_t>(changedTiles->size());
-    if (invocations > tileCount_) throw Error("tile noise: more changed tiles than tiles");
-    if (invocations > 0) tileList_.upload(changedTiles->data(), invocations * sizeof(uint32_t));
-  }
-  measuredWith_ = Measured{params, buffers};
-  params.listedTiles = listed ? invocations : 0u;
+  const Measured measuring{
+      params, {all.handle(), odd.handle(), pixelExtras ? pixelExtras->handle() : VK_NULL_HANDLE}};
+  const uint32_t invocations = listTiles(measuring, changedTiles, params);
   kernel_.bind(RT_NOISE_BINDING_ACCUMULATION, all);
   kernel_.bind(RT_NOISE_BINDING_ACCUMULATION_ODD, odd);
   kernel_.bind(RT_NOISE_BINDING_TILES, tiles_);
@@ -96,6 +82,27 @@ std::vector<gpu::GpuTileNoise> TileNoiseKernel::measure(const Buffer& all, const
   std::vector<gpu::GpuTileNoise> tiles(tileCount_);
   tiles_.download(tiles.data(), tiles.size() * sizeof(gpu::GpuTileNoise));
   return tiles;
+}
+
+uint32_t TileNoiseKernel::listTiles(const Measured& measuring,
+                                    const std::vector<uint32_t>* changedTiles,
+                                    gpu::GpuTileNoiseParams& params) {
+  // Only the changed tiles where the others' figures are those of the same
+  // parameters and buffers: an adaptive round after the first samples few
+  // tiles (the thin-lens study's third round at 320x240 about 10%), and
+  // measuring them all cost about 30 ns of CPU time a pixel on lavapipe, a
+  // sixth of one of its samples, every round (bench/README.md).
+  const bool listed = changedTiles && measuredWith_ &&
+                      sameParams(measuring.params, measuredWith_->params) &&
+                      measuring.buffers == measuredWith_->buffers;
+  measuredWith_ = measuring;
+  params.listedTiles = 0;
+  if (!listed) return tileCount_;
+  const auto count = static_cast<uint32_t>(changedTiles->size());
+  if (count > tileCount_) throw Error("tile noise: more changed tiles than tiles");
+  if (count > 0) tileList_.upload(changedTiles->data(), count * sizeof(uint32_t));
+  params.listedTiles = count;
+  return count;
 }
 
 std::optional<double> estimatedRmse(const std::vector<gpu::GpuTileNoise>& tiles, uint64_t pixels) {

@@ -59,6 +59,12 @@ class TileNoiseKernel {
     std::array<VkBuffer, 3> buffers;  // all, odd, pixel extras (or none)
   };
   std::optional<Measured> measuredWith_;
+
+  // Uploads `changedTiles` and sets params.listedTiles where they may stand
+  // for every tile (the last measurement was `measuring`'s), else 0; records
+  // `measuring` as the last. Returns the invocations to dispatch.
+  uint32_t listTiles(const Measured& measuring, const std::vector<uint32_t>* changedTiles,
+                     gpu::GpuTileNoiseParams& params);
 };
 
 // The image's estimated RMSE (estimateDisplayRmse's figure) from its tiles,
