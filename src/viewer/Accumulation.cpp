@@ -15,7 +15,7 @@ Accumulation::Accumulation(double frameSeconds, uint32_t fixedSamplesPerFrame)
 void Accumulation::restart(ProgressiveRenderer& renderer, uint32_t target, bool adaptive) {
   renderer_ = &renderer;
   target_ = target;
-  planner_.restart();
+  planner_.restart(renderer.width(), renderer.height());
   adaptive_.reset();
   adaptiveRow_ = 0;
   if (adaptive) {

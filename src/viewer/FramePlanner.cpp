@@ -10,6 +10,10 @@ namespace {
 constexpr double kInitialBudget = 16384.0;
 // One frame's measurement may change the budget by at most this factor.
 constexpr double kMaxStep = 2.0;
+// The budget's floor: about a row of one sample per frame.
+constexpr double kMinBudget = 1024.0;
+// Its ceiling, in samples per pixel of the image.
+constexpr double kMaxSamplesPerFrame = 64.0;
 
 }  // namespace
 
@@ -18,7 +22,10 @@ FramePlanner::FramePlanner(double targetFrameSeconds, uint32_t fixedSamplesPerFr
       fixedSamples_(fixedSamplesPerFrame),
       budget_(kInitialBudget) {}
 
-void FramePlanner::restart() { nextRow_ = 0; }
+void FramePlanner::restart(uint32_t width, uint32_t height) {
+  nextRow_ = 0;
+  pixels_ = double(width) * height;
+}
 
 std::vector<Band> FramePlanner::plan(uint32_t width, uint32_t height, uint32_t samplesDone,
                                      uint32_t samplesTarget) {
@@ -54,8 +61,10 @@ void FramePlanner::frameTook(double seconds) {
   double step = std::clamp(targetSeconds_ / seconds, 1.0 / kMaxStep, kMaxStep);
   // Damped, so that noisy frame times do not make the budget oscillate.
   budget_ *= std::pow(step, 0.7);
-  // At least a row of one sample per frame; at most 64 samples per pixel.
-  budget_ = std::clamp(budget_, 1024.0, std::max(pixels_, 1.0) * 64.0);
+  // The ceiling is never below the floor: std::clamp with the two the other
+  // way round is undefined, and before restart() took the image's size it
+  // set an adaptive window's budget to 64 pixel-samples, one tile row a frame.
+  budget_ = std::clamp(budget_, kMinBudget, std::max(kMinBudget, pixels_ * kMaxSamplesPerFrame));
 }
 
 }  // namespace rt::viewer

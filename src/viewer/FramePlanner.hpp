@@ -23,8 +23,10 @@ class FramePlanner {
   // `fixedSamplesPerFrame` 0: adaptive.
   FramePlanner(double targetFrameSeconds, uint32_t fixedSamplesPerFrame);
 
-  // Forget the pass under way (accumulation restarted or resized).
-  void restart();
+  // Forget the pass under way (accumulation restarted or resized) and take
+  // the image's size, which bounds the budget (adaptive rounds never ask for
+  // uniform bands, so plan() may never see it).
+  void restart(uint32_t width, uint32_t height);
 
   // Bands for the next frame, for an image of width x height that has
   // `samplesDone` of `samplesTarget` samples per pixel.
