@@ -236,7 +236,6 @@ std::unique_ptr<ComputeKernel> ProgressiveRenderer::buildKernel() const {
 void ProgressiveRenderer::recordSamples(VkCommandBuffer commands, uint32_t row, uint32_t rows,
                                         uint32_t count) const {
   if (samplePlan_) throw Error("an adaptive render kernel takes its samples from the plan");
-  sumsChangedOutsideRounds_ = true;
   recordRange(commands, row, rows, samplesDone_, count);
 }
 
@@ -292,7 +291,7 @@ void ProgressiveRenderer::addSamples(uint32_t count) {
 }
 
 void ProgressiveRenderer::recordReset(VkCommandBuffer commands) {
-  sumsChangedOutsideRounds_ = true;
+  resetSinceMeasured_ = true;
   vkCmdFillBuffer(commands, accumulation_.handle(), 0, VK_WHOLE_SIZE, 0);
   if (oddAccumulation_) vkCmdFillBuffer(commands, oddAccumulation_->handle(), 0, VK_WHOLE_SIZE, 0);
   // The noise measurement reads the extras of every pixel of an adaptive
@@ -378,11 +377,11 @@ std::vector<gpu::GpuTileNoise> ProgressiveRenderer::measureTiles(
   }
   // Without other changes since the last measurement, only the round's
   // tiles changed.
-  const std::vector<uint32_t>* changed = sumsChangedOutsideRounds_ ? nullptr : roundTiles;
+  const std::vector<uint32_t>* changed = resetSinceMeasured_ ? nullptr : roundTiles;
   std::vector<gpu::GpuTileNoise> tiles =
       tileNoise_->measure(accumulation_, *oddAccumulation_, pixelExtras_ ? &*pixelExtras_ : nullptr,
                           region_, mapping, changed);
-  sumsChangedOutsideRounds_ = false;
+  resetSinceMeasured_ = false;
   return tiles;
 }
 

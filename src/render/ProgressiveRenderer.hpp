@@ -165,10 +165,11 @@ class ProgressiveRenderer {
   std::unique_ptr<ComputeKernel> kernel_;
   std::vector<std::unique_ptr<ComputeKernel>> retired_;
   std::unique_ptr<TileNoiseKernel> tileNoise_;  // for halvesIndependent() renders
-  // The sums changed other than by adaptive rounds (a reset, a uniform pass)
-  // since the tiles' noise was last measured: the next measurement covers
-  // every tile, not only a round's. Set where such work is recorded.
-  mutable bool sumsChangedOutsideRounds_ = true;
+  // The accumulation was reset since the tiles' noise was last measured: the
+  // next measurement covers every tile, not only a round's. Nothing else
+  // changes the sums between an adaptive render's measurements (its kernel
+  // renders no uniform passes: recordSamples refuses them).
+  bool resetSinceMeasured_ = true;
   uint32_t samplesDone_ = 0;
   uint64_t raysTraced_ = 0;
 };

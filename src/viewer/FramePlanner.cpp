@@ -30,13 +30,13 @@ void FramePlanner::restart(uint32_t width, uint32_t height) {
 std::vector<Band> FramePlanner::plan(uint32_t width, uint32_t height, uint32_t samplesDone,
                                      uint32_t samplesTarget) {
   std::vector<Band> bands;
-  pixels_ = double(width) * height;
+  const double pixels = double(width) * height;
   if (nextRow_ >= height) nextRow_ = 0;
   double budget = budget_;
   while (samplesDone < samplesTarget) {
     uint32_t remaining = samplesTarget - samplesDone;
     if (nextRow_ == 0) {
-      double affordable = std::floor(budget / pixels_);
+      double affordable = std::floor(budget / pixels);
       passSamples_ = fixedSamples_ > 0 ? fixedSamples_
                                        : static_cast<uint32_t>(std::clamp(affordable, 1.0, 1e6));
       passSamples_ = std::min(passSamples_, remaining);

@@ -45,7 +45,7 @@ class FramePlanner {
   double budget_;  // pixel-samples per frame
   uint32_t nextRow_ = 0;
   uint32_t passSamples_ = 1;
-  double pixels_ = 0;
+  double pixels_ = 0;  // the image's, from restart(): the budget's ceiling
 };
 
 }  // namespace rt::viewer
