@@ -153,6 +153,7 @@ int run(const CommandLine& cli) {
   std::string prefix = cli.outPrefix.empty()
                            ? std::filesystem::path(cli.scenePath).stem().string() + "-converge"
                            : cli.outPrefix;
+  for (const char* suffix : {".csv", ".png", "-reference.exr"}) rt::checkWritable(prefix + suffix);
 
   rt::ContextOptions contextOptions;
   contextOptions.validation = cli.validation;

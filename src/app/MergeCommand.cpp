@@ -9,6 +9,7 @@
 #include "encode/Conventions.hpp"
 #include "formats/SceneFile.hpp"
 #include "imaging/Merge.hpp"
+#include "io/AtomicFile.hpp"
 #include "io/Image.hpp"
 #include "util/Error.hpp"
 
@@ -49,6 +50,7 @@ int runMergeCommand(int argc, char** argv) {
     if (!rt::isSupportedImageExtension(output)) {
       throw rt::Error(output + ": unsupported output format (use .exr, .hdr, .png or .ppm)");
     }
+    rt::checkWritable(output);
     std::vector<rt::ImageF> parts;
     for (const std::string& path : paths) parts.push_back(rt::readExr(path));
     rt::ImageF merged = rt::mergeRenders(parts);

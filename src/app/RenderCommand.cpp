@@ -21,6 +21,7 @@
 #include "gpu/ShaderCompiler.hpp"
 #include "gpu/VulkanContext.hpp"
 #include "imaging/SampleMaps.hpp"
+#include "io/AtomicFile.hpp"
 #include "io/Image.hpp"
 #include "render/Renderer.hpp"
 #include "util/Clock.hpp"
@@ -265,6 +266,8 @@ int run(const CommandLine& cli) {
     throw rt::Error(fmt::format("{}: unsupported output format (use .png, .ppm, .exr or .hdr)",
                                 cli.outputPath));
   }
+  for (const std::string& path : {cli.outputPath, cli.sampleMapPath, cli.errorMapPath})
+    if (!path.empty()) rt::checkWritable(path);
   rt::Scene scene = rt::loadSceneFile(cli.scenePath, {cli.strict});
   for (const std::string& warning : scene.warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
@@ -413,6 +416,12 @@ int runRenderCommand(int argc, char** argv) {
                  "Also write a .png of each pixel's estimated error (needs --adaptive, "
                  "--estimate-rmse or --target-rmse)");
   app.add_flag("-q,--quiet", cli.quiet, "No progress bar or summary");
+  app.footer(
+      "Other commands (each with its own --help):\n"
+      "  raytracer view SCENE            interactive window: progressive, hot-reloaded shaders\n"
+      "  raytracer converge SCENE        error against samples and time, per sampler\n"
+      "  raytracer merge PART.exr... OUT combine split renders (--samples, --region)\n"
+      "  raytracer check SCENE           how the scene file is read, without rendering");
   if (std::optional<int> status = rt::cli::parse(app, argc, argv)) return *status;
   try {
     if (cli.device == "list") {
@@ -425,7 +434,8 @@ int runRenderCommand(int argc, char** argv) {
     }
     if (cli.scenePath.empty() || cli.outputPath.empty()) {
       std::fprintf(stderr,
-                   "error: usage: raytracer SCENE.json OUTPUT.png [options] (see --help)\n");
+                   "error: usage: raytracer SCENE.json OUTPUT.png [options], or raytracer "
+                   "view|converge|merge|check ... (see --help)\n");
       return 2;
     }
     return run(cli);

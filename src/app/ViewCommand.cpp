@@ -4,11 +4,13 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 #include <string>
 
 #include "app/CommandLine.hpp"
 #include "app/Commands.hpp"
+#include "io/AtomicFile.hpp"
 #include "util/Error.hpp"
 #include "viewer/ViewerOptions.hpp"
 
@@ -47,6 +49,10 @@ void finishOptions(const CommandLine& cli, rt::viewer::ViewerOptions& options) {
   if (!options.screenshot.empty() && options.screenshot.extension() != ".png") {
     throw rt::Error(
         fmt::format("--screenshot {}: must be a .png file", options.screenshot.string()));
+  }
+  if (!options.screenshot.empty()) rt::checkWritable(options.screenshot);
+  if (!std::filesystem::is_directory(options.saveFolder)) {
+    throw rt::Error(fmt::format("--save-dir {}: no such folder", options.saveFolder.string()));
   }
 }
 

@@ -48,6 +48,19 @@ void writeAtomically(const std::filesystem::path& target,
   }
 }
 
+void checkWritable(const std::filesystem::path& target) {
+  std::filesystem::path folder = target.parent_path();
+  if (folder.empty()) folder = ".";
+  std::error_code ignored;
+  if (std::filesystem::is_directory(target, ignored))
+    throw Error(fmt::format("{}: cannot write: it is a folder", target.string()));
+  if (!std::filesystem::is_directory(folder, ignored)) {
+    throw Error(fmt::format("{}: cannot write: no folder {}", target.string(), folder.string()));
+  }
+  if (::access(folder.c_str(), W_OK) != 0)
+    throw Error(fmt::format("{}: cannot write: {}", target.string(), std::strerror(errno)));
+}
+
 void writeFileAtomically(const std::filesystem::path& target, const void* data, size_t bytes) {
   writeAtomically(target, [&](const std::filesystem::path& tmp) {
     int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);

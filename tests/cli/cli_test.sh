@@ -23,6 +23,10 @@ write good.json "$GOOD"
 
 # --- usage ---------------------------------------------------------------
 "$RAYTRACER" --help >"$SCRATCH/help" 2>&1 && grep -q -- "--spp" "$SCRATCH/help" && pass || fail "--help"
+for command in view converge merge check; do  # --help names the other commands, and they answer
+  grep -q "^  raytracer $command " "$SCRATCH/help" && "$RAYTRACER" "$command" --help >/dev/null 2>&1 &&
+    pass || fail "--help names $command"
+done
 "$RAYTRACER" --version 2>&1 | grep -Eq '^raytracer [0-9]+\.[0-9]+' && pass || fail "--version"
 "$RAYTRACER" --device list 2>&1 | grep -Eq '^0: ' && pass || fail "--device list"
 "$RAYTRACER" >/dev/null 2>&1; [[ $? -ne 0 ]] && pass || fail "no arguments must fail"
@@ -159,6 +163,7 @@ write adaptive-jittered.json "${GOOD/\"nbounces\":2,/\"nbounces\":2,\"adaptive\"
   grep -q "the scene's sampler (jittered) is for uniform renders: adaptive ones sample with sobol" "$SCRATCH/stderr" &&
   pass || fail "adaptive render of a scene naming jittered"
 expect_error "merge of a missing file" 'nope\.exr' merge "$SCRATCH/nope.exr" "$SCRATCH/a.exr" "$SCRATCH/out.png"
+expect_failure nothing "merge into a missing folder" 'm\.exr: cannot write: no folder' merge "$SCRATCH/a.exr" "$SCRATCH/a.exr" "$SCRATCH/no/m.exr"
 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/timed.png" --spp 1000000 --time 1 -q 2>"$SCRATCH/stderr" &&
   grep -q "time budget reached" "$SCRATCH/stderr" && [[ -s "$SCRATCH/timed.png" ]] && pass || fail "--time"
 timeout -s INT --preserve-status 2 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/interrupted.exr" --spp 1000000 -q 2>"$SCRATCH/stderr"
@@ -184,7 +189,15 @@ expect_error "absurd width" 'huge\.json: camera\.width' "$SCRATCH/huge.json" "$S
 write nocamera.json '{"scene":{"shapes":[]}}'
 expect_error "missing camera" 'nocamera\.json: camera' "$SCRATCH/nocamera.json" "$SCRATCH/out.png"
 expect_error "bad extension" 'out\.bmp.*unsupported' "$SCRATCH/good.json" "$SCRATCH/out.bmp"
-expect_error "unwritable output" 'cannot write' "$SCRATCH/good.json" "$SCRATCH/no/such/dir/out.png" -q
+# Without -q a render that had started would print progress lines: one line
+# means every output was checked before the render.
+expect_error "unwritable output" 'out\.png: cannot write: no folder' "$SCRATCH/good.json" "$SCRATCH/no/such/dir/out.png"
+mkdir -p "$SCRATCH/folder.png"
+expect_failure nothing "output that is a folder" 'folder\.png: cannot write: it is a folder' "$SCRATCH/good.json" "$SCRATCH/folder.png"
+expect_error "unwritable sample map" 'map\.png: cannot write: no folder' "$SCRATCH/good.json" "$SCRATCH/out.png" --sample-map "$SCRATCH/no/map.png"
+expect_failure nothing "unwritable converge output" 'x\.csv: cannot write: no folder' converge "$SCRATCH/good.json" --out "$SCRATCH/no/x"
+expect_failure nothing "unwritable viewer screenshot" 'shot\.png: cannot write: no folder' view "$SCRATCH/good.json" --screenshot "$SCRATCH/no/shot.png"
+expect_failure nothing "missing viewer save folder" '--save-dir .*no: no such folder' view "$SCRATCH/good.json" --save-dir "$SCRATCH/no"
 expect_error "bad --size" '--size 0x10' "$SCRATCH/good.json" "$SCRATCH/out.png" --size 0x10
 expect_error "bad --spp" 'spp' "$SCRATCH/good.json" "$SCRATCH/out.png" --spp 0
 expect_error "NaN --exposure" '--exposure: must be a positive, finite number' "$SCRATCH/good.json" "$SCRATCH/out.png" --exposure nan
