@@ -126,6 +126,23 @@ TEST_SUITE("student dialects") {
     CHECK(hasWarning(loaded, "pixel_sample_num times path_sample_num"));
   }
 
+  TEST_CASE("nizqleo's 'scale' is its tone map's multiplier: an exposure of scale / 255") {
+    Json scene = baseScene();
+    scene["scale"] = 1020;
+    rt::Scene loaded = parse(scene);
+    CHECK(loaded.camera.exposure == doctest::Approx(4.0f));
+    CHECK(hasWarning(loaded, "scale: read as an exposure of 4"));
+    scene["camera"]["exposure"] = 0.5;  // both: the file's two factors
+    CHECK(parse(scene).camera.exposure == doctest::Approx(2.0f));
+    scene = baseScene();
+    scene["scale"] = 255;  // the usual 0-255 output: nothing read differently
+    loaded = parse(scene);
+    CHECK(loaded.camera.exposure == 1.0f);
+    CHECK(loaded.warnings.empty());
+    scene["scale"] = -3;
+    CHECK_THROWS_WITH_AS(parse(scene), doctest::Contains("scale"), rt::Error);
+  }
+
   TEST_CASE("a glowing shape ('emittence') is an area light of that radiance") {
     Json scene = baseScene();
     scene["scene"]["lightsources"] = Json::array();

@@ -290,6 +290,22 @@ bool readSampling(JsonObject& top, JsonObject& camera, RenderSettings& settings)
   return sampler.has_value();
 }
 
+// nizqleo's top-level `scale`: its tone map writes each linear value times
+// `scale`, clamped to 255, where the others write it times 255 ("I increased
+// the scale in tone mapping", for its darker path-traced scenes): an exposure
+// of scale / 255.
+void readOutputScale(JsonObject& top, Camera& camera) {
+  const std::optional<JsonNode> scale = top.optional("scale");
+  if (!scale) return;
+  const float exposure = scale->positiveFloat() / 255.0f;
+  if (exposure == 1.0f) return;
+  camera.exposure *= exposure;
+  char number[32];
+  std::snprintf(number, sizeof number, "%.3g", exposure);
+  scale->warn(std::string("read as an exposure of ") + number +
+              " (scale / 255: the 0-255 output is the linear value times scale)");
+}
+
 // Switches of the students' renderers (Kierandon's `use_*`) that do not
 // change what the image converges to here: light importance sampling (this
 // renderer always samples lights directly) and its sample bounds. A denoiser
@@ -1926,6 +1942,7 @@ Scene readScene(std::string_view jsonText, const fs::path& file) {
                                         [&](const char* key) { return camera.has(key); });
   scene.camera = readCamera(camera);
   scene.camera.toneCurve = readToneCurve(top, camera);
+  readOutputScale(top, scene.camera);
   const bool samplerGiven = readSampling(top, camera, scene.settings);
   camera.reportUnknownKeys();
   ShapeContext context{absoluteFolderOf(file), scene.settings.mode, {}};
