@@ -153,7 +153,7 @@ int run(const CommandLine& cli) {
   printList("values read (key = value)", scene.valuesRead);
   printList("warnings (defaults taken, files missing, keys ignored)", scene.warnings);
   const rt::FlatScene flat = rt::flattenScene(scene);
-  printList("left out on the GPU", flat.warnings);
+  printList("found on encoding it for the GPU (left out, or unlit)", flat.warnings);
   std::printf("kernel features: %s\n",
               rt::detectFeatures(scene, flat, scene.settings.adaptive).summary().c_str());
   return 0;

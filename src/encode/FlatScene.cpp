@@ -483,6 +483,17 @@ float displaySlope(const ToneMapping& mapping) {
   return std::max(mapping.exposure, 1e-6f) * (mapping.srgbEncode ? 12.92f : 1.0f);
 }
 
+// A scene that nothing lights renders black whatever it holds (a student's
+// path-traced box whose lamp lived outside the file): said, so that the
+// black image is not taken for a fault of the renderer.
+bool nothingLights(const Scene& scene, const LightingConventions& conventions,
+                   const FlatScene& flat) {
+  const glm::vec3 zero(0.0f);
+  return scene.settings.mode != RenderMode::Binary && flat.pointLights.empty() &&
+         flat.areaLights.empty() && flat.emitters.empty() && scene.backgroundColor == zero &&
+         conventions.ambient == zero;
+}
+
 }  // namespace
 
 FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
@@ -514,6 +525,11 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options) {
   flat.areaLights = std::move(areaLights.lights);
   flat.emitters = std::move(areaLights.emitters);
   std::vector<uint32_t> shapeMaterials = addLightMaterials(scene, areaLights, flat);
+  if (nothingLights(scene, conventions, flat)) {
+    flat.warnings.push_back(
+        "nothing lights the scene (no light sources, no glowing shapes, a black background, no "
+        "ambient light): the image is black");
+  }
   std::vector<PendingInstance> instances = collectPrimitives(scene, shapeMaterials, flat);
   std::vector<std::optional<MeshBlas>> meshes = addMeshes(scene, instances, options, flat);
   addBvh(instances, meshes, options, flat);

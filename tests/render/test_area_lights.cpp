@@ -295,6 +295,36 @@ TEST_SUITE("light splitting") {
     unlit.settings.lightSplit = 3;
     CHECK(detectFeatures(unlit, flattenScene(unlit), true).lightReplicas == 1);
   }
+
+  TEST_CASE("a scene that nothing lights is said to render black") {
+    const auto saysBlack = [](const Scene& scene) {
+      const std::vector<std::string> warnings = flattenScene(scene).warnings;
+      return std::any_of(warnings.begin(), warnings.end(), [](const std::string& warning) {
+        return warning.find("nothing lights the scene") != std::string::npos;
+      });
+    };
+    Scene scene = wallScene(8);
+    CHECK(saysBlack(scene));
+    scene.settings.mode = RenderMode::PathTracer;
+    CHECK(saysBlack(scene));
+    scene.settings.mode = RenderMode::Binary;  // hits drawn in one colour: no light needed
+    CHECK_FALSE(saysBlack(scene));
+
+    Scene lit = wallScene(8);
+    addOverheadQuadLight(lit);
+    CHECK_FALSE(saysBlack(lit));
+    lit = wallScene(8);
+    lit.pointLights.push_back({});
+    CHECK_FALSE(saysBlack(lit));
+    lit = wallScene(8);
+    lit.backgroundColor = glm::vec3(0, 0, 0.1f);  // seen where rays miss, and lights the paths
+    CHECK_FALSE(saysBlack(lit));
+    lit = wallScene(8);
+    lit.conventions = Conventions::CourseworkB;  // its ambient term lights every hit
+    CHECK_FALSE(saysBlack(lit));
+    lit.ambientLight = glm::vec3(0.0f);  // a file's own ambient light of zero replaces it
+    CHECK(saysBlack(lit));
+  }
 }
 
 TEST_SUITE("path tracer and distributed bounces") {
