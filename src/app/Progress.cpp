@@ -9,12 +9,20 @@
 
 namespace rt {
 
-ProgressBar::ProgressBar(uint64_t pixels, bool enabled)
-    : pixels_(pixels), enabled_(enabled), interactive_(::isatty(STDERR_FILENO) == 1) {}
+ProgressBar::ProgressBar(uint64_t pixels, bool enabled, std::optional<double> timeBudget,
+                         bool sampleLimit)
+    : pixels_(pixels),
+      enabled_(enabled),
+      timeBudget_(timeBudget),
+      sampleLimit_(sampleLimit),
+      interactive_(::isatty(STDERR_FILENO) == 1) {}
 
 void ProgressBar::update(const RenderProgress& p) {
   if (!enabled_ || p.samplesTotal == 0) return;
-  double fraction = p.samplesDone / p.samplesTotal;
+  double fraction = sampleLimit_ ? p.samplesDone / p.samplesTotal : 0.0;
+  if (timeBudget_ && *timeBudget_ > 0) {
+    fraction = std::max(fraction, std::min(1.0, p.elapsedSeconds / *timeBudget_));
+  }
   if (p.targetRmse > 0 && p.rmseEstimate && *p.rmseEstimate > 0) {
     // Noise falls as 1/sqrt(samples): the share of the samples the target needs.
     double ratio = p.targetRmse / *p.rmseEstimate;
@@ -22,8 +30,9 @@ void ProgressBar::update(const RenderProgress& p) {
   }
   double rate = p.elapsedSeconds > 0 ? p.samplesDone * double(pixels_) / p.elapsedSeconds : 0;
   double eta = fraction > 0 ? p.elapsedSeconds * (1.0 - fraction) / fraction : 0;
-  std::string stats = fmt::format("{:5.1f}/{} spp  {:7.2f} Msamples/s  ETA {:5.1f} s",
-                                  p.samplesDone, p.samplesTotal, rate * 1e-6, eta);
+  std::string stats = sampleLimit_ ? fmt::format("{:5.1f}/{} spp", p.samplesDone, p.samplesTotal)
+                                   : fmt::format("{:5.1f} spp", p.samplesDone);
+  stats += fmt::format("  {:7.2f} Msamples/s  ETA {:5.1f} s", rate * 1e-6, eta);
   if (p.rmseEstimate) stats += fmt::format("  RMSE ~{:.4f}", *p.rmseEstimate);
   if (interactive_) {
     if (p.elapsedSeconds - lastDraw_ < 0.1 && fraction < 1.0) return;

@@ -158,13 +158,20 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
   }
   uint32_t fromScene = scene.settings.samplesPerPixel;
   options.samplesPerPixel = cli.samples ? *cli.samples : (fromScene ? fromScene : kDefaultSamples);
-  if (cli.targetRmse) {
-    // Without --spp the target alone decides when to stop.
-    if (!cli.samples) options.samplesPerPixel = kMaxSamples;
-    options.targetRmse = *cli.targetRmse;
-  }
-  options.estimateError = cli.estimateRmse || cli.targetRmse;
   options.adaptive = cli.adaptive || scene.settings.adaptive;
+  // Without --spp a target or a time budget alone decides when to stop
+  // (`--time 60`: a minute's samples, not the scene's count or 60 s at
+  // most). Adaptive rounds plan against a budget: with time alone it starts
+  // at the scene's count and doubles each time it is spent.
+  if ((cli.targetRmse || cli.timeBudget) && !cli.samples) {
+    if (options.adaptive && !cli.targetRmse) {
+      options.openEndedBudget = true;
+    } else {
+      options.samplesPerPixel = kMaxSamples;
+    }
+  }
+  if (cli.targetRmse) options.targetRmse = *cli.targetRmse;
+  options.estimateError = cli.estimateRmse || cli.targetRmse;
   options.keepErrorImage = !cli.errorMapPath.empty() || rt::isExrPath(cli.outputPath);
   options.seed = cli.seed;
   // A time budget stops part way through a pass: one sample a pass keeps
@@ -298,7 +305,9 @@ int run(const CommandLine& cli) {
   rt::Renderer renderer(context, compiler);
   uint32_t width = options.width ? options.width : scene.camera.width;
   uint32_t height = options.height ? options.height : scene.camera.height;
-  rt::ProgressBar progress(renderedPixels(options, width, height), !cli.quiet);
+  const bool sampleLimit = cli.samples || !(cli.targetRmse || cli.timeBudget);
+  rt::ProgressBar progress(renderedPixels(options, width, height), !cli.quiet, cli.timeBudget,
+                           sampleLimit);
   rt::RenderStats stats;
   installInterruptHandlers();
   auto start = rt::SteadyClock::now();
@@ -313,9 +322,14 @@ int run(const CommandLine& cli) {
 
   writeOutputs(cli, image, stats, *options.displayMapping);
   if (stats.stoppedEarly) {
-    std::fprintf(stderr, "%s after %u full sample(s) per pixel; wrote %s\n",
-                 interrupted.load() ? "interrupted" : "time budget reached", stats.samplesDone,
-                 cli.outputPath.c_str());
+    const char* why = interrupted.load() ? "interrupted" : "time budget reached";
+    if (options.adaptive) {
+      std::fprintf(stderr, "%s at a mean of %.1f samples per pixel; wrote %s\n", why,
+                   stats.meanSamples, cli.outputPath.c_str());
+    } else {
+      std::fprintf(stderr, "%s after %u full sample(s) per pixel; wrote %s\n", why,
+                   stats.samplesDone, cli.outputPath.c_str());
+    }
   }
   if (!cli.quiet) {
     printSummary(image, renderedPixels(options, width, height), scene, stats, context);
@@ -394,7 +408,9 @@ int runRenderCommand(int argc, char** argv) {
       ->needs(cameraPath);
   app.add_option("--time", cli.timeBudget,
                  "Stop after this many seconds (every sample done is kept; passes of one sample, "
-                 "so that every pixel has as many as the others, or one more)")
+                 "so that every pixel has as many as the others, or one more). Without --spp the "
+                 "time alone decides: as many samples as fit (adaptive: the scene's budget, "
+                 "doubled each time it is spent)")
       ->check(rt::cli::positiveFiniteNumber());
   app.add_option("--target-rmse", cli.targetRmse,
                  "Stop once the estimated RMSE of the displayed image (0..1 values, see README "

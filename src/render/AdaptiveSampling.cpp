@@ -610,15 +610,25 @@ void AdaptiveRounds::finishRound(const std::vector<gpu::GpuTileNoise>& measured,
   edgeRound_.reset();
   NoiseMeasurement noise = plan_.measureNoise(measured);
   estimate_ = noise.rmse;
+  planRound(noise, firstRound ? image : nullptr);
+  while (finished_ && goal_.openEnded && !reachedTarget() && goal_.meanSamples < goal_.maxSamples) {
+    goal_.meanSamples = std::min(2 * goal_.meanSamples, goal_.maxSamples);
+    planRound(noise, nullptr);
+  }
   sampleVariance_ = std::move(noise.sampleVariance);
+}
+
+void AdaptiveRounds::planRound(const NoiseMeasurement& noise, const ImageReader* image) {
   AllocationGoal next;
   next.targetMse = goal_.targetRmse * goal_.targetRmse * predictionBias(noise);
   next.sampleBudget =
       double(goal_.meanSamples) * double(plan_.regionPixels()) - double(plan_.pixelSamples());
-  next.maxSamples = goal_.maxSamples;
+  // A paired pixel's extra first-pass sample stays on top of its tile's count.
+  next.maxSamples = std::max(goal_.maxSamples, 2u) - 1;
   next.minimumSpend = kMinTargetStep * double(plan_.pixelSamples());
   round_.assign(round_.size(), 0);
-  if (!reachedTarget() && firstRound && image) {
+  edgeRound_.reset();
+  if (!reachedTarget() && image) {
     edgeRound_ = plan_.edgeRound(
         noise.tiles, neighbourContrast(image->read(), image->mapping, plan_.region()), next);
   } else if (!reachedTarget()) {

@@ -235,12 +235,17 @@ class AdaptiveRounds {
     uint32_t meanSamples = 0;  // budget: samples per pixel on average
     double targetRmse = 0;     // stop once the estimate reaches it (0: no target)
     uint32_t maxSamples = 0;   // per pixel
+    // No budget of its own (a time budget without a sample budget): each
+    // time meanSamples are spent it doubles, up to maxSamples, so the rounds
+    // go on until the caller stops them.
+    bool openEnded = false;
   };
 
   AdaptiveRounds(uint32_t width, uint32_t height, const PixelRegion& region, const Goal& goal);
 
-  // No samples left to add: the target is reached, the budget spent, or the
-  // next round would add too little to be worth a round (kMinRoundShare).
+  // No samples left to add: the target is reached, the budget spent (an
+  // open-ended one up to maxSamples), or the next round would add too little
+  // to be worth a round (kMinRoundShare).
   bool finished() const { return finished_; }
   // The current round's (first sample, count) per tile, for the kernel.
   std::vector<glm::uvec2> kernelRanges() const {
@@ -287,6 +292,10 @@ class AdaptiveRounds {
   double meanSamples() const;  // per pixel of the region, rendered so far
 
  private:
+  // Plans the round after one measured as `noise`: the edge round when
+  // `image` is given (after the first pass), else one per tile.
+  void planRound(const NoiseMeasurement& noise, const ImageReader* image);
+
   AdaptivePlan plan_;
   Goal goal_;
   std::vector<uint32_t> round_;         // samples per pixel this round adds, per tile

@@ -221,7 +221,8 @@ class AdaptiveLoop : SampleLoop {
                const ToneMapping& mapping, const ProgressCallback& onProgress, RenderStats& stats)
       : SampleLoop(context, job, options, mapping, onProgress, stats),
         rounds_(job.width(), job.height(), job.region(),
-                {options.samplesPerPixel, options.targetRmse, kMaxSamplesPerPixel}) {}
+                {options.samplesPerPixel, options.targetRmse, kMaxSamplesPerPixel,
+                 options.openEndedBudget}) {}
 
   void run() {
     while (!rounds_.finished()) {

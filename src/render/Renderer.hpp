@@ -43,6 +43,10 @@ struct RenderOptions : ImageSampling {
   // goal; the estimate is always made. Cannot be combined with sample
   // ranges (firstSample/endSample).
   bool adaptive = false;
+  // Adaptive renders without a budget of their own (a time budget alone):
+  // samplesPerPixel is the first stage's budget, which doubles each time it
+  // is spent, until shouldStop (AdaptiveRounds::Goal::openEnded).
+  bool openEndedBudget = false;
   // Fill RenderStats::estimatedError (needs estimateError or adaptive).
   bool keepErrorImage = false;
   double secondsPerDispatch = 0.1;  // target duration of one dispatch

@@ -863,6 +863,57 @@ TEST_SUITE("adaptive sampling") {
     test::checkNoValidationMessages();
   }
 
+  TEST_CASE("an open-ended adaptive render (a time budget alone) goes on past its budget") {
+    const Scene scene = test::projectScene("study-arealight.json");
+    RenderOptions options = adaptiveRender(2);
+    RenderStats closed;
+    test::render(scene, options, &closed);
+    CHECK_FALSE(closed.stoppedEarly);
+    CHECK(closed.meanSamples <= 2.0);
+
+    // Stopped, as --time stops it, once past a mean of 8: the first budget
+    // doubled twice. Without the doubling the render ends at 2 by itself.
+    options.openEndedBudget = true;
+    double reached = 0;
+    int polls = 0;
+    options.shouldStop = [&] { return reached > 8.0 || ++polls > 100000; };
+    Renderer renderer(test::gpu(), test::shaderCompiler());
+    RenderStats open;
+    renderer.render(
+        scene, options, [&](const RenderProgress& p) { reached = p.samplesDone; }, &open);
+    test::checkNoValidationMessages();
+    CHECK(open.stoppedEarly);
+    CHECK(open.meanSamples > 8.0);
+    CHECK(open.meanSamples <= 16.0);  // within the stage that passed 8
+  }
+
+  TEST_CASE("no pixel of an adaptive render passes the rounds' cap, its paired sample included") {
+    const Scene scene = test::projectScene("study-arealight.json");
+    const ToneMapping mapping = toneMappingFor(scene);
+    ProgressiveOptions options;
+    options.width = 96;
+    options.height = 72;
+    options.samplesTotal = 64;
+    options.sampler = SamplerKind::Sobol;
+    options.independentHalves = true;
+    options.adaptive = true;
+    ProgressiveRenderer job(test::gpu(), test::shaderCompiler(), scene, options);
+    const PixelRegion whole{0, 0, options.width, options.height};
+    // A budget far above the cap: the noisy tiles all want more than it.
+    AdaptiveRounds rounds(options.width, options.height, whole, {64, 0.0, 4});
+    while (!rounds.finished()) {
+      job.setSamplePlan(rounds.kernelRanges(), rounds.pixelExtras());
+      test::gpu().submitAndWait(
+          [&](VkCommandBuffer commands) { job.recordPlannedSamples(commands, 0, options.height); });
+      job.finishAdaptiveRound(rounds, mapping);
+    }
+    const SampleSums sums = job.sampleSums();
+    float most = 0;
+    for (const glm::vec4& sum : sums.all) most = std::max(most, sum.w);
+    CHECK(most == 4.0f);
+    test::checkNoValidationMessages();
+  }
+
   TEST_CASE("an adaptive render cannot be split into sample ranges") {
     Scene scene = test::projectScene("study-thinlens.json");
     RenderOptions options = adaptiveRender(16);
