@@ -149,6 +149,12 @@ void checkMapOptions(const CommandLine& cli, const rt::RenderOptions& options) {
   }
 }
 
+// No --spp: a time budget or a target alone ends the render, whose sample
+// count is not known in advance.
+bool countOpen(const CommandLine& cli) {
+  return (cli.targetRmse || cli.timeBudget) && !cli.samples;
+}
+
 rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) {
   rt::RenderOptions options;
   if (!cli.size.empty()) {
@@ -163,7 +169,7 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
   // (`--time 60`: a minute's samples, not the scene's count or 60 s at
   // most). Adaptive rounds plan against a budget: with time alone it starts
   // at the scene's count and doubles each time it is spent.
-  if ((cli.targetRmse || cli.timeBudget) && !cli.samples) {
+  if (countOpen(cli)) {
     if (options.adaptive && !cli.targetRmse) {
       options.openEndedBudget = true;
     } else {
@@ -177,8 +183,8 @@ rt::RenderOptions renderOptions(const CommandLine& cli, const rt::Scene& scene) 
   // A time budget stops part way through a pass: one sample a pass keeps
   // every pixel within one sample of the others.
   if (cli.timeBudget) options.maxPassSamples = 1;
-  options.sampler =
-      rt::cli::samplerNamed(cli.sampler, rt::samplerUnlessAsked(scene.settings, options.adaptive));
+  options.sampler = rt::cli::samplerNamed(
+      cli.sampler, rt::samplerUnlessAsked(scene.settings, options.adaptive || countOpen(cli)));
   options.shading = rt::cli::shadingNamed(cli.shading);
   options.accel = rt::cli::accelNamed(cli.accel);
   options.sceneArrays = rt::cli::sceneArraysNamed(cli.sceneArrays);
@@ -285,12 +291,14 @@ int run(const CommandLine& cli) {
   rt::cli::applyLightSamplesOption(cli.lightSamples, scene);
   rt::cli::applyLightSplitOption(cli.lightSplit, scene);
   rt::RenderOptions options = renderOptions(cli, scene);
-  if (options.adaptive && cli.sampler.empty() && scene.settings.samplerGiven &&
+  if (cli.sampler.empty() && scene.settings.samplerGiven &&
       scene.settings.sampler != options.sampler) {
     std::fprintf(stderr,
-                 "warning: the scene's sampler (%s) is for uniform renders: adaptive ones sample "
-                 "with %s (--sampler chooses)\n",
-                 rt::samplerKindName(scene.settings.sampler), rt::samplerKindName(options.sampler));
+                 "warning: the scene's sampler (%s) is for uniform renders of a known count: %s "
+                 "sample with %s (--sampler chooses)\n",
+                 rt::samplerKindName(scene.settings.sampler),
+                 options.adaptive ? "adaptive ones" : "renders that --time or --target-rmse ends",
+                 rt::samplerKindName(options.sampler));
   }
   applyPathFrame(cli, scene, options);
   applyRegion(cli, scene, options);
@@ -305,9 +313,8 @@ int run(const CommandLine& cli) {
   rt::Renderer renderer(context, compiler);
   uint32_t width = options.width ? options.width : scene.camera.width;
   uint32_t height = options.height ? options.height : scene.camera.height;
-  const bool sampleLimit = cli.samples || !(cli.targetRmse || cli.timeBudget);
   rt::ProgressBar progress(renderedPixels(options, width, height), !cli.quiet, cli.timeBudget,
-                           sampleLimit);
+                           !countOpen(cli));
   rt::RenderStats stats;
   installInterruptHandlers();
   auto start = rt::SteadyClock::now();
@@ -355,7 +362,8 @@ int runRenderCommand(int argc, char** argv) {
   app.add_option("--seed", cli.seed, "Random seed (renders are reproducible per seed)");
   app.add_option("--sampler", cli.sampler,
                  "Sampler of every random dimension: random, jittered or sobol (Owen-scrambled "
-                 "Sobol); default: the scene's, else jittered")
+                 "Sobol); default: the scene's, else jittered; sobol for --adaptive, and where "
+                 "--time or --target-rmse ends a render without --spp")
       ->check(rt::cli::samplerValidator());
   app.add_option("--shading", cli.shading,
                  "Shading model (default: the conventions': coursework for coursework-a, "

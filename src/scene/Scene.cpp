@@ -55,8 +55,8 @@ const char* conventionsName(Conventions conventions) {
   return "unknown";
 }
 
-SamplerKind samplerUnlessAsked(const RenderSettings& settings, bool adaptive) {
-  return adaptive ? SamplerKind::Sobol : settings.sampler;
+SamplerKind samplerUnlessAsked(const RenderSettings& settings, bool progressive) {
+  return progressive ? SamplerKind::Sobol : settings.sampler;
 }
 
 }  // namespace rt

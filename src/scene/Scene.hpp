@@ -220,11 +220,14 @@ struct RenderSettings {
 };
 
 // The sampler of a render whose command line or viewer names none: the
-// file's, but Sobol for adaptive renders whatever the file names. Their
-// counts vary per pixel, and jittered strata are laid out for one count:
-// study-thinlens.json (which names jittered) adaptive at a mean of 6 had an
-// RMSE of 0.0128 with jittered, 0.0083 with Sobol, 0.0118 uniform jittered.
-SamplerKind samplerUnlessAsked(const RenderSettings& settings, bool adaptive);
+// file's, but Sobol for progressive renders whatever the file names:
+// adaptive ones, and those that a time budget or a target ends without a
+// sample count. Their counts are not known when sampling starts, and
+// jittered strata are laid out for one count: study-thinlens.json (which
+// names jittered) adaptive at a mean of 6 had an RMSE of 0.0128 with
+// jittered, 0.0083 with Sobol, 0.0118 uniform jittered; laid out for 2^20
+// samples, the first few jittered ones are as good as random.
+SamplerKind samplerUnlessAsked(const RenderSettings& settings, bool progressive);
 
 struct Scene {
   std::filesystem::path sourcePath;

@@ -160,7 +160,7 @@ expect_error "scene key adaptive with --samples" 'cannot be combined with adapti
 write adaptive-jittered.json "${GOOD/\"nbounces\":2,/\"nbounces\":2,\"adaptive\":true,\"sampler\":\"jittered\",}"
 "$RAYTRACER" check "$SCRATCH/adaptive-jittered.json" 2>/dev/null | grep -q "sampler sobol, adaptive sampling" &&
   "$RAYTRACER" "$SCRATCH/adaptive-jittered.json" "$SCRATCH/out.png" --spp 2 -q 2>"$SCRATCH/stderr" &&
-  grep -q "the scene's sampler (jittered) is for uniform renders: adaptive ones sample with sobol" "$SCRATCH/stderr" &&
+  grep -q "the scene's sampler (jittered) is for uniform renders of a known count: adaptive ones sample with sobol" "$SCRATCH/stderr" &&
   pass || fail "adaptive render of a scene naming jittered"
 expect_error "merge of a missing file" 'nope\.exr' merge "$SCRATCH/nope.exr" "$SCRATCH/a.exr" "$SCRATCH/out.png"
 expect_failure nothing "merge into a missing folder" 'm\.exr: cannot write: no folder' merge "$SCRATCH/a.exr" "$SCRATCH/a.exr" "$SCRATCH/no/m.exr"
@@ -175,6 +175,12 @@ for mode in uniform adaptive; do
   grep -q "time budget reached" "$SCRATCH/stderr" && awk -v n="$samples" 'BEGIN { exit !(n > 16) }' &&
     pass || fail "--time without --spp ($mode): $samples samples"
 done
+# ... with Sobol, whatever sampler the scene names (its strata need a count).
+write jittered.json "${GOOD/\"nbounces\":2/\"nbounces\":2,\"sampler\":\"jittered\"}"
+"$RAYTRACER" "$SCRATCH/jittered.json" "$SCRATCH/timed.png" --time 0.2 2>"$SCRATCH/stderr" &&
+  grep -q "scene's sampler (jittered).*--time or --target-rmse ends sample with sobol" "$SCRATCH/stderr" &&
+  "$RAYTRACER" "$SCRATCH/jittered.json" "$SCRATCH/timed.png" --time 5 --spp 2 2>"$SCRATCH/stderr" &&
+  ! grep -q "scene's sampler" "$SCRATCH/stderr" && pass || fail "--time without --spp samples with sobol"
 timeout -s INT --preserve-status 2 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/interrupted.exr" --spp 1000000 -q 2>"$SCRATCH/stderr"
 status=$?
 if [[ $status -eq 0 ]] && grep -q "interrupted after" "$SCRATCH/stderr" && [[ -s "$SCRATCH/interrupted.exr" ]]; then
