@@ -41,6 +41,19 @@ RenderOptions adaptiveRender(uint32_t samples, uint32_t seed = 1, uint32_t width
   return options;
 }
 
+// A 96x72 accumulation of an adaptive render with a budget of `samples`
+// (Sobol), for tests that run the rounds themselves.
+ProgressiveOptions adaptiveAccumulation(uint32_t samples) {
+  ProgressiveOptions options;
+  options.width = 96;
+  options.height = 72;
+  options.samplesTotal = samples;
+  options.sampler = SamplerKind::Sobol;
+  options.independentHalves = true;
+  options.adaptive = true;
+  return options;
+}
+
 const ImageF& studyTruth(const std::string& name, uint32_t width = 96) {
   return test::studyTruth(name, width, 2048);
 }
@@ -825,13 +838,7 @@ TEST_SUITE("adaptive sampling") {
     // the estimate, which sums every tile's figures.
     Scene scene = test::projectScene("default.json");
     const ToneMapping mapping = toneMappingFor(scene);
-    ProgressiveOptions options;
-    options.width = 96;
-    options.height = 72;
-    options.samplesTotal = 3;
-    options.sampler = SamplerKind::Sobol;
-    options.independentHalves = true;
-    options.adaptive = true;
+    const ProgressiveOptions options = adaptiveAccumulation(3);
     ProgressiveRenderer job(test::gpu(), test::shaderCompiler(), scene, options);
     const PixelRegion whole{0, 0, options.width, options.height};
     const AdaptivePlan geometry(options.width, options.height, whole);
@@ -890,13 +897,7 @@ TEST_SUITE("adaptive sampling") {
   TEST_CASE("no pixel of an adaptive render passes the rounds' cap, its paired sample included") {
     const Scene scene = test::projectScene("study-arealight.json");
     const ToneMapping mapping = toneMappingFor(scene);
-    ProgressiveOptions options;
-    options.width = 96;
-    options.height = 72;
-    options.samplesTotal = 64;
-    options.sampler = SamplerKind::Sobol;
-    options.independentHalves = true;
-    options.adaptive = true;
+    const ProgressiveOptions options = adaptiveAccumulation(64);
     ProgressiveRenderer job(test::gpu(), test::shaderCompiler(), scene, options);
     const PixelRegion whole{0, 0, options.width, options.height};
     // A budget far above the cap: the noisy tiles all want more than it.
