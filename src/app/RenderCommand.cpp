@@ -245,19 +245,21 @@ uint64_t renderedPixels(const rt::RenderOptions& options, uint32_t width, uint32
   return uint64_t(options.region.width) * options.region.height;
 }
 
+// One line (its start, up to the seconds, is what rtfarm's worker parses).
 void printSummary(const rt::ImageF& image, uint64_t pixels, const rt::Scene& scene,
-                  const rt::RenderStats& stats, const rt::VulkanContext& context) {
+                  const rt::RenderOptions& options, const rt::RenderStats& stats,
+                  const rt::VulkanContext& context) {
   double samples = double(pixels) * stats.meanSamples;
   std::fprintf(stderr,
                "rendered %ux%u at %s in %.3f s (%.2f Msamples/s) on %s; "
-               "%u primitives, features: %s; conventions: %s (%s); setup %.3f s, "
+               "%u primitives, features: %s; conventions: %s (%s); sampler %s; setup %.3f s, "
                "%u dispatches%s\n",
                image.width, image.height, samplesText(stats).c_str(), stats.renderSeconds,
                samples / std::max(stats.renderSeconds, 1e-9) * 1e-6,
                context.description().summary().c_str(), stats.primitives,
                stats.features.summary().c_str(), rt::conventionsName(scene.conventions),
-               scene.conventionsReason.c_str(), stats.setupSeconds, stats.dispatches,
-               rmseText(stats).c_str());
+               scene.conventionsReason.c_str(), rt::samplerKindName(options.sampler),
+               stats.setupSeconds, stats.dispatches, rmseText(stats).c_str());
 }
 
 // The image (an EXR also gets the per-pixel sample count and, when
@@ -339,7 +341,7 @@ int run(const CommandLine& cli) {
     }
   }
   if (!cli.quiet) {
-    printSummary(image, renderedPixels(options, width, height), scene, stats, context);
+    printSummary(image, renderedPixels(options, width, height), scene, options, stats, context);
   }
   if (context.validationMessageCount() > 0) {
     throw rt::Error(

@@ -179,8 +179,10 @@ done
 write jittered.json "${GOOD/\"nbounces\":2/\"nbounces\":2,\"sampler\":\"jittered\"}"
 "$RAYTRACER" "$SCRATCH/jittered.json" "$SCRATCH/timed.png" --time 0.2 2>"$SCRATCH/stderr" &&
   grep -q "scene's sampler (jittered).*--time or --target-rmse ends sample with sobol" "$SCRATCH/stderr" &&
+  grep -q "; sampler sobol; " "$SCRATCH/stderr" &&
   "$RAYTRACER" "$SCRATCH/jittered.json" "$SCRATCH/timed.png" --time 5 --spp 2 2>"$SCRATCH/stderr" &&
-  ! grep -q "scene's sampler" "$SCRATCH/stderr" && pass || fail "--time without --spp samples with sobol"
+  ! grep -q "scene's sampler" "$SCRATCH/stderr" && grep -q "; sampler jittered; " "$SCRATCH/stderr" &&
+  pass || fail "--time without --spp samples with sobol (and the summary says which)"
 timeout -s INT --preserve-status 2 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/interrupted.exr" --spp 1000000 -q 2>"$SCRATCH/stderr"
 status=$?
 if [[ $status -eq 0 ]] && grep -q "interrupted after" "$SCRATCH/stderr" && [[ -s "$SCRATCH/interrupted.exr" ]]; then
