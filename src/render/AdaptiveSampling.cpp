@@ -607,7 +607,6 @@ void AdaptiveRounds::finishRound(const std::vector<gpu::GpuTileNoise>& measured,
   }
   const bool firstRound = pairRound_;
   pairRound_ = false;
-  edgeRound_.reset();
   NoiseMeasurement noise = plan_.measureNoise(measured);
   estimate_ = noise.rmse;
   planRound(noise, firstRound ? image : nullptr);
@@ -626,6 +625,7 @@ void AdaptiveRounds::planRound(const NoiseMeasurement& noise, const ImageReader*
   // A paired pixel's extra first-pass sample stays on top of its tile's count.
   next.maxSamples = std::max(goal_.maxSamples, 2u) - 1;
   next.minimumSpend = kMinTargetStep * double(plan_.pixelSamples());
+  // The round just rendered (an edge round too) is in the plan: a new one.
   round_.assign(round_.size(), 0);
   edgeRound_.reset();
   if (!reachedTarget() && image) {

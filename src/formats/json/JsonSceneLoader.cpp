@@ -300,9 +300,7 @@ void readOutputScale(JsonObject& top, Camera& camera) {
   const float exposure = scale->positiveFloat() / 255.0f;
   if (exposure == 1.0f) return;
   camera.exposure *= exposure;
-  char number[32];
-  std::snprintf(number, sizeof number, "%.3g", exposure);
-  scale->warn(std::string("read as an exposure of ") + number +
+  scale->warn("read as an exposure of " + formatNumber(exposure) +
               " (scale / 255: the 0-255 output is the linear value times scale)");
 }
 
