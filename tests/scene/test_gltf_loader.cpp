@@ -763,6 +763,9 @@ TEST_SUITE("scene gltf") {
     const rt::Material& material = scene.materials[scene.shapes[0].material];
     CHECK(material.diffuseTexture == 0);
     CHECK(material.texture.filename() == "tex.png");
+    // The base colour factor (white by default) tints the texture.
+    CHECK(material.textureTintedByColor);
+    CHECK(material.diffuseColor == glm::vec3(1.0f));
     CHECK(scene.materials[scene.shapes[1].material].diffuseTexture == 0);
     CHECK(meshOf(scene, 0).uvs == std::vector<glm::vec2>{{0.5f, 0}, {2.5f, 0}, {0.5f, 2}});
     // Rotation by 90 degrees: u' = v, v' = -u.
@@ -1241,6 +1244,17 @@ TEST_SUITE("scene gltf samples" * rt::test::needsShared()) {
     CHECK(textured.textures[0].image.width == 256);
     CHECK(textured.materials.at(0).diffuseTexture == 0);
     CHECK(textured.meshes.at(0).uvs.size() == 24);
+    // TextureCoordinateTest colours one texture with four base colour factors.
+    rt::Scene tinted =
+        rt::loadGltfScene(sample("TextureCoordinateTest/glTF/TextureCoordinateTest.gltf"));
+    int tintedTextures = 0;
+    for (const rt::Material& m : tinted.materials) {
+      if (m.diffuseTexture < 0) continue;
+      ++tintedTextures;
+      CHECK(m.textureTintedByColor);
+      CHECK(m.diffuseColor != glm::vec3(1.0f));
+    }
+    CHECK(tintedTextures == 4);
     rt::Scene glb = rt::loadGltfScene(sample("BoxTextured/glTF-Binary/BoxTextured.glb"));
     CHECK(glb.textures.at(0).image.rgba == textured.textures[0].image.rgba);
     rt::Scene duck = rt::loadGltfScene(sample("Duck/glTF/Duck.gltf"));

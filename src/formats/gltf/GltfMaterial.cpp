@@ -198,6 +198,7 @@ uint32_t MaterialTable::material(int index, const std::string& where) {
       converted.diffuseTexture = texture(info, infoWhere);
       if (converted.diffuseTexture >= 0) {
         converted.texture = scene_.textures[size_t(converted.diffuseTexture)].source;
+        converted.textureTintedByColor = true;  // glTF: base colour = factor * texture
       }
     }
   }
