@@ -168,8 +168,7 @@ int runCheckCommand(int argc, char** argv) {
       "where each value came from, defaults taken, warnings, the kernel features it needs) "
       "without rendering.",
       "raytracer check"};
-  app.add_option("scene", cli.scenePath, "Scene file (.json, a .gltf/.glb or .obj model)")
-      ->required();
+  app.add_option("scene", cli.scenePath, rt::cli::kSceneFileHelp)->required();
   rt::cli::addConventionsOption(app, cli.conventions);
   rt::cli::addStrictOption(app, cli.strict);
   if (std::optional<int> status = rt::cli::parse(app, argc, argv)) return *status;

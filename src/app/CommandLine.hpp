@@ -19,6 +19,9 @@ namespace rt::cli {
 
 constexpr uint32_t kMaxSamples = kMaxSamplesPerPixel;
 
+// The help of every command's scene argument: the files formats/SceneFile reads.
+constexpr const char* kSceneFileHelp = "Scene file (.json, or a .gltf/.glb, .obj or .ply model)";
+
 // Parses argv into `app`. Returns an exit status when the command should end
 // now (--help, --version: 0; a usage error, reported in one line: 2).
 std::optional<int> parse(CLI::App& app, int argc, char** argv);

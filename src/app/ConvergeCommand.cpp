@@ -205,8 +205,7 @@ int run(const CommandLine& cli) {
 }
 
 void addOptions(CLI::App& app, CommandLine& cli) {
-  app.add_option("scene", cli.scenePath, "Scene file (.json, a .gltf/.glb or .obj model)")
-      ->required();
+  app.add_option("scene", cli.scenePath, rt::cli::kSceneFileHelp)->required();
   auto* reference =
       app.add_option("--reference", cli.referencePath,
                      "Reference image (.exr as written by `raytracer SCENE REF.exr`)");

@@ -354,9 +354,9 @@ int run(const CommandLine& cli) {
 
 int runRenderCommand(int argc, char** argv) {
   CommandLine cli;
-  CLI::App app{"GPU compute ray tracer (Vulkan). Renders a JSON scene to an image.", "raytracer"};
+  CLI::App app{"GPU compute ray tracer (Vulkan). Renders a scene to an image.", "raytracer"};
   app.set_version_flag("--version", std::string("raytracer ") + RT_VERSION);
-  app.add_option("scene", cli.scenePath, "Scene file (.json, a .gltf/.glb or .obj model)");
+  app.add_option("scene", cli.scenePath, rt::cli::kSceneFileHelp);
   app.add_option("output", cli.outputPath, "Output image: .png, .ppm, .exr or .hdr");
   app.add_option("--spp", cli.samples, "Samples per pixel (default: the scene's, else 16)")
       ->check(CLI::Range(1u, kMaxSamples));

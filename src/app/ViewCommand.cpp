@@ -65,8 +65,7 @@ int runViewCommand(int argc, char** argv) {
       "Interactive viewer: progressive rendering in a window, hot reload of shaders "
       "and the scene file.",
       "raytracer view"};
-  app.add_option("scene", cli.scenePath, "Scene file (.json, a .gltf/.glb or .obj model)")
-      ->required();
+  app.add_option("scene", cli.scenePath, rt::cli::kSceneFileHelp)->required();
   app.add_option("--size", cli.size,
                  "Initial window size WIDTHxHEIGHT (default: the scene's); "
                  "the render always has the window's size");

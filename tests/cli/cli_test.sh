@@ -380,6 +380,17 @@ else
   fail "OBJ render: $(cat "$SCRATCH/stderr")"
 fi
 
+# A PLY file on its own renders, framed like an OBJ file; a point cloud is one line.
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' >"$SCRATCH/tri.ply"
+if "$RAYTRACER" "$SCRATCH/tri.ply" "$SCRATCH/tri.ppm" --size 32x24 --spp 1 -q 2>"$SCRATCH/stderr" &&
+  [[ -s "$SCRATCH/tri.ppm" ]] && "$RAYTRACER" check "$SCRATCH/tri.ply" | grep -q 'read as PLY'; then
+  pass
+else
+  fail "PLY render: $(cat "$SCRATCH/stderr")"
+fi
+printf 'ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n' >"$SCRATCH/cloud.ply"
+expect_error "PLY: point cloud" 'cloud\.ply: byte [0-9]+: no faces' "$SCRATCH/cloud.ply" "$SCRATCH/out.png"
+
 if [[ -d "$SHARED/scene-format/official" ]]; then
   while IFS= read -r scene; do
     name=$(basename "$scene" .json)

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/SceneFile.hpp"
 #include "formats/ply/PlyLoader.hpp"
 #include "support/TestSupport.hpp"
 #include "util/Error.hpp"
@@ -397,6 +398,30 @@ TEST_SUITE("scene ply: shared files" * rt::test::needsShared()) {
                   flipped.faces[i] == glm::uvec3(face.y, face.x, face.z);
     }
     CHECK(reversed == bunny.faces.size());
+  }
+
+  TEST_CASE("a PLY file on its own is a scene: the mesh in grey, framed like an OBJ file") {
+    const fs::path file = plyAssets() / "stanford-bunny/bunny/reconstruction/bun_zipper.ply";
+    const rt::Scene scene = rt::loadSceneFile(file);
+    CHECK(scene.fileKind == "PLY");
+    CHECK(scene.conventions == rt::Conventions::Textbook);
+    REQUIRE(scene.meshes.size() == 1);
+    CHECK(scene.meshes[0].faces.size() == 69451);
+    REQUIRE(scene.shapes.size() == 1);
+    CHECK(std::get<rt::MeshInstance>(scene.shapes[0].geometry).mesh == 0);
+    CHECK(scene.shapes[0].label == "bun_zipper.ply");
+    REQUIRE(scene.materials.size() == 1);
+    CHECK(scene.materials[0].diffuseColor == glm::vec3(0.8f));
+    CHECK(scene.pointLights.size() == 1);
+    CHECK(scene.camera.width == 800);
+    // The camera looks at the bunny: its centre is straight ahead.
+    const glm::dvec3 centre(-0.01684, 0.11013, -0.00154);  // the middle of its bounds
+    const glm::vec3 toCentre = glm::normalize(glm::vec3(centre - scene.camera.position));
+    CHECK(glm::dot(toCentre, scene.camera.forward) > 0.999f);
+    // A point cloud on its own is refused with the reader's one line.
+    CHECK_THROWS_WITH_AS(
+        rt::loadSceneFile(plyAssets() / "edge-cases/assimp-testmodels-deb/PLY/points.ply"),
+        doctest::Contains("points.ply: byte 203: no faces"), rt::Error);
   }
 
   TEST_CASE("binary little endian, big endian and ASCII versions agree") {

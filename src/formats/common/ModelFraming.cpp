@@ -38,6 +38,17 @@ PointLight framingLight(const Camera& camera, const WorldBounds& bounds) {
   return {position, glm::vec3(1.0f), glm::vec3(1.0f)};
 }
 
+void frameModelScene(Scene& scene, const char* what) {
+  scene.backgroundColor = glm::vec3(kModelBackgroundGrey);
+  WorldBounds bounds;
+  for (const TriangleMesh& mesh : scene.meshes) {
+    for (const glm::vec3& p : mesh.positions) bounds.grow(glm::dvec3(p));
+  }
+  scene.camera = framingCamera(bounds);
+  scene.pointLights.push_back(framingLight(scene.camera, bounds));
+  setConventions(scene, Conventions::Textbook, what);
+}
+
 void appendScenePart(Scene& scene, Scene&& part) {
   auto materialBase = static_cast<uint32_t>(scene.materials.size());
   auto meshBase = static_cast<uint32_t>(scene.meshes.size());

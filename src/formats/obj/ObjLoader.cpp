@@ -355,14 +355,7 @@ Scene loadObjScene(const fs::path& file) {
   Scene scene;
   appendScenePart(scene, loadObjPart(file, WorldTransform(1.0)));
   scene.sourcePath = file;
-  scene.backgroundColor = glm::vec3(kModelBackgroundGrey);
-  WorldBounds bounds;
-  for (const TriangleMesh& mesh : scene.meshes) {
-    for (const glm::vec3& p : mesh.positions) bounds.grow(glm::dvec3(p));
-  }
-  scene.camera = framingCamera(bounds);
-  scene.pointLights.push_back(framingLight(scene.camera, bounds));
-  setConventions(scene, Conventions::Textbook, "an OBJ file");
+  frameModelScene(scene, "an OBJ file");
   return scene;
 }
 

@@ -21,7 +21,9 @@
 #include "formats/common/FileBytes.hpp"
 #include "formats/common/MeshNormals.hpp"
 #include "formats/common/MessageText.hpp"
+#include "formats/common/ModelFraming.hpp"
 #include "util/Error.hpp"
+#include "util/Text.hpp"
 
 namespace rt {
 
@@ -843,5 +845,20 @@ TriangleMesh parsePly(std::string_view bytes, std::string_view name) {
 TriangleMesh loadPly(const fs::path& file) {
   return withPrintableErrors([&] { return parseMesh(readFileOrThrow(file), file.string()); });
 }
+
+Scene loadPlyScene(const fs::path& file) {
+  Scene scene;
+  scene.sourcePath = file;
+  scene.meshes.push_back(loadPly(file));
+  scene.materials.push_back(Material{});
+  Shape shape;
+  shape.geometry = MeshInstance{0, WorldTransform(1.0)};
+  shape.label = file.filename().string();
+  scene.shapes.push_back(std::move(shape));
+  frameModelScene(scene, "a PLY file");
+  return scene;
+}
+
+bool isPlyFile(const fs::path& file) { return hasExtension(file, {".ply"}); }
 
 }  // namespace rt

@@ -29,4 +29,11 @@ TriangleMesh loadPly(const std::filesystem::path& file);
 // Same from bytes in memory; `name` only starts the error messages.
 TriangleMesh parsePly(std::string_view bytes, std::string_view name);
 
+// A PLY file on its own (`raytracer bunny.ply out.png`): its mesh in the
+// default grey material, framed like an OBJ or glTF file without a camera
+// (formats/common/ModelFraming.hpp).
+Scene loadPlyScene(const std::filesystem::path& file);
+
+bool isPlyFile(const std::filesystem::path& file);
+
 }  // namespace rt
