@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <string>
+#include <string_view>
 
+#include "formats/common/FileBytes.hpp"
 #include "formats/gltf/GltfLoader.hpp"
 #include "formats/json/JsonSceneLoader.hpp"
 #include "formats/obj/ObjLoader.hpp"
@@ -15,11 +17,33 @@ namespace rt {
 
 bool isGltfFile(const std::filesystem::path& file) { return hasExtension(file, {".gltf", ".glb"}); }
 
+namespace {
+
+// Scene files of any other extension are read as JSON (students name them
+// .txt or .scene), but only when they start as JSON does (after a UTF-8 byte
+// order mark and blanks: an object or a comment): an STL or FBX model would
+// otherwise fail with a JSON syntax error at byte 1 that names no reason.
+Scene loadOtherSceneFile(const std::filesystem::path& file) {
+  const std::string text = readFileOrThrow(file);
+  if (!hasExtension(file, {".json"})) {
+    std::string_view rest(text);
+    if (rest.starts_with("\xEF\xBB\xBF")) rest.remove_prefix(3);
+    const size_t first = rest.find_first_not_of(" \t\r\n");
+    if (first != std::string_view::npos && rest[first] != '{' && rest[first] != '/') {
+      throw Error(file.string() +
+                  ": not a scene file: scenes are JSON (.json), glTF (.gltf, .glb), OBJ or PLY");
+    }
+  }
+  return parseJsonScene(text, file);
+}
+
+}  // namespace
+
 Scene loadSceneFile(const std::filesystem::path& file, const SceneLoadOptions& options) {
   Scene scene = isGltfFile(file)  ? loadGltfScene(file)
                 : isObjFile(file) ? loadObjScene(file)
                 : isPlyFile(file) ? loadPlyScene(file)
-                                  : loadJsonScene(file);
+                                  : loadOtherSceneFile(file);
   if (scene.fileKind.empty()) {
     scene.fileKind = isGltfFile(file)  ? "glTF"
                      : isObjFile(file) ? "OBJ"

@@ -389,6 +389,10 @@ else
   fail "PLY render: $(cat "$SCRATCH/stderr")"
 fi
 printf 'ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n' >"$SCRATCH/cloud.ply"
+printf 'solid cube\n  facet normal 0 0 1\n' >"$SCRATCH/cube.stl"
+expect_error "not a scene file: STL" 'cube\.stl: not a scene file: scenes are JSON' "$SCRATCH/cube.stl" "$SCRATCH/out.png"
+printf ' // a student scene named .txt\n{"camera": {}, "scene": {}}' >"$SCRATCH/named.txt"
+expect_error "a .txt scene is read as JSON" 'named\.txt: scene\.shapes: missing' "$SCRATCH/named.txt" "$SCRATCH/out.png"
 expect_error "PLY: point cloud" 'cloud\.ply: byte [0-9]+: no faces' "$SCRATCH/cloud.ply" "$SCRATCH/out.png"
 
 if [[ -d "$SHARED/scene-format/official" ]]; then
