@@ -76,6 +76,7 @@ make_image() {  # NAME
     student-dof) render student-dof "$freddie/dof_test.json" ;;
     study-arealight) render study-arealight "$root/scenes/study-arealight.json" ;;
     obj-crate) render obj-crate "$root/assets/models/crate.obj" --size 480x360 ;;
+    obj-cornell-box) render obj-cornell-box "$root/assets/models/cornell-box.obj" --size 400x300 ;;
     viewer)
       xvfb-run -a -s "-screen 0 1024x768x24" "$raytracer" view \
         "$official/cg-path-of-light-2021-2023/examples/example.json" --size 960x720 --frames 60 \
@@ -89,7 +90,8 @@ make_image() {  # NAME
 
 all=(default path-of-light-example rendering-mirror-image rendering-binary rendering-phong-scene
   bunny gltf-duck gltf-helmet cornell-pathtraced cornell-clamped student-julie-o-demo
-  student-julie-o-pitched student-softshadow student-dof study-arealight obj-crate viewer)
+  student-julie-o-pitched student-softshadow student-dof study-arealight obj-crate obj-cornell-box
+  viewer)
 for name in "${@:-${all[@]}}"; do
   echo "== $name"
   make_image "$name"

@@ -1,7 +1,9 @@
 #include "scene/Scene.hpp"
 
 #include <glm/geometric.hpp>
+#include <type_traits>
 #include <utility>
+#include <variant>
 
 namespace rt {
 
@@ -31,6 +33,51 @@ uint32_t addEmitterShape(Scene& scene, Geometry geometry, std::string label) {
   shape.label = std::move(label);
   scene.shapes.push_back(std::move(shape));
   return static_cast<uint32_t>(scene.shapes.size() - 1);
+}
+
+float surfaceArea(const Geometry& geometry, const std::vector<TriangleMesh>& meshes) {
+  constexpr float kPi = 3.14159265f;
+  const auto triangleArea = [](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    return static_cast<float>(0.5 * glm::length(glm::cross(b - a, c - a)));
+  };
+  return std::visit(
+      [&](const auto& g) -> float {
+        using T = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<T, Triangle>) {
+          return triangleArea(g.v0, g.v1, g.v2);
+        } else if constexpr (std::is_same_v<T, Quad>) {
+          return triangleArea(g.v0, g.v1, g.v2) + triangleArea(g.v0, g.v2, g.v3);
+        } else if constexpr (std::is_same_v<T, Sphere>) {
+          return 4.0f * kPi * g.radius * g.radius;
+        } else if constexpr (std::is_same_v<T, Cylinder>) {  // side and both caps
+          return 2.0f * kPi * g.radius * (2.0f * g.halfHeight) + 2.0f * kPi * g.radius * g.radius;
+        } else {
+          const TriangleMesh& mesh = meshes.at(g.mesh);
+          float area = 0.0f;
+          for (const glm::uvec3& f : mesh.faces) {
+            const auto placed = [&](uint32_t i) {
+              return glm::dvec3(g.objectToWorld * glm::dvec4(glm::dvec3(mesh.positions[i]), 1.0));
+            };
+            area += triangleArea(placed(f.x), placed(f.y), placed(f.z));
+          }
+          return area;
+        }
+      },
+      geometry);
+}
+
+// A Lambertian light of intensity I over area A has radiance
+// 2 pi I / (4 pi A) = I / (2 A) (README "Area lights").
+bool addRadianceEmitter(Scene& scene, uint32_t shape, const glm::vec3& radiance) {
+  const float area = surfaceArea(scene.shapes.at(shape).geometry, scene.meshes);
+  if (!(area > 0.0f)) return false;
+  AreaLight light;
+  light.shape = shape;
+  light.diffuseIntensity = light.specularIntensity = 2.0f * area * radiance;
+  light.profile = EmissionProfile::Lambertian;
+  light.samples = 4;
+  scene.areaLights.push_back(light);
+  return true;
 }
 
 void setAreaLightSamples(Scene& scene, uint32_t samples) {

@@ -264,6 +264,15 @@ void setConventions(Scene& scene, Conventions conventions, std::string reason);
 // the shape's index, for AreaLight::shape.
 uint32_t addEmitterShape(Scene& scene, Geometry geometry, std::string label);
 
+// The area of any shape; meshes are looked up in `meshes`.
+float surfaceArea(const Geometry& geometry, const std::vector<TriangleMesh>& meshes);
+
+// Makes shape `shape` an area light whose surface glows with `radiance` (a
+// Lambertian light, four shadow rays a hit): file formats that give an
+// emitting material's radiance (JSON emitters, OBJ `Ke`). False, and no
+// light, when the shape has no area to emit from.
+bool addRadianceEmitter(Scene& scene, uint32_t shape, const glm::vec3& radiance);
+
 // Gives every area light `samples` shadow rays a hit (`--light-samples`, the
 // viewer's control): fewer noisy shadows a sample for more time a sample.
 void setAreaLightSamples(Scene& scene, uint32_t samples);

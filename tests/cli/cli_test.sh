@@ -379,6 +379,14 @@ if "$RAYTRACER" "$CRATE" "$SCRATCH/crate.png" --size 64x48 --spp 1 -q 2>"$SCRATC
 else
   fail "OBJ render: $(cat "$SCRATCH/stderr")"
 fi
+CORNELL="$(dirname "${BASH_SOURCE[0]}")/../../assets/models/cornell-box.obj"
+if "$RAYTRACER" "$CORNELL" "$SCRATCH/cornell.png" --size 64x48 --spp 1 2>"$SCRATCH/stderr" &&
+  grep -q 'conventions: physical (an OBJ file whose materials glow (Ke))' "$SCRATCH/stderr" &&
+  "$RAYTRACER" check "$CORNELL" | grep -q 'lights: 0 point, 1 area'; then
+  pass
+else
+  fail "OBJ with a Ke lamp: $(cat "$SCRATCH/stderr")"
+fi
 
 # A PLY file on its own renders, framed like an OBJ file; a point cloud is one line.
 printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' >"$SCRATCH/tri.ply"

@@ -95,6 +95,77 @@ TEST_SUITE("obj loader") {
     CHECK(scene.materials.at(scene.shapes.at(0).material).transmission == doctest::Approx(0.5f));
   }
 
+  TEST_CASE("illum 3 and 5 reflect (max Ks), illum 6 and 7 refract (Tf); others as read") {
+    const std::string obj =
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\nusemtl b\nf 1 2 3\n"
+        "usemtl c\nf 1 2 3\nusemtl d\nf 1 2 3\n";
+    const rt::Scene scene = parseObj(obj,
+                                     "newmtl a\nKs 0.9 0.5 0.2\nillum 5\n"
+                                     "newmtl b\nKs 0.9 0.5 0.2\nillum 2\nTf 1 1 1\n"
+                                     "newmtl c\nTf 1 0.5 0\nNi 1.5\nillum 7\n"
+                                     "newmtl d\nKs 0.4 0.4 0.4\nillum 3\n");
+    CHECK(materialOf(scene, "'a'").reflectivity == doctest::Approx(0.9f));
+    CHECK(materialOf(scene, "'a'").transmission == 0.0f);
+    CHECK(materialOf(scene, "'b'").reflectivity == 0.0f);  // Tf alone, illum 2: opaque
+    CHECK(materialOf(scene, "'b'").transmission == 0.0f);
+    CHECK(materialOf(scene, "'c'").transmission == doctest::Approx(0.5f));
+    CHECK(materialOf(scene, "'c'").ior == doctest::Approx(1.5f));
+    CHECK(materialOf(scene, "'d'").reflectivity == doctest::Approx(0.4f));
+  }
+
+  TEST_CASE("Ke makes a material's faces an area light of that radiance") {
+    // A unit square (area 1) glowing (2, 1, 0.5), a triangle that does not.
+    const std::string obj =
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl plain\nf 1 2 3\n"
+        "usemtl lamp\nf 1 2 3 4\nusemtl flat\nf 1 2 2\n";
+    const rt::Scene scene =
+        parseObj(obj,
+                 "newmtl plain\nKd 1 1 1\nnewmtl lamp\nKd 1 1 1\nKe 2 1 0.5\nmap_Ke glow.png\n"
+                 "newmtl flat\nKe 1 1 1\n");
+    REQUIRE(scene.areaLights.size() == 1);
+    const rt::AreaLight& light = scene.areaLights[0];
+    CHECK(scene.shapes.at(light.shape).label.find("'lamp'") != std::string::npos);
+    // Radiance L over area A: a Lambertian light of intensity 2 A L.
+    CHECK(light.diffuseIntensity == glm::vec3(4.0f, 2.0f, 1.0f));
+    CHECK(light.specularIntensity == light.diffuseIntensity);
+    CHECK(light.profile == rt::EmissionProfile::Lambertian);
+    REQUIRE(scene.warnings.size() == 2);
+    CHECK(scene.warnings[0] ==
+          "mem.obj: material 'lamp': emission texture map_Ke ignored (Ke "
+          "alone decides the glow)");
+    CHECK(scene.warnings[1].find("'flat': Ke: the faces have no area to emit from") !=
+          std::string::npos);
+  }
+
+  TEST_CASE("a glowing OBJ on its own: its own lights only, physical conventions") {
+    TempDir dir;
+    const fs::path file =
+        dir.write("lamp.obj",
+                  "mtllib lamp.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                  "usemtl lamp\nf 1 2 3 4\nv 0 0 1\nv 0 1 1\nusemtl wall\nf 1 6 5\n");
+    dir.write("lamp.mtl", "newmtl lamp\nKe 1 1 1\nnewmtl wall\nKd 0.5 0.5 0.5\n");
+    const rt::Scene scene = rt::loadSceneFile(file);
+    CHECK(scene.areaLights.size() == 1);
+    CHECK(scene.pointLights.empty());  // no framing light beside the model's own
+    CHECK(scene.conventions == rt::Conventions::Physical);
+    CHECK(scene.conventionsReason == "an OBJ file whose materials glow (Ke)");
+    // In a JSON scene the lamp stays a light, its shape index shifted past
+    // the shapes before it; a JSON material on the model replaces its glow.
+    const std::string camera =
+        R"("camera": {"type": "pinhole", "width": 8, "height": 8, "fov": 45,
+                      "position": [0, 0, 5], "lookat": [0, 0, -1], "up": [0, 1, 0]})";
+    const std::string sphere = R"({"type": "sphere", "center": [0, 0, -3], "radius": 1})";
+    rt::Scene placed = rt::loadJsonScene(
+        dir.write("placed.json", "{" + camera + R"(, "scene": {"shapes": [)" + sphere +
+                                     R"(, {"type": "mesh", "file": "lamp.obj"}]}})"));
+    REQUIRE(placed.areaLights.size() == 1);
+    CHECK(placed.shapes.at(placed.areaLights[0].shape).label.find("'lamp'") != std::string::npos);
+    rt::Scene painted = rt::loadJsonScene(dir.write(
+        "painted.json", "{" + camera + R"(, "scene": {"shapes": [)" + sphere +
+                            R"(, {"type": "mesh", "file": "lamp.obj", "material": {"kd": 1}}]}})"));
+    CHECK(painted.areaLights.empty());
+  }
+
   TEST_CASE("faces without a material, texture coordinates flipped to rows going down") {
     const rt::Scene scene = parseObj(
         "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"

@@ -45,7 +45,9 @@ void frameModelScene(Scene& scene, const char* what) {
     for (const glm::vec3& p : mesh.positions) bounds.grow(glm::dvec3(p));
   }
   scene.camera = framingCamera(bounds);
-  scene.pointLights.push_back(framingLight(scene.camera, bounds));
+  if (scene.pointLights.empty() && scene.areaLights.empty()) {
+    scene.pointLights.push_back(framingLight(scene.camera, bounds));
+  }
   setConventions(scene, Conventions::Textbook, what);
 }
 
@@ -53,6 +55,7 @@ void appendScenePart(Scene& scene, Scene&& part) {
   auto materialBase = static_cast<uint32_t>(scene.materials.size());
   auto meshBase = static_cast<uint32_t>(scene.meshes.size());
   auto textureBase = static_cast<int32_t>(scene.textures.size());
+  auto shapeBase = static_cast<uint32_t>(scene.shapes.size());
   for (Material& material : part.materials) {
     if (material.diffuseTexture >= 0) material.diffuseTexture += textureBase;
     scene.materials.push_back(std::move(material));
@@ -66,6 +69,10 @@ void appendScenePart(Scene& scene, Scene&& part) {
   std::move(part.textures.begin(), part.textures.end(), std::back_inserter(scene.textures));
   std::move(part.pointLights.begin(), part.pointLights.end(),
             std::back_inserter(scene.pointLights));
+  for (AreaLight& light : part.areaLights) {
+    light.shape += shapeBase;
+    scene.areaLights.push_back(light);
+  }
   std::move(part.warnings.begin(), part.warnings.end(), std::back_inserter(scene.warnings));
 }
 

@@ -24,11 +24,13 @@ constexpr float kModelBackgroundGrey = 0.5f;
 
 // Makes `scene`, which holds only a model's meshes, shapes and materials,
 // a scene of its own: the grey background, the framing camera and light
-// around its meshes' vertices, textbook conventions (`what` names the file
+// around its meshes' vertices (the light only if the model brings none),
+// textbook conventions (`what` names the file
 // kind for `raytracer check`, e.g. "an OBJ file").
 void frameModelScene(Scene& scene, const char* what);
 
-// Appends `part`'s materials, textures, meshes, shapes, lights and warnings
+// Appends `part`'s materials, textures, meshes, shapes, lights (point and
+// area) and warnings
 // to `scene`, shifting the indices that point into its lists.
 void appendScenePart(Scene& scene, Scene&& part);
 

@@ -864,38 +864,6 @@ Geometry readAreaLightGeometry(JsonObject& light) {
                            "and v, position with radius or size, or the id of a shape");
 }
 
-// Of any shape; meshes are looked up in `meshes`.
-float surfaceArea(const Geometry& geometry, const std::vector<TriangleMesh>& meshes) {
-  constexpr float kPi = 3.14159265f;
-  const auto triangleArea = [](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-    return static_cast<float>(0.5 * glm::length(glm::cross(b - a, c - a)));
-  };
-  return std::visit(
-      [&](const auto& g) -> float {
-        using T = std::decay_t<decltype(g)>;
-        if constexpr (std::is_same_v<T, Triangle>) {
-          return triangleArea(g.v0, g.v1, g.v2);
-        } else if constexpr (std::is_same_v<T, Quad>) {
-          return triangleArea(g.v0, g.v1, g.v2) + triangleArea(g.v0, g.v2, g.v3);
-        } else if constexpr (std::is_same_v<T, Sphere>) {
-          return 4.0f * kPi * g.radius * g.radius;
-        } else if constexpr (std::is_same_v<T, Cylinder>) {  // side and both caps
-          return 2.0f * kPi * g.radius * (2.0f * g.halfHeight) + 2.0f * kPi * g.radius * g.radius;
-        } else {
-          const TriangleMesh& mesh = meshes.at(g.mesh);
-          float area = 0.0f;
-          for (const glm::uvec3& f : mesh.faces) {
-            const auto placed = [&](uint32_t i) {
-              return glm::dvec3(g.objectToWorld * glm::dvec4(glm::dvec3(mesh.positions[i]), 1.0));
-            };
-            area += triangleArea(placed(f.x), placed(f.y), placed(f.z));
-          }
-          return area;
-        }
-      },
-      geometry);
-}
-
 // A light source in the file, kept until the shapes are read (area lights
 // may name a shape by its id).
 struct PendingAreaLight {
@@ -1594,6 +1562,7 @@ void addModelShapes(const JsonNode& fileNode, const fs::path& file, JsonObject& 
                     ShapeContext& context, Scene& scene) {
   const WorldTransform placement = readPlacement(shape);
   const size_t firstShape = scene.shapes.size();
+  const size_t firstAreaLight = scene.areaLights.size();
   try {
     if (isObjFile(file)) {
       appendScenePart(scene, loadObjPart(file, placement));
@@ -1604,6 +1573,8 @@ void addModelShapes(const JsonNode& fileNode, const fs::path& file, JsonObject& 
     fileNode.fail(error.what());
   }
   if (shape.has("material")) {
+    // The JSON material replaces the file's, its glow (OBJ Ke) included.
+    scene.areaLights.resize(firstAreaLight);
     const uint32_t material = addShapeMaterial(shape, context, scene);
     for (size_t i = firstShape; i < scene.shapes.size(); ++i) scene.shapes[i].material = material;
   }
@@ -1752,21 +1723,13 @@ Geometry readGeometry(const JsonNode& typeNode, const std::string& type, JsonObj
 }
 
 // A shape that glows (nizqleo's path-traced scenes: "emittence": [r, g, b],
-// its radiance) becomes an area light of that surface: a Lambertian light
-// whose intensity gives the surface that radiance (a Lambertian light of
-// intensity I over area A has radiance 2 pi I / (4 pi A) = I / (2 A),
-// README "Area lights").
+// its radiance) becomes an area light of that surface (addRadianceEmitter).
 void addEmitter(const glm::vec3& radiance, const JsonNode& where, Scene& scene) {
   if (radiance == glm::vec3(0.0f)) return;
   const auto shape = static_cast<uint32_t>(scene.shapes.size() - 1);
-  const float area = surfaceArea(scene.shapes[shape].geometry, scene.meshes);
-  if (!(area > 0.0f)) where.fail("the shape has no area to emit from");
-  AreaLight light;
-  light.shape = shape;
-  light.diffuseIntensity = light.specularIntensity = 2.0f * area * radiance;
-  light.profile = EmissionProfile::Lambertian;
-  light.samples = 4;
-  scene.areaLights.push_back(light);
+  if (!addRadianceEmitter(scene, shape, radiance)) {
+    where.fail("the shape has no area to emit from");
+  }
 }
 
 void readShapeEmission(JsonObject& object, Scene& scene) {

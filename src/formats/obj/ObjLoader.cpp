@@ -101,6 +101,10 @@ glm::vec3 colour(const tinyobj::real_t* rgb) {
   return c;
 }
 
+// Ke beyond this is taken as this (far brighter than any lamp of a real
+// model), so that a light's intensity, radiance times area, stays finite.
+constexpr float kMaxEmission = 1e6f;
+
 float finiteOr(float value, float fallback) { return std::isfinite(value) ? value : fallback; }
 
 class ObjImporter {
@@ -164,12 +168,34 @@ class ObjImporter {
       const float opacity = std::clamp(finiteOr(source.dissolve, 1.0f), 0.0f, 1.0f);
       out.transmission = 1.0f - opacity;
       out.ior = std::clamp(finiteOr(source.ior, 1.0f), 1e-3f, 1e3f);
+      applyIlluminationModel(source, out);
       if (!source.diffuse_texname.empty()) addDiffuseTexture(source, out);
+      if (!source.emissive_texname.empty()) {
+        diagnostics_.warn("material '" + source.name + "'",
+                          "emission texture map_Ke ignored (Ke alone decides the glow)");
+      }
       materialNames_.push_back(source.name);
+      materialEmission_.push_back(glm::min(colour(source.emission), glm::vec3(kMaxEmission)));
       scene_.materials.push_back(std::move(out));
     }
     defaultMaterial_ = static_cast<uint32_t>(scene_.materials.size());
     scene_.materials.push_back(Material{});
+    materialEmission_.push_back(glm::vec3(0.0f));
+  }
+
+  // The MTL illumination models that trace rays: 3 and 5 reflect (a mirror
+  // of weight max(Ks)), 6 and 7 refract (the transmission filter Tf's mean,
+  // where d or Tr give no transparency of their own), as in McGuire's
+  // Cornell boxes. The other models are Blinn-Phong as read.
+  static void applyIlluminationModel(const tinyobj::material_t& source, Material& out) {
+    if (source.illum == 3 || source.illum == 5) {
+      const glm::vec3 ks = colour(source.specular);
+      out.reflectivity = std::min(1.0f, std::max({ks.x, ks.y, ks.z}));
+    }
+    if (source.illum == 6 || source.illum == 7) {
+      const glm::vec3 tf = colour(source.transmittance);
+      out.transmission = std::max(out.transmission, std::min(1.0f, (tf.x + tf.y + tf.z) / 3.0f));
+    }
   }
 
   void addDiffuseTexture(const tinyobj::material_t& source, Material& out) {
@@ -191,6 +217,17 @@ class ObjImporter {
     } catch (const Error& error) {
       diagnostics_.fail("material '" + source.name + "'",
                         std::string("cannot use texture: ") + error.what());
+    }
+  }
+
+  // Faces of a material with `Ke` glow: their mesh becomes an area light of
+  // that radiance (the last shape added).
+  void addEmitterOf(uint32_t material, const std::string& label) {
+    const glm::vec3 radiance = materialEmission_.at(material);
+    if (radiance == glm::vec3(0.0f)) return;
+    const auto shape = static_cast<uint32_t>(scene_.shapes.size() - 1);
+    if (!addRadianceEmitter(scene_, shape, radiance)) {
+      diagnostics_.warn(label, "Ke: the faces have no area to emit from; not a light");
     }
   }
 
@@ -297,6 +334,7 @@ class ObjImporter {
       shape.material = material;
       shape.label = file_.filename().string() + ": " + pending.label;
       scene_.shapes.push_back(std::move(shape));
+      addEmitterOf(material, pending.label);
     }
   }
 
@@ -306,7 +344,8 @@ class ObjImporter {
   Diagnostics diagnostics_;
   Scene scene_;
   uint32_t defaultMaterial_ = 0;
-  std::vector<std::string> materialNames_;  // of the file's materials, by index
+  std::vector<std::string> materialNames_;   // of the file's materials, by index
+  std::vector<glm::vec3> materialEmission_;  // Ke of every material, the default's last
   std::map<uint32_t, PendingMesh> pending_;
 };
 
@@ -356,6 +395,11 @@ Scene loadObjScene(const fs::path& file) {
   appendScenePart(scene, loadObjPart(file, WorldTransform(1.0)));
   scene.sourcePath = file;
   frameModelScene(scene, "an OBJ file");
+  if (!scene.areaLights.empty()) {
+    // Ke is a radiance: lit by it, surfaces need the physical falloff and
+    // units (the textbook's unit lights do not fall off).
+    setConventions(scene, Conventions::Physical, "an OBJ file whose materials glow (Ke)");
+  }
   return scene;
 }
 
