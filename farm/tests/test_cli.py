@@ -27,9 +27,9 @@ def outputs(folder):
         ),
         (
             "unknown format",
-            ["render", "{scene}", "{out}.jpg"],
+            ["render", "{scene}", "{out}.tga"],
             1,
-            r"^error: .*out\.jpg: unsupported output format \(use \.png, \.ppm, \.exr or \.hdr\)$",
+            r"^error: .*out\.tga: unsupported output format \(use \.png, \.jpg, \.ppm, \.exr or \.hdr\)$",
         ),
         (
             "missing folder",

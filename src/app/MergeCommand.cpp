@@ -48,7 +48,7 @@ int runMergeCommand(int argc, char** argv) {
     std::string output = paths.back();
     paths.pop_back();
     if (!rt::isSupportedImageExtension(output)) {
-      throw rt::Error(output + ": unsupported output format (use .exr, .hdr, .png or .ppm)");
+      throw rt::Error(rt::unsupportedOutputMessage(output));
     }
     rt::checkWritable(output);
     std::vector<rt::ImageF> parts;

@@ -138,7 +138,8 @@ void refuseSplitAdaptive(const CommandLine& cli, const rt::RenderOptions& option
 void checkMapOptions(const CommandLine& cli, const rt::RenderOptions& options) {
   for (const std::string& path : {cli.sampleMapPath, cli.errorMapPath}) {
     if (!path.empty() && !rt::is8BitImagePath(path)) {
-      throw rt::Error(fmt::format("{}: a sample or error map is written as .png or .ppm", path));
+      throw rt::Error(
+          fmt::format("{}: a sample or error map is written as .png, .jpg or .ppm", path));
     }
   }
   if (!cli.errorMapPath.empty() && !options.estimateError && !options.adaptive) {
@@ -278,8 +279,7 @@ void writeOutputs(const CommandLine& cli, const rt::ImageF& image, const rt::Ren
 
 int run(const CommandLine& cli) {
   if (!rt::isSupportedImageExtension(cli.outputPath)) {
-    throw rt::Error(fmt::format("{}: unsupported output format (use .png, .ppm, .exr or .hdr)",
-                                cli.outputPath));
+    throw rt::Error(rt::unsupportedOutputMessage(cli.outputPath));
   }
   for (const std::string& path : {cli.outputPath, cli.sampleMapPath, cli.errorMapPath})
     if (!path.empty()) rt::checkWritable(path);
@@ -357,7 +357,7 @@ int runRenderCommand(int argc, char** argv) {
   CLI::App app{"GPU compute ray tracer (Vulkan). Renders a scene to an image.", "raytracer"};
   app.set_version_flag("--version", std::string("raytracer ") + RT_VERSION);
   app.add_option("scene", cli.scenePath, rt::cli::kSceneFileHelp);
-  app.add_option("output", cli.outputPath, "Output image: .png, .ppm, .exr or .hdr");
+  app.add_option("output", cli.outputPath, std::string("Output image: ") + rt::kOutputFormats);
   app.add_option("--spp", cli.samples, "Samples per pixel (default: the scene's, else 16)")
       ->check(CLI::Range(1u, kMaxSamples));
   app.add_option("--size", cli.size, "Image size WIDTHxHEIGHT (overrides the scene)");

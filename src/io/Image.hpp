@@ -69,20 +69,27 @@ struct ExrLayer {
   std::vector<float> values;
 };
 
-// Writes by extension: .ppm (binary P6) and .png are tone mapped to 8 bits;
+// The output formats, for help texts and messages.
+constexpr const char* kOutputFormats = ".png, .jpg, .ppm, .exr or .hdr";
+
+// Writes by extension: .ppm (binary P6), .png and .jpg (quality 95) are tone
+// mapped to 8 bits;
 // .exr (float32 RGBA, then `layers`) and .hdr (RGBE) keep linear radiance,
 // exposure applied. The file appears atomically. Throws rt::Error naming
 // the file.
 void writeImage(const std::filesystem::path& path, const ImageF& image, const ToneMapping& mapping,
                 const std::vector<ExrLayer>& layers = {});
 
-// Writes an 8-bit image as .png or .ppm (by extension), atomically.
+// Writes an 8-bit image as .png, .jpg or .ppm (by extension), atomically.
 void writeImage8(const std::filesystem::path& path, const Image8& image);
 
 // True for the extensions writeImage understands.
 bool isSupportedImageExtension(const std::filesystem::path& path);
 bool isExrPath(const std::filesystem::path& path);
-bool is8BitImagePath(const std::filesystem::path& path);  // .png or .ppm
+bool is8BitImagePath(const std::filesystem::path& path);  // .png, .jpg/.jpeg or .ppm
+
+// "<path>: unsupported output format (use .png, .jpg, ...)".
+std::string unsupportedOutputMessage(const std::filesystem::path& path);
 
 // Reads PNG/JPEG/PPM/... (8-bit RGB) through stb_image; throws rt::Error.
 Image8 readImage8(const std::filesystem::path& path);

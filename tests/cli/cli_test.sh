@@ -32,7 +32,7 @@ done
 "$RAYTRACER" >/dev/null 2>&1; [[ $? -ne 0 ]] && pass || fail "no arguments must fail"
 
 # --- good renders, every output format -----------------------------------
-for ext in png ppm exr hdr; do
+for ext in png jpg ppm exr hdr; do
   if "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/good.$ext" --spp 2 --offscreen -q && [[ -s "$SCRATCH/good.$ext" ]]; then
     pass
   else
@@ -41,6 +41,7 @@ for ext in png ppm exr hdr; do
 done
 head -c 2 "$SCRATCH/good.ppm" | grep -q P6 && pass || fail "PPM magic"
 head -c 8 "$SCRATCH/good.png" | grep -q PNG && pass || fail "PNG magic"
+[[ $(head -c 3 "$SCRATCH/good.jpg" | od -An -tx1 | tr -d ' ') == ffd8ff ]] && pass || fail "JPEG magic"
 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/sized.ppm" --size 20x10 -q && head -c 11 "$SCRATCH/sized.ppm" | grep -q "20 10" && pass || fail "--size"
 ls "$SCRATCH" | grep -q '\.tmp-' && fail "temporary files left behind" || pass
 
@@ -149,7 +150,7 @@ expect_error "adaptive --region" '--region 0,0,8,8 cannot be combined with adapt
   "$SCRATCH/good.json" "$SCRATCH/out.png" --adaptive --region 0,0,8,8
 expect_error "--error-map without estimate" '--error-map .*no error estimate' \
   "$SCRATCH/good.json" "$SCRATCH/out.png" --error-map "$SCRATCH/out-errors.png"
-expect_error "--sample-map extension" 'out-map.exr: a sample or error map is written as .png or .ppm' \
+expect_error "--sample-map extension" 'out-map.exr: a sample or error map is written as .png, .jpg or .ppm' \
   "$SCRATCH/good.json" "$SCRATCH/out.png" --sample-map "$SCRATCH/out-map.exr"
 write adaptive.json "${GOOD/\"nbounces\":2,/\"nbounces\":2,\"adaptive\":true,}"
 expect_error "scene key adaptive with --samples" 'cannot be combined with adaptive sampling' \

@@ -62,6 +62,26 @@ TEST_SUITE("image-io") {
     CHECK(back.rgb == toneMap(image, {}).rgb);
   }
 
+  TEST_CASE("JPEG (quality 95) reads back within a few levels of the tone-mapped bytes") {
+    ImageF image = gradient(32, 24);
+    const std::vector<uint8_t> expected = toneMap(image, {}).rgb;
+    for (const char* name : {"g.jpg", "g.JPEG"}) {
+      auto path = outputDir() / name;
+      writeImage(path, image, {});
+      CHECK(readBytes(path).substr(0, 3) == "\xFF\xD8\xFF");  // a JPEG's start of image
+      Image8 back = readImage8(path);
+      REQUIRE(back.rgb.size() == expected.size());
+      double squared = 0.0;
+      for (size_t i = 0; i < expected.size(); ++i) {
+        const double d = double(back.rgb[i]) - double(expected[i]);
+        squared += d * d;
+      }
+      CHECK(std::sqrt(squared / double(expected.size())) < 3.0);
+    }
+    writeImage8(outputDir() / "e.jpg", toneMap(image, {}));
+    CHECK(readImage8(outputDir() / "e.jpg").width == 32);
+  }
+
   TEST_CASE("EXR keeps linear float values, exposure applied") {
     auto path = outputDir() / "g.exr";
     ImageF image = gradient(7, 5);
@@ -127,7 +147,10 @@ TEST_SUITE("image-io") {
     auto dir = outputDir() / "failures";
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
-    CHECK_THROWS_AS(writeImage(dir / "x.bmp", gradient(2, 2), {}), Error);
+    CHECK_THROWS_WITH_AS(writeImage(dir / "x.bmp", gradient(2, 2), {}),
+                         doctest::Contains("x.bmp: unsupported output format (use .png, .jpg, "
+                                           ".ppm, .exr or .hdr)"),
+                         Error);
     CHECK_THROWS_AS(writeImage(dir / "missing" / "x.png", gradient(2, 2), {}), Error);
     CHECK(std::filesystem::is_empty(dir));
   }

@@ -142,7 +142,7 @@ def parser() -> argparse.ArgumentParser:
     commands = main.add_subparsers(dest="command", required=True, parser_class=_Parser)
     render = commands.add_parser("render", help="one image, split into sample ranges and tiles")
     render.add_argument("scene", help="scene file (.json, .gltf, .glb)")
-    render.add_argument("output", help="image: .png, .ppm, .exr or .hdr")
+    render.add_argument("output", help="image: .png, .jpg, .ppm, .exr or .hdr")
     render.add_argument(
         "--tasks",
         type=_count(1, 100000),

@@ -24,12 +24,12 @@ from rtfarm.progress import ProgressLine
 from rtfarm.raytracer import find_raytracer, frame_count
 from rtfarm.worker import PartResult, RenderJob
 
-IMAGE_FORMATS = (".png", ".ppm", ".exr", ".hdr")
+IMAGE_FORMATS = (".png", ".jpg", ".jpeg", ".ppm", ".exr", ".hdr")
 
 
 def _check_format(path: Path) -> None:
     if path.suffix.lower() not in IMAGE_FORMATS:
-        raise FarmError(f"{path}: unsupported output format (use .png, .ppm, .exr or .hdr)")
+        raise FarmError(f"{path}: unsupported output format (use .png, .jpg, .ppm, .exr or .hdr)")
 
 
 def _check_image_path(path: Path) -> None:

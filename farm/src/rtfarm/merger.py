@@ -17,7 +17,7 @@ from pathlib import Path
 from rtfarm import raytracer as rt
 
 FAN_IN = 8
-EIGHT_BIT_FORMATS = (".png", ".ppm")
+EIGHT_BIT_FORMATS = (".png", ".jpg", ".jpeg", ".ppm")
 
 
 class ImageMerger:
