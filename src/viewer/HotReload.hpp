@@ -1,5 +1,6 @@
 // What the viewer's hot reload knows between frames: the watched folders,
-// the debounced saves of shaders and of the scene file, and a scene edit
+// the debounced saves of shaders and of the scene file (or of the models and
+// material libraries beside it: .obj, .mtl, .ply, .gltf, .glb, .bin), and a scene edit
 // that waits for shaders that build.
 #pragma once
 
