@@ -1,6 +1,8 @@
 #include "scene/Scene.hpp"
 
+#include <algorithm>
 #include <glm/geometric.hpp>
+#include <limits>
 #include <type_traits>
 #include <utility>
 #include <variant>
@@ -38,7 +40,9 @@ uint32_t addEmitterShape(Scene& scene, Geometry geometry, std::string label) {
 float surfaceArea(const Geometry& geometry, const std::vector<TriangleMesh>& meshes) {
   constexpr float kPi = 3.14159265f;
   const auto triangleArea = [](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-    return static_cast<float>(0.5 * glm::length(glm::cross(b - a, c - a)));
+    // Clamped before the cast: a double beyond float's range is no float.
+    const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+    return static_cast<float>(std::min(area, double(std::numeric_limits<float>::max())));
   };
   return std::visit(
       [&](const auto& g) -> float {
@@ -73,7 +77,9 @@ bool addRadianceEmitter(Scene& scene, uint32_t shape, const glm::vec3& radiance)
   if (!(area > 0.0f)) return false;
   AreaLight light;
   light.shape = shape;
-  light.diffuseIntensity = light.specularIntensity = 2.0f * area * radiance;
+  const glm::dvec3 intensity = 2.0 * double(area) * glm::dvec3(radiance);
+  light.diffuseIntensity = light.specularIntensity =
+      glm::vec3(glm::min(intensity, glm::dvec3(std::numeric_limits<float>::max())));
   light.profile = EmissionProfile::Lambertian;
   light.samples = 4;
   scene.areaLights.push_back(light);

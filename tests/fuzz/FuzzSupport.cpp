@@ -250,6 +250,14 @@ void checkScene(const Scene& scene) {
       finding("bad point light");
     }
   }
+  for (const AreaLight& light : scene.areaLights) {
+    if (light.shape >= scene.shapes.size()) finding("area light shape index out of range");
+    if (!finite(light.diffuseIntensity) || !finite(light.specularIntensity) ||
+        !nonNegative(light.diffuseIntensity) || !nonNegative(light.specularIntensity) ||
+        light.samples == 0) {
+      finding("bad area light");
+    }
+  }
   for (const Material& material : scene.materials) checkMaterial(material, scene.textures.size());
   for (const Shape& shape : scene.shapes) {
     if (shape.material >= scene.materials.size()) finding("shape material index out of range");
