@@ -62,14 +62,15 @@ void writeJpeg(const std::filesystem::path& path, const Image8& image) {
 // An 8-bit image by extension (is8BitImagePath), or false.
 bool write8BitByExtension(const std::filesystem::path& path, const Image8& image) {
   std::string ext = lowerExtension(path);
-  if (ext == ".ppm")
+  if (ext == ".ppm") {
     writePpm(path, image);
-  else if (ext == ".png")
+  } else if (ext == ".png") {
     writePng(path, image);
-  else if (ext == ".jpg" || ext == ".jpeg")
+  } else if (ext == ".jpg" || ext == ".jpeg") {
     writeJpeg(path, image);
-  else
+  } else {
     return false;
+  }
   return true;
 }
 

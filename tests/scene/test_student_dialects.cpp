@@ -496,6 +496,28 @@ TEST_SUITE("student dialects") {
 }
 
 TEST_SUITE("student dialects") {
+  TEST_CASE("an absolute path from the author's machine is found by its tail (chxag)") {
+    rt::test::TempDir dir;
+    const auto texture = dir.write("project/Code/Textures/wood.ppm", "P6\n1 1\n255\n\x10\x20\x30");
+    Json scene = baseScene();
+    shape0(scene)["material"]["texture"] = "/Users/someone/Desktop/project/Code/Textures/wood.ppm";
+    rt::Scene loaded = rt::loadSceneFile(dir.write("project/Code/Jsons/s.json", scene.dump()));
+    CHECK(loaded.materials.at(0).texture == texture);
+    CHECK(hasWarning(loaded, "material.texture: the absolute path is not on this machine; using " +
+                                 texture.string() + ", found by its tail"));
+    shape0(scene)["material"]["texture"] = "C:\\Users\\someone\\project\\Code\\Textures\\wood.ppm";
+    loaded = rt::loadSceneFile(dir.write("project/Code/Jsons/windows.json", scene.dump()));
+    CHECK(loaded.materials.at(0).texture == texture);
+    // A bare file name is looked for only beside the scene, and a tail that
+    // is nowhere leaves the texture missing.
+    for (const char* elsewhere : {"/Users/someone/other/Textures/stone.ppm", "/wood.ppm"}) {
+      CAPTURE(elsewhere);
+      shape0(scene)["material"]["texture"] = elsewhere;
+      loaded = rt::loadSceneFile(dir.write("project/Code/Jsons/missing.json", scene.dump()));
+      CHECK(hasWarning(loaded, "texture file not found"));
+    }
+  }
+
   TEST_CASE("texture keys: texturefile, textureFilename with hasTexture, a texture on the shape") {
     Json scene = baseScene();
     for (const char* key : {"texturefile", "textureFilename"}) {  // Nebula1253, david14higgins

@@ -17,7 +17,9 @@ namespace rt {
 std::filesystem::path absoluteFolderOf(const std::filesystem::path& file);
 
 // The file a string node names, if it exists (backslashes read as folder
-// separators); nullopt when it is in none of the places looked in.
+// separators); nullopt when it is in none of the places looked in. An
+// absolute path from the author's machine is looked for by its tails in the
+// scene's folder and the few above it, with a warning when found so.
 std::optional<std::filesystem::path> findReferencedFile(const JsonNode& node,
                                                         const std::filesystem::path& sceneDir);
 
