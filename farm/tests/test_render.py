@@ -81,6 +81,19 @@ def test_light_options_reach_every_part(cluster, raytracer, tmp_path, option):
     assert np.abs(three[..., :3] - one[..., :3]).max() > 1e-2 * np.abs(one[..., :3]).max()
 
 
+def test_mode_and_bounces_reach_every_part(cluster, raytracer, tmp_path):
+    """--mode and --bounces go to every part: the default scene path-traced two bounces deep,
+    not as its file says (Whitted, four bounces)."""
+    size = ["--size", "32x24", "--spp", 4]
+    options = ["--mode", "pathtracer", "--bounces", 2]
+    farm_render(cluster, DEFAULT_SCENE, tmp_path / "farm.exr", *size, "--tasks", 2, *options)
+    render_single(raytracer, DEFAULT_SCENE, tmp_path / "traced.exr", *size, *options)
+    render_single(raytracer, DEFAULT_SCENE, tmp_path / "whitted.exr", *size)
+    assert_same_image(tmp_path / "farm.exr", tmp_path / "traced.exr", 4)
+    traced, whitted = read_exr(tmp_path / "traced.exr"), read_exr(tmp_path / "whitted.exr")
+    assert np.abs(traced[..., :3] - whitted[..., :3]).max() > 1e-2
+
+
 def test_meshes_and_textures_travel_with_the_scene(cluster, raytracer, tmp_path):
     scene = write_scene_with_files(tmp_path)
     farm_render(

@@ -23,6 +23,7 @@ struct CommandLine {
   std::string scenePath;
   std::string conventions;
   bool strict = false;
+  rt::cli::ModeOptions modeOptions;
 };
 
 // + 0.0f: no "-0" in what people read.
@@ -133,6 +134,7 @@ void printList(const char* title, const std::vector<std::string>& lines) {
 int run(const CommandLine& cli) {
   rt::Scene scene = rt::loadSceneFile(cli.scenePath, {cli.strict});
   rt::cli::applyConventionsOption(cli.conventions, scene);
+  rt::cli::applyModeOptions(cli.modeOptions, scene);
   std::printf("scene: %s, read as %s\n", cli.scenePath.c_str(), scene.fileKind.c_str());
   std::printf("conventions: %s (%s)\n", rt::conventionsName(scene.conventions),
               scene.conventionsReason.c_str());
@@ -170,6 +172,7 @@ int runCheckCommand(int argc, char** argv) {
       "raytracer check"};
   app.add_option("scene", cli.scenePath, rt::cli::kSceneFileHelp)->required();
   rt::cli::addConventionsOption(app, cli.conventions);
+  rt::cli::addModeOptions(app, cli.modeOptions);
   rt::cli::addStrictOption(app, cli.strict);
   if (std::optional<int> status = rt::cli::parse(app, argc, argv)) return *status;
   try {

@@ -181,6 +181,29 @@ void applyConventionsOption(const std::string& name, Scene& scene) {
   setConventions(scene, *conventions, "--conventions");
 }
 
+std::optional<RenderMode> renderModeNamed(const std::string& name) {
+  if (name == "binary") return RenderMode::Binary;
+  if (name == "phong") return RenderMode::Phong;
+  if (name == "pathtracer") return RenderMode::PathTracer;
+  return std::nullopt;
+}
+
+void addModeOptions(CLI::App& app, ModeOptions& options) {
+  app.add_option("--mode", options.mode,
+                 "Render mode (overrides the scene's rendermode): binary (hits in one colour), "
+                 "phong (Whitted: Blinn-Phong, shadows, mirror and glass) or pathtracer")
+      ->check(CLI::IsMember({"binary", "phong", "pathtracer"}));
+  app.add_option("--bounces", options.bounces,
+                 "Ray depth (overrides the scene's nbounces): Whitted's mirror and glass "
+                 "depth, or the path tracer's path length")
+      ->check(CLI::Range(0u, kMaxBounces));
+}
+
+void applyModeOptions(const ModeOptions& options, Scene& scene) {
+  if (std::optional<RenderMode> mode = renderModeNamed(options.mode)) scene.settings.mode = *mode;
+  if (options.bounces) scene.settings.maxBounces = *options.bounces;
+}
+
 void addLightSamplesOption(CLI::App& app, std::optional<uint32_t>& samples) {
   app.add_option("--light-samples", samples,
                  "Shadow rays per area light and hit, for every area light (overrides the "

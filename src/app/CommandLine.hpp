@@ -78,6 +78,17 @@ void addStrictOption(CLI::App& app, bool& strict);
 // Gives a loaded scene the conventions --conventions named, if any.
 void applyConventionsOption(const std::string& name, Scene& scene);
 
+// --mode binary|phong|pathtracer and --bounces N: the scene's `rendermode`
+// and `nbounces`, for model files (which have neither) and quick changes.
+struct ModeOptions {
+  std::string mode;  // "" or a name renderModeNamed knows
+  std::optional<uint32_t> bounces;
+};
+std::optional<RenderMode> renderModeNamed(const std::string& name);
+void addModeOptions(CLI::App& app, ModeOptions& options);
+// Gives a loaded scene the mode and bounces the options named, if any.
+void applyModeOptions(const ModeOptions& options, Scene& scene);
+
 // --light-samples N into `samples`: shadow rays per area light and hit.
 void addLightSamplesOption(CLI::App& app, std::optional<uint32_t>& samples);
 // Gives every area light of a loaded scene the count --light-samples named,

@@ -53,6 +53,7 @@ struct CommandLine {
   std::optional<float> roulette;
   std::optional<float> bailout;
   std::optional<uint32_t> lightSamples;
+  rt::cli::ModeOptions modeOptions;
   std::optional<uint32_t> lightSplit;
   std::string conventions;
   std::string device;
@@ -139,6 +140,7 @@ int run(const CommandLine& cli) {
   rt::Scene scene = rt::loadSceneFile(cli.scenePath, {cli.strict});
   if (cli.roulette) scene.settings.rouletteWeight = *cli.roulette;
   if (cli.bailout) scene.settings.branchBailout = *cli.bailout;
+  rt::cli::applyModeOptions(cli.modeOptions, scene);
   rt::cli::applyLightSamplesOption(cli.lightSamples, scene);
   rt::cli::applyLightSplitOption(cli.lightSplit, scene);
   rt::cli::applyConventionsOption(cli.conventions, scene);
@@ -250,6 +252,7 @@ void addOptions(CLI::App& app, CommandLine& cli) {
       ->check(CLI::Range(0.0f, 1.0f));
   app.add_option("--bailout", cli.bailout, "Ray-tree bailout weight (as the render command)")
       ->check(CLI::Range(0.0f, 1.0f));
+  rt::cli::addModeOptions(app, cli.modeOptions);
   rt::cli::addLightSamplesOption(app, cli.lightSamples);
   rt::cli::addLightSplitOption(app, cli.lightSplit);
   app.add_option("--shading", cli.shading, "Shading model (default: the conventions')")

@@ -54,6 +54,7 @@ struct CommandLine {
   std::optional<float> roulette;
   std::optional<float> bailout;
   std::optional<uint32_t> lightSamples;
+  rt::cli::ModeOptions modeOptions;
   std::optional<uint32_t> lightSplit;
   std::string sampleRange;
   std::string region;
@@ -290,6 +291,7 @@ int run(const CommandLine& cli) {
   if (cli.indirectClamp) scene.settings.indirectClamp = *cli.indirectClamp;
   if (cli.roulette) scene.settings.rouletteWeight = *cli.roulette;
   if (cli.bailout) scene.settings.branchBailout = *cli.bailout;
+  rt::cli::applyModeOptions(cli.modeOptions, scene);
   rt::cli::applyLightSamplesOption(cli.lightSamples, scene);
   rt::cli::applyLightSplitOption(cli.lightSplit, scene);
   rt::RenderOptions options = renderOptions(cli, scene);
@@ -400,6 +402,7 @@ int runRenderCommand(int argc, char** argv) {
                  "in steps of the written image; default 1/255; 0 traces every ray down to "
                  "weight 1e-4; not in the path tracer)")
       ->check(CLI::Range(0.0f, 1.0f));
+  rt::cli::addModeOptions(app, cli.modeOptions);
   rt::cli::addLightSamplesOption(app, cli.lightSamples);
   rt::cli::addLightSplitOption(app, cli.lightSplit);
   app.add_option("--samples", cli.sampleRange,

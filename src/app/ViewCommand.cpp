@@ -29,6 +29,7 @@ struct CommandLine {
   bool noOverlay = false;
   bool noWatch = false;
   double frameMilliseconds = 75.0;
+  rt::cli::ModeOptions modeOptions;
 };
 
 void finishOptions(const CommandLine& cli, rt::viewer::ViewerOptions& options) {
@@ -42,6 +43,8 @@ void finishOptions(const CommandLine& cli, rt::viewer::ViewerOptions& options) {
   if (auto shading = rt::cli::shadingNamed(cli.shading)) options.shading = shading;
   if (!cli.conventions.empty()) options.conventions = rt::conventionsNamed(cli.conventions);
   options.toneCurve = rt::cli::toneCurveOption(cli.toneCurve);
+  options.mode = rt::cli::renderModeNamed(cli.modeOptions.mode);
+  options.bounces = cli.modeOptions.bounces;
   if (!cli.device.empty()) options.deviceIndex = rt::cli::parseDeviceIndex(cli.device);
   options.overlay = !cli.noOverlay;
   options.watch = !cli.noWatch;
@@ -101,6 +104,7 @@ int runViewCommand(int argc, char** argv) {
   app.add_option("--shading", cli.shading, "Shading model (as the render command)")
       ->check(CLI::IsMember({"standard", "coursework"}));
   rt::cli::addConventionsOption(app, cli.conventions);
+  rt::cli::addModeOptions(app, cli.modeOptions);
   rt::cli::addToneCurveOption(app, cli.toneCurve);
   rt::cli::addLightSamplesOption(app, options.lightSamples);
   rt::cli::addLightSplitOption(app, options.lightSplit);

@@ -59,6 +59,8 @@ Scene Viewer::loadViewedScene() const {
   Scene scene = loadSceneFile(options_.scenePath);
   if (options_.conventions) setConventions(scene, *options_.conventions, "--conventions");
   if (options_.toneCurve) scene.camera.toneCurve = *options_.toneCurve;
+  if (options_.mode) scene.settings.mode = *options_.mode;
+  if (options_.bounces) scene.settings.maxBounces = *options_.bounces;
   return scene;
 }
 

@@ -32,6 +32,8 @@ struct ViewerOptions {
   std::optional<ShadingModel> shading;
   std::optional<Conventions> conventions;  // default: what the scene's keys say
   std::optional<ToneCurve> toneCurve;      // default: the scene's
+  std::optional<RenderMode> mode;          // default: the scene's rendermode
+  std::optional<uint32_t> bounces;         // default: the scene's nbounces (a slider after)
   float exposure = 1.0f;                   // extra factor on the scene's exposure
   std::optional<uint32_t> lightSamples;    // every area light's shadow rays a hit
   std::optional<uint32_t> lightSplit;      // replicas of a hit's area-light estimate

@@ -389,6 +389,18 @@ else
   fail "OBJ with a Ke lamp: $(cat "$SCRATCH/stderr")"
 fi
 
+# --mode and --bounces override the scene's rendermode and nbounces (a model file has neither).
+if "$RAYTRACER" "$CORNELL" "$SCRATCH/traced.png" --size 32x24 --spp 1 --mode pathtracer --bounces 3 2>"$SCRATCH/stderr" &&
+  grep -q 'features: .*path_tracer' "$SCRATCH/stderr" &&
+  "$RAYTRACER" check "$CORNELL" --mode pathtracer --bounces 3 | grep -q '^mode: path tracer, 3 bounces' &&
+  "$RAYTRACER" "$CORNELL" "$SCRATCH/binary.png" --size 32x24 --spp 1 --mode binary 2>"$SCRATCH/stderr" &&
+  ! grep -q 'area_lights' "$SCRATCH/stderr"; then
+  pass
+else
+  fail "--mode/--bounces: $(cat "$SCRATCH/stderr")"
+fi
+expect_error "bad --mode" '--mode: path not in' "$SCRATCH/good.json" "$SCRATCH/out.png" --mode path
+
 # A PLY file on its own renders, framed like an OBJ file; a point cloud is one line.
 printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' >"$SCRATCH/tri.ply"
 if "$RAYTRACER" "$SCRATCH/tri.ply" "$SCRATCH/tri.ppm" --size 32x24 --spp 1 -q 2>"$SCRATCH/stderr" &&

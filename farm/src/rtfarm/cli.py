@@ -20,6 +20,7 @@ MAX_IMAGE_SIDE = 16384
 MAX_SAMPLES = 1 << 20
 MAX_LIGHT_SAMPLES = 4096  # src/scene/Limits.hpp kMaxLightSamples
 MAX_LIGHT_SPLIT = 64  # src/scene/Limits.hpp kMaxLightSplit
+MAX_BOUNCES = 64  # src/scene/Limits.hpp kMaxBounces
 
 
 class _Parser(argparse.ArgumentParser):
@@ -87,7 +88,15 @@ def _add_render_options(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--seed", type=_count(0, 2**32 - 1), help="random seed")
     group.add_argument("--sampler", choices=["random", "jittered", "sobol"])
     group.add_argument("--shading", choices=["coursework", "standard"])
-    group.add_argument("--conventions", choices=["coursework-a", "coursework-b", "textbook"])
+    group.add_argument(
+        "--conventions", choices=["coursework-a", "coursework-b", "textbook", "physical"]
+    )
+    group.add_argument(
+        "--mode", choices=["binary", "phong", "pathtracer"], help="render mode (the scene's)"
+    )
+    group.add_argument(
+        "--bounces", type=_count(0, MAX_BOUNCES), help="ray depth (the scene's nbounces)"
+    )
     group.add_argument("--exposure", type=_positive, help="extra linear exposure")
     group.add_argument("--clamp-indirect", type=_non_negative, help="firefly clamp (biased)")
     group.add_argument(

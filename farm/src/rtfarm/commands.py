@@ -49,6 +49,8 @@ def _render_args(arguments, spp: int) -> list[str]:
         ("--sampler", arguments.sampler),
         ("--shading", arguments.shading),
         ("--conventions", arguments.conventions),
+        ("--mode", arguments.mode),
+        ("--bounces", arguments.bounces),
         ("--exposure", arguments.exposure),
         ("--clamp-indirect", arguments.clamp_indirect),
         ("--light-samples", arguments.light_samples),
