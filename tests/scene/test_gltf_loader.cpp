@@ -734,6 +734,44 @@ TEST_SUITE("scene gltf") {
     CHECK(defaults.reflectivity == 0.0f);
   }
 
+  TEST_CASE("an emissive material makes its shapes area lights of its radiance") {
+    writeTexture("glow.png");
+    GltfBuilder b = triangleModel();  // a right triangle of area 1/2
+    b.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+    b.doc["images"] = {{{"uri", "glow.png"}}};
+    b.doc["textures"] = {{{"source", 0}}};
+    b.doc["materials"] = {
+        {{"emissiveFactor", {1, 0.5, 0.25}},
+         {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}}}}},
+        {{"emissiveFactor", {1, 1, 1}}, {"emissiveTexture", {{"index", 0}}}}};
+    for (int m = 0; m < 2; ++m) {
+      Json primitive = b.doc["meshes"][0]["primitives"][0];
+      primitive["material"] = m;
+      b.node({{"mesh", b.mesh(primitive)}});
+    }
+    rt::Scene scene = loadDoc("glowing.gltf", b.embedded());
+    REQUIRE(scene.areaLights.size() == 1);
+    const rt::AreaLight& light = scene.areaLights[0];
+    CHECK(light.shape == 1);  // shape 0: the model's own triangle, without a material
+    // Radiance L = (4, 2, 1) over area 1/2: a Lambertian light of intensity 2 A L.
+    CHECK(near(light.diffuseIntensity, {4, 2, 1}));
+    CHECK(light.profile == rt::EmissionProfile::Lambertian);
+    CHECK(scene.pointLights.empty());  // no framing light beside the model's own
+    CHECK(scene.conventions == rt::Conventions::Physical);
+    CHECK(
+        hasWarning(scene, "emissive textures (the material does not glow) ignored (materials[1])"));
+    // Beside punctual lights (normalised to unit lights) a radiance has no
+    // meaning: the shapes are drawn, but do not light.
+    b.doc["extensionsUsed"].push_back("KHR_lights_punctual");
+    b.doc["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}}};
+    b.node({{"translation", {0, 0, 4}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    scene = loadDoc("lit.gltf", b.embedded());
+    CHECK(scene.areaLights.empty());
+    CHECK(scene.pointLights.size() == 1);
+    CHECK(scene.conventions == rt::Conventions::Textbook);
+    CHECK(hasWarning(scene, "emission beside KHR_lights_punctual lights"));
+  }
+
   TEST_CASE("base colour textures: decoded once, texCoord and KHR_texture_transform pick the uvs") {
     writeTexture("tex.png");
     GltfBuilder b;

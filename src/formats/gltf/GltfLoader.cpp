@@ -99,6 +99,7 @@ class Importer {
     gltf::validateNodeGraph(context_);
     walk(gltf::sceneRoots(context_));
     addLights();
+    addEmitters();
     if (!model_.animations.empty()) context_.warn("animations", "ignored; drawn at rest");
     return {camera_, bounds_};
   }
@@ -164,6 +165,10 @@ class Importer {
       shape.geometry = MeshInstance{*meshIndex, world};
       shape.material = materials_.material(mesh.primitives[p].material, materialWhere);
       scene_.shapes.push_back(std::move(shape));
+      const glm::vec3 glow = materials_.emission(mesh.primitives[p].material);
+      if (glow != glm::vec3(0.0f)) {
+        emitters_.push_back({static_cast<uint32_t>(scene_.shapes.size() - 1), glow, where});
+      }
       growBounds(*meshIndex, world, where);
     }
   }
@@ -309,10 +314,33 @@ class Importer {
     }
   }
 
+  // Shapes whose material glows become area lights of its radiance, unless
+  // the file has punctual lights: those are normalised to unit lights, in
+  // which a radiance has no meaning.
+  void addEmitters() {
+    if (!emitters_.empty() && !lights_.empty()) {
+      context_.ignored("emission beside KHR_lights_punctual lights (the shapes do not light)",
+                       emitters_.front().where);
+      return;
+    }
+    for (const PendingEmitter& emitter : emitters_) {
+      if (!addRadianceEmitter(scene_, emitter.shape, emitter.radiance)) {
+        context_.warn(emitter.where, "glows but has no area to emit from; not a light");
+      }
+    }
+  }
+
+  struct PendingEmitter {
+    uint32_t shape;
+    glm::vec3 radiance;
+    std::string where;
+  };
+
   Context& context_;
   const tinygltf::Model& model_;
   Scene& scene_;
   gltf::MaterialTable materials_;
+  std::vector<PendingEmitter> emitters_;
   glm::dmat4 placement_;
   std::map<std::tuple<int, int, bool>, std::optional<uint32_t>> meshes_;
   std::map<uint32_t, Bounds> meshBounds_;
@@ -348,10 +376,16 @@ Scene loadGltfScene(const fs::path& file) {
   scene.backgroundColor = glm::vec3(kModelBackgroundGrey);
   const ImportResult& found = imported.result;
   scene.camera = found.camera ? *found.camera : framingCamera(found.bounds);
-  if (scene.pointLights.empty())
+  if (scene.pointLights.empty() && scene.areaLights.empty()) {
     scene.pointLights.push_back(framingLight(scene.camera, found.bounds));
+  }
   if (scene.shapes.empty()) scene.warnings.push_back(file.string() + ": nothing to draw");
-  setConventions(scene, Conventions::Textbook, "a glTF file");
+  if (scene.areaLights.empty()) {
+    setConventions(scene, Conventions::Textbook, "a glTF file");
+  } else {
+    // An emissive factor is a radiance: it needs the physical falloff and units.
+    setConventions(scene, Conventions::Physical, "a glTF file whose materials glow (emissive)");
+  }
   return std::move(imported.scene);
 }
 

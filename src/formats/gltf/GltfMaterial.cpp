@@ -21,6 +21,10 @@ constexpr uint64_t kMaxTextureBytes = uint64_t(1) << 30;
 // Blinn-Phong exponents beyond this are a mirror in all but name.
 constexpr float kMaxExponent = 10000.0f;
 
+// Emissive strengths beyond this are taken as this (far brighter than any
+// lamp), so that a light's intensity, radiance times area, stays finite.
+constexpr float kMaxEmissiveStrength = 1e6f;
+
 double finiteNumber(const Context& context, double value, const std::string& where) {
   if (!std::isfinite(value)) context.fail(where, "is not a finite number");
   return value;
@@ -71,10 +75,11 @@ void noteIgnoredFeatures(Context& context, const tinygltf::Material& gltf,
   }
   if (gltf.normalTexture.index >= 0) context.ignored("normal maps", where);
   if (gltf.occlusionTexture.index >= 0) context.ignored("occlusion maps", where);
-  bool glows = gltf.emissiveTexture.index >= 0 ||
-               std::any_of(gltf.emissiveFactor.begin(), gltf.emissiveFactor.end(),
+  bool glows = std::any_of(gltf.emissiveFactor.begin(), gltf.emissiveFactor.end(),
                            [](double v) { return v > 0.0; });
-  if (glows) context.ignored("emission", where);
+  if (glows && gltf.emissiveTexture.index >= 0) {
+    context.ignored("emissive textures (the material does not glow)", where);
+  }
   if (gltf.alphaMode != "OPAQUE") context.ignored("alpha modes BLEND and MASK", where);
   if (hasExtension(gltf.extensions, "KHR_materials_transmission", "transmissionTexture")) {
     context.ignored("transmission textures", where);
@@ -130,6 +135,31 @@ Material convertMaterial(Context& context, const tinygltf::Material& gltf, const
   out.ior = static_cast<float>(ior);
   noteIgnoredFeatures(context, gltf, where);
   return out;
+}
+
+// Radiance of an emissive material without an emissive texture (see
+// MaterialTable::emission).
+glm::vec3 emittedRadiance(Context& context, const tinygltf::Material& gltf,
+                          const std::string& where) {
+  if (gltf.emissiveTexture.index >= 0) return glm::vec3(0.0f);
+  const std::vector<double>& factor = gltf.emissiveFactor;
+  if (factor.size() != 3) {
+    context.fail(where + ".emissiveFactor",
+                 "has " + std::to_string(factor.size()) + " numbers, 3 are required");
+  }
+  glm::vec3 colour;
+  for (int c = 0; c < 3; ++c) {
+    colour[c] = unitFactor(context, factor[size_t(c)],
+                           where + ".emissiveFactor[" + std::to_string(c) + "]");
+  }
+  double strength = extensionNumber(context, gltf.extensions, "KHR_materials_emissive_strength",
+                                    "emissiveStrength", 1.0, where);
+  if (strength < 0.0) {
+    context.warn(where + ".extensions.KHR_materials_emissive_strength.emissiveStrength",
+                 "negative; taken as 0");
+    strength = 0.0;
+  }
+  return colour * static_cast<float>(std::min(strength, double(kMaxEmissiveStrength)));
 }
 
 Material defaultMaterial() {
@@ -191,6 +221,7 @@ uint32_t MaterialTable::material(int index, const std::string& where) {
         metallicRoughnessAverage(gltf.pbrMetallicRoughness.metallicRoughnessTexture,
                                  name + ".pbrMetallicRoughness.metallicRoughnessTexture");
     converted = convertMaterial(context_, gltf, name, average);
+    emissions_[index] = emittedRadiance(context_, gltf, name);
     const tinygltf::TextureInfo& info = gltf.pbrMetallicRoughness.baseColorTexture;
     if (info.index >= 0) {
       std::string infoWhere = name + ".pbrMetallicRoughness.baseColorTexture";
@@ -206,6 +237,11 @@ uint32_t MaterialTable::material(int index, const std::string& where) {
   uint32_t added = static_cast<uint32_t>(scene_.materials.size() - 1);
   materials_.emplace(index, added);
   return added;
+}
+
+glm::vec3 MaterialTable::emission(int index) const {
+  auto found = emissions_.find(index);
+  return found == emissions_.end() ? glm::vec3(0.0f) : found->second;
 }
 
 UvMapping MaterialTable::uvMapping(int index) const {

@@ -25,6 +25,12 @@ class MaterialTable {
   // How primitives with this material map texture coordinates.
   UvMapping uvMapping(int index) const;
 
+  // The radiance glTF material `index` emits: emissiveFactor times
+  // KHR_materials_emissive_strength; zero for the default material and for
+  // an emissive texture (its detail cannot be drawn as one light, and is
+  // warned about as ignored). Call after material(index).
+  glm::vec3 emission(int index) const;
+
  private:
   int32_t texture(const tinygltf::TextureInfo& info, const std::string& where);
   int32_t decodeImage(int image, const std::string& where);
@@ -37,10 +43,11 @@ class MaterialTable {
   Context& context_;
   Scene& scene_;
   std::filesystem::path baseDir_;
-  std::map<int, uint32_t> materials_;  // glTF material -> Scene::materials
-  std::map<int, int32_t> images_;      // glTF image -> Scene::textures
-  std::map<int, glm::vec2> averages_;  // glTF image -> mean (metallic, roughness)
-  uint64_t decodedBytes_ = 0;          // all images decoded so far, bounded
+  std::map<int, uint32_t> materials_;   // glTF material -> Scene::materials
+  std::map<int, glm::vec3> emissions_;  // glTF material -> emitted radiance
+  std::map<int, int32_t> images_;       // glTF image -> Scene::textures
+  std::map<int, glm::vec2> averages_;   // glTF image -> mean (metallic, roughness)
+  uint64_t decodedBytes_ = 0;           // all images decoded so far, bounded
 };
 
 }  // namespace rt::gltf
