@@ -1,4 +1,4 @@
-// What a model file on its own (glTF, OBJ) needs to become a scene: a camera
+// What a model file on its own (glTF, OBJ, PLY) needs to become a scene: a camera
 // that frames its geometry and a light when the file brings none, and the
 // merge of one file's content into a scene (models inside JSON scenes).
 #pragma once
@@ -22,16 +22,16 @@ PointLight framingLight(const Camera& camera, const WorldBounds& bounds);
 // The grey every model scene is drawn on.
 constexpr float kModelBackgroundGrey = 0.5f;
 
-// Makes `scene`, which holds only a model's meshes, shapes and materials,
-// a scene of its own: the grey background, the framing camera and light
-// around its meshes' vertices (the light only if the model brings none),
-// textbook conventions (`what` names the file
-// kind for `raytracer check`, e.g. "an OBJ file").
+// Makes `scene`, which holds only a model's meshes, shapes, materials and
+// lights, a scene of its own: the grey background, the framing camera and
+// light around its meshes' vertices (the light only if the model brings
+// none), textbook conventions (`what` names the file kind for `raytracer
+// check`, e.g. "an OBJ file").
 void frameModelScene(Scene& scene, const char* what);
 
 // Appends `part`'s materials, textures, meshes, shapes, lights (point and
-// area) and warnings
-// to `scene`, shifting the indices that point into its lists.
+// area) and warnings to `scene`, shifting the indices that point into its
+// lists.
 void appendScenePart(Scene& scene, Scene&& part);
 
 }  // namespace rt
