@@ -11,6 +11,7 @@
 #include "app/CommandLine.hpp"
 #include "app/Commands.hpp"
 #include "io/AtomicFile.hpp"
+#include "io/Image.hpp"
 #include "util/Error.hpp"
 #include "viewer/ViewerOptions.hpp"
 
@@ -49,9 +50,9 @@ void finishOptions(const CommandLine& cli, rt::viewer::ViewerOptions& options) {
   options.overlay = !cli.noOverlay;
   options.watch = !cli.noWatch;
   options.frameSeconds = cli.frameMilliseconds * 1e-3;
-  if (!options.screenshot.empty() && options.screenshot.extension() != ".png") {
-    throw rt::Error(
-        fmt::format("--screenshot {}: must be a .png file", options.screenshot.string()));
+  if (!options.screenshot.empty() && !rt::is8BitImagePath(options.screenshot)) {
+    throw rt::Error(fmt::format("--screenshot {}: must be a .png, .jpg or .ppm file",
+                                options.screenshot.string()));
   }
   if (!options.screenshot.empty()) rt::checkWritable(options.screenshot);
   if (!std::filesystem::is_directory(options.saveFolder)) {
@@ -86,7 +87,8 @@ int runViewCommand(int argc, char** argv) {
   app.add_option("--camera-path", options.cameraPath,
                  "Text file of camera steps, one per frame (see src/viewer/CameraPath.hpp)");
   app.add_option("--screenshot", options.screenshot,
-                 "Write the last presented frame (the swapchain image) to this .png");
+                 "Write the last presented frame (the swapchain image) to this .png, .jpg or "
+                 ".ppm");
   app.add_option("--save-dir", options.saveFolder, "Folder for Ctrl+S saves (default: .)");
   app.add_flag("--no-overlay", cli.noOverlay, "Start with the overlay hidden (H toggles it)");
   app.add_flag("--no-watch", cli.noWatch, "Do not reload shaders or the scene on changes");

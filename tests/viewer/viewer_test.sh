@@ -85,8 +85,9 @@ case_cli() {
   out=$("$RAYTRACER" view "$SCENE_SOURCE" --camera-path "$SCRATCH/bad.path" 2>&1)
   [[ $? -eq 1 && $out == *bad.path:2:*spin* ]] ||
     fail "bad camera path: expected 'bad.path:2: unknown step', got: $out"
-  out=$("$RAYTRACER" view "$SCENE_SOURCE" --screenshot "$SCRATCH/shot.jpg" 2>&1)
-  [[ $? -eq 1 && $out == *.png* ]] || fail "jpeg screenshot: expected an error, got: $out"
+  out=$("$RAYTRACER" view "$SCENE_SOURCE" --screenshot "$SCRATCH/shot.bmp" 2>&1)
+  [[ $? -eq 1 && $out == *"must be a .png, .jpg or .ppm file"* ]] ||
+    fail "bmp screenshot: expected an error, got: $out"
   out=$("$RAYTRACER" view "$SCENE_SOURCE" --size 0x10 2>&1)
   [[ $? -eq 1 && $out == *--size* ]] || fail "bad size: expected an error, got: $out"
 }
@@ -101,6 +102,13 @@ case_offscreen_match() {
   [[ $status -eq 0 ]] || fail "viewer exit status $status: $(cat "$SCRATCH/err")"
   grep -q "^done: spp=$SPP " "$SCRATCH/log" || fail "no 'done: spp=$SPP' line in the log"
   compare "window vs offline" "$SCRATCH/window.png" "$SCRATCH/offline.png" --max-diff 0
+  # The same frame as a JPEG screenshot: the format follows the extension.
+  xvfb_run "$RAYTRACER" view "$SCENE_SOURCE" --size $SIZE --max-spp $SPP --spp-per-frame 1 \
+    --frames 6 --no-overlay --no-watch --screenshot "$SCRATCH/window.jpg" >/dev/null 2>&1 ||
+    fail "jpeg screenshot: viewer exit status $?"
+  [[ $(head -c 3 "$SCRATCH/window.jpg" | od -An -tx1 | tr -d ' ') == ffd8ff ]] ||
+    fail "jpeg screenshot: not a JPEG file"
+  compare "jpeg window vs offline" "$SCRATCH/window.jpg" "$SCRATCH/offline.png" --min-psnr 30
 
   # A tone curve: the window's display pass applies it as the PNG writer does
   # (float rounding may move a byte by one); it changes the image.
