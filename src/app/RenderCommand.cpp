@@ -140,7 +140,7 @@ void checkMapOptions(const CommandLine& cli, const rt::RenderOptions& options) {
   for (const std::string& path : {cli.sampleMapPath, cli.errorMapPath}) {
     if (!path.empty() && !rt::is8BitImagePath(path)) {
       throw rt::Error(
-          fmt::format("{}: a sample or error map is written as .png, .jpg or .ppm", path));
+          fmt::format("{}: a sample or error map is written as {}", path, rt::k8BitOutputFormats));
     }
   }
   if (!cli.errorMapPath.empty() && !options.estimateError && !options.adaptive) {

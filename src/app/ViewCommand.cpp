@@ -51,8 +51,8 @@ void finishOptions(const CommandLine& cli, rt::viewer::ViewerOptions& options) {
   options.watch = !cli.noWatch;
   options.frameSeconds = cli.frameMilliseconds * 1e-3;
   if (!options.screenshot.empty() && !rt::is8BitImagePath(options.screenshot)) {
-    throw rt::Error(fmt::format("--screenshot {}: must be a .png, .jpg or .ppm file",
-                                options.screenshot.string()));
+    throw rt::Error(fmt::format("--screenshot {}: must be a {} file", options.screenshot.string(),
+                                rt::k8BitOutputFormats));
   }
   if (!options.screenshot.empty()) rt::checkWritable(options.screenshot);
   if (!std::filesystem::is_directory(options.saveFolder)) {
@@ -87,8 +87,8 @@ int runViewCommand(int argc, char** argv) {
   app.add_option("--camera-path", options.cameraPath,
                  "Text file of camera steps, one per frame (see src/viewer/CameraPath.hpp)");
   app.add_option("--screenshot", options.screenshot,
-                 "Write the last presented frame (the swapchain image) to this .png, .jpg or "
-                 ".ppm");
+                 std::string("Write the last presented frame (the swapchain image) to this ") +
+                     rt::k8BitOutputFormats);
   app.add_option("--save-dir", options.saveFolder, "Folder for Ctrl+S saves (default: .)");
   app.add_flag("--no-overlay", cli.noOverlay, "Start with the overlay hidden (H toggles it)");
   app.add_flag("--no-watch", cli.noWatch, "Do not reload shaders or the scene on changes");

@@ -37,19 +37,25 @@ Scene loadOtherSceneFile(const std::filesystem::path& file) {
   return parseJsonScene(text, file);
 }
 
+// `scene` with `kind` as its file kind, unless its loader named a more
+// precise one (a Blender export).
+Scene ofKind(Scene scene, const char* kind) {
+  if (scene.fileKind.empty()) scene.fileKind = kind;
+  return scene;
+}
+
+// The file read by the loader its extension picks.
+Scene loadByExtension(const std::filesystem::path& file) {
+  if (isGltfFile(file)) return ofKind(loadGltfScene(file), "glTF");
+  if (isObjFile(file)) return ofKind(loadObjScene(file), "OBJ");
+  if (isPlyFile(file)) return ofKind(loadPlyScene(file), "PLY");
+  return ofKind(loadOtherSceneFile(file), "coursework JSON");
+}
+
 }  // namespace
 
 Scene loadSceneFile(const std::filesystem::path& file, const SceneLoadOptions& options) {
-  Scene scene = isGltfFile(file)  ? loadGltfScene(file)
-                : isObjFile(file) ? loadObjScene(file)
-                : isPlyFile(file) ? loadPlyScene(file)
-                                  : loadOtherSceneFile(file);
-  if (scene.fileKind.empty()) {
-    scene.fileKind = isGltfFile(file)  ? "glTF"
-                     : isObjFile(file) ? "OBJ"
-                     : isPlyFile(file) ? "PLY"
-                                       : "coursework JSON";
-  }
+  Scene scene = loadByExtension(file);
   if (options.strict && !scene.warnings.empty()) {
     throw Error(scene.warnings.front() + " (--strict: every warning is an error)");
   }

@@ -216,7 +216,8 @@ void writeImage(const std::filesystem::path& path, const ImageF& image, const To
 
 void writeImage8(const std::filesystem::path& path, const Image8& image) {
   if (!write8BitByExtension(path, image)) {
-    throw Error(fmt::format("{}: 8-bit images are written as .png, .jpg or .ppm", path.string()));
+    throw Error(
+        fmt::format("{}: 8-bit images are written as {}", path.string(), k8BitOutputFormats));
   }
 }
 

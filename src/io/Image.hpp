@@ -69,8 +69,9 @@ struct ExrLayer {
   std::vector<float> values;
 };
 
-// The output formats, for help texts and messages.
+// The output formats, for help texts and messages: all, and the 8-bit ones.
 constexpr const char* kOutputFormats = ".png, .jpg, .ppm, .exr or .hdr";
+constexpr const char* k8BitOutputFormats = ".png, .jpg or .ppm";
 
 // Writes by extension: .ppm (binary P6), .png and .jpg (quality 95) are tone
 // mapped to 8 bits;

@@ -3,14 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <string>
 
 namespace rt {
 namespace {
 constexpr uint32_t kFramingWidth = 800;
 constexpr uint32_t kFramingHeight = 600;
 constexpr float kFramingFovDegrees = 45.0f;
-}  // namespace
 
+// Fov 45, 800x600, looking at the bounding sphere's centre from above the +z
+// side (direction (0, 0.5, 1)), at the distance where the sphere fits.
 Camera framingCamera(const WorldBounds& bounds) {
   Camera camera;
   camera.width = kFramingWidth;
@@ -25,6 +27,9 @@ Camera framingCamera(const WorldBounds& bounds) {
   return camera;
 }
 
+// White, intensity 1, above and to the right of the camera (at half the
+// camera's distance to the scene centre along each axis), so that surfaces
+// facing the camera are lit and shapes show some shading.
 PointLight framingLight(const Camera& camera, const WorldBounds& bounds) {
   glm::vec3 forward = glm::normalize(camera.forward);
   glm::vec3 right = glm::cross(forward, camera.up);
@@ -38,17 +43,29 @@ PointLight framingLight(const Camera& camera, const WorldBounds& bounds) {
   return {position, glm::vec3(1.0f), glm::vec3(1.0f)};
 }
 
-void frameModelScene(Scene& scene, const char* what) {
+}  // namespace
+
+void frameModel(Scene& scene, const WorldBounds& bounds, const std::optional<Camera>& camera,
+                const ModelKind& kind) {
   scene.backgroundColor = glm::vec3(kModelBackgroundGrey);
+  scene.camera = camera ? *camera : framingCamera(bounds);
+  if (scene.pointLights.empty() && scene.areaLights.empty()) {
+    scene.pointLights.push_back(framingLight(scene.camera, bounds));
+  }
+  if (scene.areaLights.empty() || !kind.glowKey) {
+    setConventions(scene, Conventions::Textbook, kind.name);
+  } else {
+    setConventions(scene, Conventions::Physical,
+                   std::string(kind.name) + " whose materials glow (" + kind.glowKey + ")");
+  }
+}
+
+void frameModelScene(Scene& scene, const ModelKind& kind) {
   WorldBounds bounds;
   for (const TriangleMesh& mesh : scene.meshes) {
     for (const glm::vec3& p : mesh.positions) bounds.grow(glm::dvec3(p));
   }
-  scene.camera = framingCamera(bounds);
-  if (scene.pointLights.empty() && scene.areaLights.empty()) {
-    scene.pointLights.push_back(framingLight(scene.camera, bounds));
-  }
-  setConventions(scene, Conventions::Textbook, what);
+  frameModel(scene, bounds, std::nullopt, kind);
 }
 
 void appendScenePart(Scene& scene, Scene&& part) {

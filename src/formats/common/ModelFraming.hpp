@@ -4,30 +4,36 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <optional>
 
 #include "scene/Scene.hpp"
 #include "scene/SceneBounds.hpp"
 
 namespace rt {
 
-// Fov 45, 800x600, looking at the bounding sphere's centre from above the +z
-// side (direction (0, 0.5, 1)), at the distance where the sphere fits.
-Camera framingCamera(const WorldBounds& bounds);
-
-// White, intensity 1, above and to the right of the camera (at half the
-// camera's distance to the scene centre along each axis), so that surfaces
-// facing the camera are lit and shapes show some shading.
-PointLight framingLight(const Camera& camera, const WorldBounds& bounds);
-
 // The grey every model scene is drawn on.
 constexpr float kModelBackgroundGrey = 0.5f;
 
-// Makes `scene`, which holds only a model's meshes, shapes, materials and
-// lights, a scene of its own: the grey background, the framing camera and
-// light around its meshes' vertices (the light only if the model brings
-// none), textbook conventions (`what` names the file kind for `raytracer
-// check`, e.g. "an OBJ file").
-void frameModelScene(Scene& scene, const char* what);
+// A model file kind: its name for `raytracer check` ("an OBJ file") and what
+// its materials glow by ("Ke"; nullptr where they cannot glow).
+struct ModelKind {
+  const char* name;
+  const char* glowKey = nullptr;
+};
+
+// Makes `scene`, a model file's content, a scene of its own: the grey
+// background; `camera`, else one looking at `bounds` (fov 45, 800x600, from
+// above the +z side, where the bounding sphere fits); a white light of
+// intensity 1 above and right of the camera when the model brings no light
+// (point or glowing); and textbook conventions, or physical where its
+// materials glow: an emitted radiance needs the physical falloff and units
+// (the textbook's unit lights do not fall off).
+void frameModel(Scene& scene, const WorldBounds& bounds, const std::optional<Camera>& camera,
+                const ModelKind& kind);
+
+// The same around the model's mesh vertices, for files without cameras
+// (OBJ, PLY).
+void frameModelScene(Scene& scene, const ModelKind& kind);
 
 // Appends `part`'s materials, textures, meshes, shapes, lights (point and
 // area) and warnings to `scene`, shifting the indices that point into its

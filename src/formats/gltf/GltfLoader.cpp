@@ -373,19 +373,9 @@ Scene loadGltfScene(const fs::path& file) {
   Imported imported = importFile(file, glm::dmat4(1.0));
   Scene& scene = imported.scene;
   scene.sourcePath = file;
-  scene.backgroundColor = glm::vec3(kModelBackgroundGrey);
   const ImportResult& found = imported.result;
-  scene.camera = found.camera ? *found.camera : framingCamera(found.bounds);
-  if (scene.pointLights.empty() && scene.areaLights.empty()) {
-    scene.pointLights.push_back(framingLight(scene.camera, found.bounds));
-  }
+  frameModel(scene, found.bounds, found.camera, {"a glTF file", "emissive"});
   if (scene.shapes.empty()) scene.warnings.push_back(file.string() + ": nothing to draw");
-  if (scene.areaLights.empty()) {
-    setConventions(scene, Conventions::Textbook, "a glTF file");
-  } else {
-    // An emissive factor is a radiance: it needs the physical falloff and units.
-    setConventions(scene, Conventions::Physical, "a glTF file whose materials glow (emissive)");
-  }
   return std::move(imported.scene);
 }
 

@@ -37,9 +37,13 @@ float unitFactor(Context& context, double value, const std::string& where) {
   return static_cast<float>(std::clamp(value, 0.0, 1.0));
 }
 
-glm::vec3 baseColor(Context& context, const std::vector<double>& factor, const std::string& where) {
-  if (factor.size() != 4) {
-    context.fail(where, "has " + std::to_string(factor.size()) + " numbers, 4 are required");
+// The RGB of a colour factor of `size` numbers (baseColorFactor: RGBA,
+// emissiveFactor: RGB), each in [0, 1].
+glm::vec3 colourFactor(Context& context, const std::vector<double>& factor, size_t size,
+                       const std::string& where) {
+  if (factor.size() != size) {
+    context.fail(where, "has " + std::to_string(factor.size()) + " numbers, " +
+                            std::to_string(size) + " are required");
   }
   glm::vec3 color;
   for (int c = 0; c < 3; ++c) {
@@ -106,7 +110,7 @@ Material convertMaterial(Context& context, const tinygltf::Material& gltf, const
                          glm::vec2 textureMetallicRoughness) {
   const tinygltf::PbrMetallicRoughness& pbr = gltf.pbrMetallicRoughness;
   std::string pbrWhere = where + ".pbrMetallicRoughness";
-  glm::vec3 base = baseColor(context, pbr.baseColorFactor, pbrWhere + ".baseColorFactor");
+  glm::vec3 base = colourFactor(context, pbr.baseColorFactor, 4, pbrWhere + ".baseColorFactor");
   float m = unitFactor(context, pbr.metallicFactor, pbrWhere + ".metallicFactor") *
             textureMetallicRoughness.x;
   float r = unitFactor(context, pbr.roughnessFactor, pbrWhere + ".roughnessFactor") *
@@ -142,16 +146,7 @@ Material convertMaterial(Context& context, const tinygltf::Material& gltf, const
 glm::vec3 emittedRadiance(Context& context, const tinygltf::Material& gltf,
                           const std::string& where) {
   if (gltf.emissiveTexture.index >= 0) return glm::vec3(0.0f);
-  const std::vector<double>& factor = gltf.emissiveFactor;
-  if (factor.size() != 3) {
-    context.fail(where + ".emissiveFactor",
-                 "has " + std::to_string(factor.size()) + " numbers, 3 are required");
-  }
-  glm::vec3 colour;
-  for (int c = 0; c < 3; ++c) {
-    colour[c] = unitFactor(context, factor[size_t(c)],
-                           where + ".emissiveFactor[" + std::to_string(c) + "]");
-  }
+  glm::vec3 colour = colourFactor(context, gltf.emissiveFactor, 3, where + ".emissiveFactor");
   double strength = extensionNumber(context, gltf.extensions, "KHR_materials_emissive_strength",
                                     "emissiveStrength", 1.0, where);
   if (strength < 0.0) {

@@ -394,12 +394,7 @@ Scene loadObjScene(const fs::path& file) {
   Scene scene;
   appendScenePart(scene, loadObjPart(file, WorldTransform(1.0)));
   scene.sourcePath = file;
-  frameModelScene(scene, "an OBJ file");
-  if (!scene.areaLights.empty()) {
-    // Ke is a radiance: lit by it, surfaces need the physical falloff and
-    // units (the textbook's unit lights do not fall off).
-    setConventions(scene, Conventions::Physical, "an OBJ file whose materials glow (Ke)");
-  }
+  frameModelScene(scene, {"an OBJ file", "Ke"});
   return scene;
 }
 

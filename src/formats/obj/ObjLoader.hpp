@@ -30,7 +30,8 @@ Scene parseObjPart(std::string_view obj, std::string_view mtl, const std::filesy
                    const WorldTransform& placement);
 
 // An OBJ file on its own, framed like a glTF file without a camera (see
-// formats/common/ModelFraming.hpp): textbook conventions, grey background.
+// formats/common/ModelFraming.hpp): grey background, textbook conventions
+// (physical when its materials glow, Ke).
 Scene loadObjScene(const std::filesystem::path& file);
 
 bool isObjFile(const std::filesystem::path& file);

@@ -855,7 +855,7 @@ Scene loadPlyScene(const fs::path& file) {
   shape.geometry = MeshInstance{0, WorldTransform(1.0)};
   shape.label = file.filename().string();
   scene.shapes.push_back(std::move(shape));
-  frameModelScene(scene, "a PLY file");
+  frameModelScene(scene, {"a PLY file"});
   return scene;
 }
 
