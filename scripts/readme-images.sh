@@ -60,6 +60,9 @@ make_image() {  # NAME
         "$root/bench/bunny.json.in" >"$work/bunny.json"
       render bunny "$work/bunny.json" --size 400x400 ;;
     gltf-duck) render gltf-duck "$khronos/Duck/glTF-Binary/Duck.glb" --size 400x300 ;;
+    gltf-vertex-colors)
+      render gltf-vertex-colors "$khronos/BoxVertexColors/glTF-Binary/BoxVertexColors.glb" \
+        --size 300x225 ;;
     gltf-helmet)
       render gltf-helmet "$khronos/DamagedHelmet/glTF-Binary/DamagedHelmet.glb" --size 400x300 ;;
     cornell-pathtraced)
@@ -89,7 +92,7 @@ make_image() {  # NAME
 }
 
 all=(default path-of-light-example rendering-mirror-image rendering-binary rendering-phong-scene
-  bunny gltf-duck gltf-helmet cornell-pathtraced cornell-clamped student-julie-o-demo
+  bunny gltf-duck gltf-vertex-colors gltf-helmet cornell-pathtraced cornell-clamped student-julie-o-demo
   student-julie-o-pitched student-softshadow student-dof study-arealight obj-crate obj-cornell-box
   viewer)
 for name in "${@:-${all[@]}}"; do

@@ -282,10 +282,8 @@ RT_ASSERT_TEXELS(GpuEmitter, RT_TEXELS_PER_EMITTER);
 struct GpuVertex {
   vec3 normal;  // unit, object normal transformed to world space
   float u;
+  vec3 color;  // linear RGB the diffuse colour is multiplied by (white: none)
   float v;
-  float pad0;
-  float pad1;
-  float pad2;
 };
 RT_ASSERT_STD430_SIZE(GpuVertex, 32);
 #define RT_TEXELS_PER_VERTEX 2u  // RGBA32F texels (surface.glsl loadVertex)

@@ -250,6 +250,16 @@ vec3 clampedContribution(vec3 contribution, PendingRay job) {
 #endif
 }
 
+// The material's diffuse colour at a surface point: its texture's where it
+// has one, times the mesh's vertex colours where it has them.
+vec3 diffuseColorOf(GpuMaterial material, SurfacePoint surface) {
+  vec3 color = diffuseColorAt(material, surface.uv);
+#ifdef RT_FEATURE_VERTEX_COLORS
+  color *= surface.vertexColor;
+#endif
+  return color;
+}
+
 // Everything a path does at a hit: emitted and direct light, continuations.
 // Returns true with `job` set to the ray the walk goes on with.
 bool shadeHit(inout RayStack stack, inout vec3 radiance, inout PendingRay job, SurfaceHit hit,
@@ -264,7 +274,7 @@ bool shadeHit(inout RayStack stack, inout vec3 radiance, inout PendingRay job, S
   }
 #endif
   ShadingContext context = ShadingContext(surface, -job.ray.direction, material,
-                                          diffuseColorAt(material, surface.uv),
+                                          diffuseColorOf(material, surface),
                                           sceneInfo.shadingModel == RT_SHADING_COURSEWORK);
   uint vertex = job.depth;
   // With sampled diffuse bounces, light through glass arrives along them

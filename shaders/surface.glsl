@@ -10,15 +10,15 @@
 #ifdef RT_FEATURE_VERTICES
 RT_FLOAT_ROWS(RT_BINDING_VERTICES, vertexTexels)
 
-// Texel `row` (0..1) of vertex `index` (see GpuVertex): normal/u, then v.
+// Texel `row` (0..1) of vertex `index` (see GpuVertex): normal/u, then colour/v.
 vec4 vertexRow(uint index, uint row) {
   return RT_ROW(vertexTexels, index * RT_TEXELS_PER_VERTEX + row);
 }
 
 GpuVertex loadVertex(uint index) {
   vec4 normalU = vertexRow(index, 0u);
-  vec4 rest = vertexRow(index, 1u);
-  return GpuVertex(normalU.xyz, normalU.w, rest.x, rest.y, rest.z, rest.w);
+  vec4 colorV = vertexRow(index, 1u);
+  return GpuVertex(normalU.xyz, normalU.w, colorV.xyz, colorV.w);
 }
 #endif
 
@@ -28,6 +28,9 @@ struct SurfacePoint {
   vec3 geometricNormal;  // outward (winding) normal of the surface
   vec3 shadingNormal;    // interpolated normal, on the geometric normal's side
   vec2 uv;
+#ifdef RT_FEATURE_VERTEX_COLORS
+  vec3 vertexColor;  // interpolated; the diffuse colour is multiplied by it
+#endif
 };
 
 const float RT_PI = 3.14159265358979;
@@ -72,6 +75,9 @@ void interpolateVertices(uvec3 indices, bool smoothNormals, mat3 normalMatrix, v
   vec3 weights = vec3(1.0 - barycentric.x - barycentric.y, barycentric);
   surface.uv = weights.x * vec2(v0.u, v0.v) + weights.y * vec2(v1.u, v1.v) +
                weights.z * vec2(v2.u, v2.v);
+#ifdef RT_FEATURE_VERTEX_COLORS
+  surface.vertexColor = weights.x * v0.color + weights.y * v1.color + weights.z * v2.color;
+#endif
   if (!smoothNormals) return;
   vec3 interpolated = normalMatrix * (weights.x * v0.normal + weights.y * v1.normal +
                                     weights.z * v2.normal);
@@ -93,6 +99,9 @@ SurfacePoint surfaceAt(Ray ray, SurfaceHit hit) {
   surface.geometricNormal = hit.normal;
   surface.shadingNormal = hit.normal;
   surface.uv = hit.barycentric;
+#ifdef RT_FEATURE_VERTEX_COLORS
+  surface.vertexColor = vec3(1.0);
+#endif
   GpuPrimitive prim = loadPrimitive(hit.primitiveIndex);
 #ifdef RT_FEATURE_SPHERES
   if (prim.kind == RT_PRIM_SPHERE) surface.uv = sphereUv(hit.normal);

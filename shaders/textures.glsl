@@ -5,6 +5,7 @@
 
 #include "gpu_types.h"
 #include "bindings.glsl"
+#include "tone_mapping.h"
 
 #ifdef RT_FEATURE_TEXTURES
 // The table (uint rows, one GpuTextureInfo a row) and every texture's
@@ -20,7 +21,7 @@ GpuTextureInfo loadTextureInfo(int index) {
 uint textureTexel(uint index) { return RT_WORD(textureTexels, index); }
 
 vec3 srgbToLinear(vec3 c) {
-  return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
+  return vec3(linearFromSrgb(c.r), linearFromSrgb(c.g), linearFromSrgb(c.b));
 }
 
 // Repeat wrapping of a texel coordinate in [-size, 2 size): what

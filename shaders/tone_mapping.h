@@ -37,6 +37,12 @@ RT_SHARED_FUNCTION float displayChannel(float linear, float exposure, uint toneC
   return unit;
 }
 
+// The inverse of the sRGB transfer function: an encoded value in [0, 1] (a
+// texel, a mesh file's vertex colour) as linear.
+RT_SHARED_FUNCTION float linearFromSrgb(float encoded) {
+  return encoded <= 0.04045f ? encoded / 12.92f : pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
 #ifdef __cplusplus
 }  // namespace rt::gpu
 #endif

@@ -60,9 +60,10 @@ std::string geometryText(const rt::Geometry& geometry, const rt::Scene& scene) {
                              vec(g.center), vec(g.axis), g.radius, g.halfHeight);
         } else {
           const rt::TriangleMesh& mesh = scene.meshes.at(g.mesh);
-          return fmt::format("mesh of {} triangles{}{}", mesh.faces.size(),
+          return fmt::format("mesh of {} triangles{}{}{}", mesh.faces.size(),
                              mesh.normals.empty() ? "" : ", smooth normals",
-                             mesh.uvs.empty() ? "" : ", texture coordinates");
+                             mesh.uvs.empty() ? "" : ", texture coordinates",
+                             mesh.colors.empty() ? "" : ", vertex colours");
         }
       },
       geometry);

@@ -58,6 +58,14 @@ uint32_t lightReplicasFor(const RenderSettings& settings, bool adaptive, bool bo
   return divideRoundUp(kAdaptiveAreaShadowRays, areaLightSamples);
 }
 
+// Some shape places a mesh with vertex colours.
+bool usesVertexColors(const Scene& scene) {
+  return std::any_of(scene.shapes.begin(), scene.shapes.end(), [&](const Shape& shape) {
+    const auto* instance = std::get_if<MeshInstance>(&shape.geometry);
+    return instance && !scene.meshes.at(instance->mesh).colors.empty();
+  });
+}
+
 }  // namespace
 
 ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool adaptive) {
@@ -76,6 +84,7 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
     features.refraction |= shaded && material.transmission > 0.0f;
   }
   features.vertices = !flat.vertices.empty();
+  features.vertexColors = shaded && usesVertexColors(scene);
   for (const gpu::GpuMaterial& material : flat.materials) {
     features.textures |= shaded && material.diffuseTexture >= 0;
   }
@@ -135,6 +144,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(refraction, "RT_FEATURE_REFRACTION");
   flag(thinLens, "RT_FEATURE_THIN_LENS");
   flag(vertices, "RT_FEATURE_VERTICES");
+  flag(vertexColors, "RT_FEATURE_VERTEX_COLORS");
   flag(textures, "RT_FEATURE_TEXTURES");
   flag(areaLights, "RT_FEATURE_AREA_LIGHTS");
   flag(diffuseBounces, "RT_FEATURE_DIFFUSE_BOUNCES");

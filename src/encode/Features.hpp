@@ -36,7 +36,8 @@ struct ShaderFeatures {
   bool reflection = false;
   bool refraction = false;
   bool thinLens = false;
-  bool vertices = false;  // per-vertex normals / UVs on triangles
+  bool vertices = false;      // per-vertex normals / UVs on triangles
+  bool vertexColors = false;  // some shaded mesh has vertex colours
   bool textures = false;
   bool areaLights = false;
   bool diffuseBounces = false;        // sampled diffuse bounces (distributed bounces, path tracer)

@@ -47,6 +47,12 @@ gpu::GpuPrimitive makeTriangle(const glm::vec3& v0, const glm::vec3& v1, const g
   return prim;
 }
 
+// A vertex record; white leaves the diffuse colour as it is.
+gpu::GpuVertex vertexRecord(const glm::vec3& normal, const glm::vec2& uv,
+                            const glm::vec3& color = glm::vec3(1.0f)) {
+  return {normal, uv.x, color, uv.y};
+}
+
 // Points a triangle at three GpuVertex records.
 void attachVertices(gpu::GpuPrimitive& prim, glm::uvec3 indices, bool smooth) {
   setTriangleRows(prim,
@@ -122,7 +128,7 @@ struct PrimitiveSink {
  private:
   uint32_t addVertices(std::initializer_list<glm::vec2> uvs) const {
     uint32_t base = static_cast<uint32_t>(flat.vertices.size());
-    for (const glm::vec2& uv : uvs) flat.vertices.push_back({glm::vec3(0.0f), uv.x, uv.y});
+    for (const glm::vec2& uv : uvs) flat.vertices.push_back(vertexRecord(glm::vec3(0.0f), uv));
     return base;
   }
 };
@@ -181,7 +187,8 @@ class MeshEncoder {
     // A mirroring placement reverses the winding; swapping two corners keeps
     // the winding normal outward, as the normal matrix does for instances.
     bool mirrored = glm::determinant(glm::mat3(placement)) < 0.0f;
-    bool needsVertices = !mesh.normals.empty() || !mesh.uvs.empty() || textured;
+    bool needsVertices =
+        !mesh.normals.empty() || !mesh.uvs.empty() || !mesh.colors.empty() || textured;
     uint32_t base = needsVertices ? addMeshVertices(mesh, placement, points) : 0;
     blas.flags =
         (needsVertices ? RT_PRIM_HAS_VERTICES : 0u) | (!mesh.normals.empty() ? RT_PRIM_SMOOTH : 0u);
@@ -218,14 +225,13 @@ class MeshEncoder {
     Aabb bounds;
     for (const glm::vec3& p : points) bounds.grow(p);
     for (size_t i = 0; i < points.size(); ++i) {
-      gpu::GpuVertex vertex{};
-      if (!mesh.normals.empty()) vertex.normal = glm::normalize(normalMatrix * mesh.normals[i]);
+      glm::vec3 normal =
+          mesh.normals.empty() ? glm::vec3(0.0f) : glm::normalize(normalMatrix * mesh.normals[i]);
       glm::vec2 uv = mesh.uvs.empty()
                          ? projectedUv(points[i], bounds.center(), flat_.info.sphereUvPole)
                          : mesh.uvs[i];
-      vertex.u = uv.x;
-      vertex.v = uv.y;
-      flat_.vertices.push_back(vertex);
+      glm::vec3 color = mesh.colors.empty() ? glm::vec3(1.0f) : mesh.colors[i];
+      flat_.vertices.push_back(vertexRecord(normal, uv, color));
     }
     return base;
   }

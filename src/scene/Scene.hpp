@@ -68,13 +68,16 @@ struct Cylinder {
   float halfHeight = 1.0f;
 };
 
-// An indexed triangle mesh in its own (object) space. `normals` and `uvs` are
-// per vertex and either empty or as long as `positions`.
+// An indexed triangle mesh in its own (object) space. `normals`, `uvs` and
+// `colors` are per vertex and either empty or as long as `positions`.
 struct TriangleMesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::uvec3> faces;   // indices into positions, validated on load
   std::vector<glm::vec3> normals;  // smooth shading normals (unit), optional
   std::vector<glm::vec2> uvs;      // texture coordinates, optional
+  // Vertex colours, linear RGB in [0, 1], optional: the material's diffuse
+  // colour (and its texture) is multiplied by them, as glTF's COLOR_0 is.
+  std::vector<glm::vec3> colors;
 };
 
 // A shape that places one of Scene::meshes: meshes live apart from shapes so

@@ -409,6 +409,24 @@ if "$RAYTRACER" "$SCRATCH/tri.ply" "$SCRATCH/tri.ppm" --size 32x24 --spp 1 -q 2>
 else
   fail "PLY render: $(cat "$SCRATCH/stderr")"
 fi
+# Its vertex colours: `check` lists them, the kernels compile their code, a red vertex is red.
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 255 0 0\n1 0 0 255 0 0\n0 1 0 255 0 0\n3 0 1 2\n' >"$SCRATCH/red.ply"
+if "$RAYTRACER" check "$SCRATCH/red.ply" >"$SCRATCH/check.txt" &&
+  grep -q 'mesh of 1 triangles, vertex colours' "$SCRATCH/check.txt" &&
+  grep -q 'kernel features: .*vertex_colors' "$SCRATCH/check.txt" &&
+  "$RAYTRACER" "$SCRATCH/red.ply" "$SCRATCH/red.ppm" --size 40x30 --spp 1 -q 2>"$SCRATCH/stderr" &&
+  python3 -c "
+import sys
+data = open(sys.argv[1], 'rb').read()
+w, h = map(int, data.split()[1:3])  # P6, width, height, 255, then the pixels
+pixels = data[-w * h * 3:]
+at = (int(0.6 * h) * w + int(0.4 * w)) * 3  # inside the triangle, the lower left half
+r, g, b = pixels[at:at + 3]
+sys.exit(0 if r > 10 and g == 0 and b == 0 else 1)" "$SCRATCH/red.ppm"; then
+  pass
+else
+  fail "PLY vertex colours: $(cat "$SCRATCH/stderr" "$SCRATCH/check.txt" 2>/dev/null | head -5)"
+fi
 printf 'ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n' >"$SCRATCH/cloud.ply"
 printf 'solid cube\n  facet normal 0 0 1\n' >"$SCRATCH/cube.stl"
 expect_error "not a scene file: STL" 'cube\.stl: not a scene file: scenes are JSON' "$SCRATCH/cube.stl" "$SCRATCH/out.png"

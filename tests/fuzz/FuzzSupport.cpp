@@ -236,6 +236,15 @@ void checkMesh(const TriangleMesh& mesh) {
   for (const glm::vec2& uv : mesh.uvs) {
     if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) finding("non-finite uv");
   }
+  if (!mesh.colors.empty() && mesh.colors.size() != mesh.positions.size()) {
+    finding("colour count differs from vertex count");
+  }
+  for (const glm::vec3& c : mesh.colors) {
+    if (!(glm::all(glm::greaterThanEqual(c, glm::vec3(0.0f))) &&
+          glm::all(glm::lessThanEqual(c, glm::vec3(1.0f))))) {
+      finding("vertex colour outside [0, 1] or not finite");
+    }
+  }
 }
 
 void checkScene(const Scene& scene) {

@@ -105,4 +105,33 @@ TEST_SUITE("render textures") {
     scene.materials[0].textureTintedByColor = true;                  // glTF base colour
     checkColor(renderedAt(render(scene), 0.25f, 0.25f), {0.5f, 0, 0});
   }
+
+  TEST_CASE("vertex colours multiply the textured colour, interpolated across the faces") {
+    Scene scene = flatLitScene();
+    scene.materials[0].diffuseColor = {0.5f, 0.5f, 0.5f};
+    scene.materials[0].textureTintedByColor = true;
+    TriangleMesh mesh;
+    mesh.positions = {{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
+    mesh.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    mesh.faces = {{0, 1, 2}, {0, 2, 3}};
+    mesh.colors = {{1, 1, 0}, {1, 1, 0}, {1, 1, 0}, {1, 1, 0}};  // yellow
+    scene.meshes.push_back(mesh);
+    Shape shape;
+    shape.geometry = MeshInstance{0, WorldTransform(1.0)};
+    scene.shapes.push_back(shape);
+    ImageF image = render(scene);
+    checkColor(renderedAt(image, 0.25f, 0.25f), {0.5f, 0, 0});  // red texel
+    checkColor(renderedAt(image, 0.75f, 0.25f), {0, 0.5f, 0});  // green
+    checkColor(renderedAt(image, 0.25f, 0.75f), {0, 0, 0});     // blue: no blue in yellow
+
+    // Untextured, red on the left edge and blue on the right: a linear blend.
+    scene.materials[0].diffuseTexture = -1;
+    scene.materials[0].diffuseColor = glm::vec3(1.0f);
+    scene.textures.clear();
+    scene.meshes[0].colors = {{1, 0, 0}, {0, 0, 1}, {0, 0, 1}, {1, 0, 0}};
+    image = render(scene);
+    checkColor(renderedAt(image, 0.05f, 0.5f), {0.95f, 0, 0.05f});
+    checkColor(renderedAt(image, 0.5f, 0.3f), {0.5f, 0, 0.5f});
+    checkColor(renderedAt(image, 0.95f, 0.7f), {0.05f, 0, 0.95f});
+  }
 }

@@ -533,6 +533,26 @@ TEST_SUITE("scene gltf") {
     CHECK(mesh.uvs == std::vector<glm::vec2>{{0, 1}, {1, 0}, {0.2f, 0.4f}});
   }
 
+  TEST_CASE("COLOR_0: RGB floats or RGBA normalized bytes, linear, clamped; all white is none") {
+    auto load = [](auto values, int componentType, const char* type, bool normalized) {
+      GltfBuilder b;
+      int pos = b.accessor(b.view(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0}), 5126, 3, "VEC3");
+      int color = b.accessor(b.view(values), componentType, 3, type);
+      if (normalized) b.doc["accessors"][color]["normalized"] = true;
+      b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", pos}, {"COLOR_0", color}}}})}});
+      return loadDoc("colours.gltf", b.embedded());
+    };
+    rt::Scene floats = load(std::vector<float>{1, 0, 0.5f, 0, 2, 0, -1, 0, 1}, 5126, "VEC3", false);
+    CHECK(floats.meshes.at(0).colors ==
+          std::vector<glm::vec3>{{1, 0, 0.5f}, {0, 1, 0}, {0, 0, 1}});  // linear, clamped
+    CHECK(floats.warnings.empty());
+    rt::Scene bytes =
+        load(std::vector<uint8_t>{255, 0, 0, 7, 0, 255, 0, 255, 0, 0, 51, 0}, 5121, "VEC4", true);
+    CHECK(bytes.meshes.at(0).colors == std::vector<glm::vec3>{{1, 0, 0}, {0, 1, 0}, {0, 0, 0.2f}});
+    rt::Scene white = load(std::vector<float>{1, 1, 1, 1, 1, 1, 1, 1, 1}, 5126, "VEC3", false);
+    CHECK(white.meshes.at(0).colors.empty());
+  }
+
   TEST_CASE("sparse accessors replace elements, with or without a base buffer view") {
     GltfBuilder b;
     int pos = b.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});

@@ -179,6 +179,22 @@ TEST_SUITE("obj loader") {
     CHECK(mesh.normals.empty());                    // none in the file: flat shading
   }
 
+  TEST_CASE("vertex colours after x y z are sRGB, read when every vertex has them") {
+    const rt::Scene scene = parseObj(
+        "v 0 0 0 1 0 0\nv 1 0 0 0 0.5 0\nv 0 1 0 0 0 1\nv 1 1 0 1 1 1\n"
+        "f 1 2 3\nf 2 4 3\n");
+    const rt::TriangleMesh& mesh = scene.meshes.at(0);
+    REQUIRE(mesh.colors.size() == 4);
+    CHECK(mesh.colors[0] == glm::vec3(1, 0, 0));
+    CHECK(mesh.colors[1].y == doctest::Approx(0.21404f).epsilon(1e-4));  // sRGB 0.5
+    CHECK(mesh.colors[2] == glm::vec3(0, 0, 1));
+    // One vertex without a colour: none of them has one (as tinyobjloader reads them).
+    CHECK(parseObj("v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0 0 0 1\nf 1 2 3\n").meshes.at(0).colors.empty());
+    CHECK(parseObj("v 0 0 0 1 1 1\nv 1 0 0 1 1 1\nv 0 1 0 1 1 1\nf 1 2 3\n")
+              .meshes.at(0)
+              .colors.empty());  // all white
+  }
+
   TEST_CASE("a missing material library or texture is a warning with a visible stand-in") {
     TempDir dir;
     dir.write("model.obj",

@@ -536,6 +536,69 @@ TEST_SUITE("scene ply: synthetic files") {
     CHECK(rt::parsePly(writePly(partial, Layout::Ascii), "t.ply").uvs.empty());
   }
 
+  TEST_CASE("vertex colours: integers over their range, floats in [0, 1], decoded from sRGB") {
+    auto coloured = [](const std::string& type, const std::array<std::string, 3>& names,
+                       const std::vector<glm::dvec3>& colors) {
+      TestElement vertices{"vertex",
+                           {{"float", "x", ""},
+                            {"float", "y", ""},
+                            {"float", "z", ""},
+                            {type, names[0], ""},
+                            {type, names[1], ""},
+                            {type, names[2], ""}},
+                           {}};
+      for (size_t i = 0; i < kSquare.size(); ++i) {
+        const glm::vec3& p = kSquare[i];
+        vertices.records.push_back({p.x, p.y, p.z, colors[i].x, colors[i].y, colors[i].z});
+      }
+      TestElement faces{"face", {{"int", "vertex_indices", "uchar"}}, {{4, 0, 1, 2, 3}}};
+      return std::vector<TestElement>{vertices, faces};
+    };
+    const std::array<std::string, 3> rgb = {"red", "green", "blue"};
+    constexpr float kHalfGrey = 0.21586f;  // sRGB 128 decoded
+    for (Layout layout : {Layout::Ascii, Layout::LittleEndian, Layout::BigEndian}) {
+      CAPTURE(std::string(formatName(layout)));
+      const rt::TriangleMesh bytes = rt::parsePly(
+          writePly(coloured("uchar", rgb, {{255, 0, 128}, {0, 255, 0}, {255, 255, 255}, {0, 0, 0}}),
+                   layout),
+          "t.ply");
+      REQUIRE(bytes.colors.size() == 4);
+      CHECK(bytes.colors[0].x == 1.0f);
+      CHECK(bytes.colors[0].y == 0.0f);
+      CHECK(bytes.colors[0].z == doctest::Approx(kHalfGrey).epsilon(1e-4));
+      CHECK(bytes.colors[2] == glm::vec3(1.0f));
+      CHECK(bytes.colors[3] == glm::vec3(0.0f));
+    }
+    const rt::TriangleMesh shorts = rt::parsePly(
+        writePly(coloured("ushort", rgb, {{65535, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}}),
+                 Layout::LittleEndian),
+        "t.ply");
+    CHECK(shorts.colors[0] == glm::vec3(1, 0, 0));
+    // Floats, MeshLab's names: out of range is clamped.
+    const rt::TriangleMesh floats =
+        rt::parsePly(writePly(coloured("float", {"diffuse_red", "diffuse_green", "diffuse_blue"},
+                                       {{2, -1, 0.5}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}}),
+                              Layout::Ascii),
+                     "t.ply");
+    REQUIRE(floats.colors.size() == 4);
+    CHECK(floats.colors[0].x == 1.0f);
+    CHECK(floats.colors[0].y == 0.0f);
+    CHECK(floats.colors[0].z == doctest::Approx(0.21404).epsilon(1e-4));
+    const rt::TriangleMesh shortNames = rt::parsePly(
+        writePly(coloured("uchar", {"r", "g", "b"}, std::vector<glm::dvec3>(4, {0, 0, 255})),
+                 Layout::Ascii),
+        "t.ply");
+    CHECK(shortNames.colors == std::vector<glm::vec3>(4, glm::vec3(0, 0, 1)));
+    // All white changes nothing: no colours, so the kernels are built without them.
+    const rt::TriangleMesh white =
+        rt::parsePly(writePly(coloured("uchar", rgb, std::vector<glm::dvec3>(4, glm::dvec3(255))),
+                              Layout::Ascii),
+                     "t.ply");
+    CHECK(white.colors.empty());
+    // richMesh has "red" alone: no colours.
+    CHECK(rt::parsePly(writePly(richMesh(), Layout::Ascii), "t.ply").colors.empty());
+  }
+
   TEST_CASE("normals are normalised; zero normals come from the faces around them") {
     std::vector<TestElement> mesh = richMesh();
     mesh[0].records[0][6] = 2;  // nz = 2

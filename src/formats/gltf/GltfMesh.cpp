@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "formats/common/UnitVector.hpp"
+#include "formats/common/VertexColors.hpp"
 #include "formats/gltf/GltfAccessor.hpp"
 
 namespace rt::gltf {
@@ -92,8 +93,25 @@ std::vector<glm::vec2> readUvs(Context& context, const PrimitiveRef& ref, size_t
   return uvs;
 }
 
+// COLOR_0: linear RGB (VEC3) or RGBA (VEC4), which the base colour is
+// multiplied by (glTF 2.0, 3.9.2). Alpha is not used: nothing is blended.
+std::vector<glm::vec3> readColors(Context& context, const PrimitiveRef& ref, size_t vertexCount) {
+  int accessor = attribute(ref.primitive, "COLOR_0");
+  if (accessor < 0) return {};
+  const auto& accessors = context.model().accessors;
+  bool rgba =
+      size_t(accessor) < accessors.size() && accessors[size_t(accessor)].type == TINYGLTF_TYPE_VEC4;
+  std::vector<float> values = readAttribute(
+      context, ref, "COLOR_0", rgba ? AccessorUse::Vec4 : AccessorUse::Vec3, vertexCount);
+  size_t stride = rgba ? 4 : 3;
+  std::vector<glm::vec3> colors(values.size() / stride);
+  for (size_t i = 0; i < colors.size(); ++i) {
+    colors[i] = clampedColor({values[i * stride], values[i * stride + 1], values[i * stride + 2]});
+  }
+  return colors;
+}
+
 void noteIgnoredAttributes(Context& context, const PrimitiveRef& ref) {
-  if (attribute(ref.primitive, "COLOR_0") >= 0) context.ignored("vertex colours", ref.where);
   if (!ref.primitive.targets.empty()) context.ignored("morph targets", ref.where);
 }
 
@@ -187,6 +205,8 @@ std::optional<TriangleMesh> buildPrimitive(Context& context, int mesh, int primi
   size_t vertexCount = out.positions.size();
   out.normals = readNormals(context, ref, vertexCount);
   out.uvs = readUvs(context, ref, vertexCount, uvMapping);
+  out.colors = readColors(context, ref, vertexCount);
+  dropWhiteColors(out);
   out.faces = assembleFaces(context, ref, readIndexSource(context, ref, vertexCount));
   if (out.faces.empty()) {
     context.warn(ref.where, "no triangle with three distinct vertices; primitive skipped");

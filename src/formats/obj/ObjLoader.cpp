@@ -16,6 +16,7 @@
 #include "formats/common/MessageText.hpp"
 #include "formats/common/ModelFraming.hpp"
 #include "formats/common/SceneTextures.hpp"
+#include "formats/common/VertexColors.hpp"
 #include "util/Error.hpp"
 #include "util/Text.hpp"
 
@@ -282,6 +283,12 @@ class ObjImporter {
     pending.allUvs = pending.allUvs && t >= 0;
     // OBJ's v runs up the image; the renderer's rows run down.
     mesh.uvs.emplace_back(uv.x, 1.0f - uv.y);
+    // Colours after a vertex's x y z (MeshLab's and ZBrush's extension):
+    // tinyobjloader keeps them only when every vertex has them.
+    if (attrib.colors.size() == attrib.vertices.size()) {
+      mesh.colors.push_back(linearFromDisplayColor(
+          {attrib.colors[3 * vi], attrib.colors[3 * vi + 1], attrib.colors[3 * vi + 2]}));
+    }
     const auto index = static_cast<uint32_t>(mesh.positions.size() - 1);
     pending.vertexOf.emplace(key, index);
     return index;
@@ -328,6 +335,7 @@ class ObjImporter {
         mesh.normals.clear();
       }
       if (!pending.allUvs) mesh.uvs.clear();
+      dropWhiteColors(mesh);
       scene_.meshes.push_back(std::move(mesh));
       Shape shape;
       shape.geometry = MeshInstance{static_cast<uint32_t>(scene_.meshes.size() - 1), placement_};

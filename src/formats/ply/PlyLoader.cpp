@@ -22,6 +22,7 @@
 #include "formats/common/MeshNormals.hpp"
 #include "formats/common/MessageText.hpp"
 #include "formats/common/ModelFraming.hpp"
+#include "formats/common/VertexColors.hpp"
 #include "util/Error.hpp"
 #include "util/Text.hpp"
 
@@ -323,7 +324,21 @@ Header readHeader(std::string_view bytes, const Diagnostics& diagnostics) {
 enum class Role { Skip, Vertices, Faces, Strips };
 
 // Where the kept vertex properties go.
-enum Slot : int { kX, kY, kZ, kNx, kNy, kNz, kU, kV, kSlotCount, kUnused = -1 };
+enum Slot : int {
+  kX,
+  kY,
+  kZ,
+  kNx,
+  kNy,
+  kNz,
+  kU,
+  kV,
+  kRed,
+  kGreen,
+  kBlue,
+  kSlotCount,
+  kUnused = -1
+};
 
 struct ElementPlan {
   const Element* element = nullptr;
@@ -333,6 +348,11 @@ struct ElementPlan {
 
 constexpr std::array<std::array<std::string_view, 2>, 4> kUvNames = {
     {{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}}};
+
+// Vertex colours: the Stanford names, short ones, and those of MeshLab's
+// material properties.
+constexpr std::array<std::array<std::string_view, 3>, 3> kColorNames = {
+    {{"red", "green", "blue"}, {"r", "g", "b"}, {"diffuse_red", "diffuse_green", "diffuse_blue"}}};
 
 int propertyIndex(const Element& element, std::string_view name) {
   for (size_t i = 0; i < element.properties.size(); ++i) {
@@ -368,6 +388,9 @@ ElementPlan planVertices(const Element& element, const Diagnostics& diagnostics)
   assignSlots(plan, {"nx", "ny", "nz"}, kNx);
   for (const auto& [u, v] : kUvNames) {
     if (assignSlots(plan, {u, v}, kU)) break;
+  }
+  for (const auto& [r, g, b] : kColorNames) {
+    if (assignSlots(plan, {r, g, b}, kRed)) break;
   }
   if (element.count > kMaxVertices) {
     diagnostics.failAtByte(element.offset, "too many vertices (" + std::to_string(element.count) +
@@ -682,14 +705,29 @@ float finiteFloat(double value, const Property& property, const Cursor& cursor) 
   return static_cast<float>(value);
 }
 
+// What a colour channel of this type is at full intensity: integers span
+// their range (uchar 255), floats [0, 1].
+double fullColor(Scalar type) {
+  return isInteger(type) ? static_cast<double>(rangeOf(type).second) : 1.0;
+}
+
+// A colour channel in [0, 1] (clamped in double: a huge value must not
+// reach the float cast; not finite: 0).
+float colorChannel(double value, Scalar type) {
+  const double unit = value / fullColor(type);
+  return std::isfinite(unit) ? static_cast<float>(std::clamp(unit, 0.0, 1.0)) : 0.0f;
+}
+
 template <typename Reader>
 void readVertices(Reader& reader, const ElementPlan& plan, PlyMeshInProgress& out) {
   const Element& element = *plan.element;
   const bool hasNormals = std::count(plan.slots.begin(), plan.slots.end(), kNx) > 0;
   const bool hasUvs = std::count(plan.slots.begin(), plan.slots.end(), kU) > 0;
+  const bool hasColors = std::count(plan.slots.begin(), plan.slots.end(), kRed) > 0;
   out.mesh.positions.reserve(element.count);
   if (hasNormals) out.mesh.normals.reserve(element.count);
   if (hasUvs) out.mesh.uvs.reserve(element.count);
+  if (hasColors) out.mesh.colors.reserve(element.count);
   std::array<float, kSlotCount> values{};
   for (uint64_t record = 0; record < element.count; ++record) {
     reader.startRecord(element, record);
@@ -698,6 +736,8 @@ void readVertices(Reader& reader, const ElementPlan& plan, PlyMeshInProgress& ou
       const int slot = plan.slots[i];
       if (slot == kUnused) {
         reader.skip(property);
+      } else if (slot >= kRed) {
+        values[static_cast<size_t>(slot)] = colorChannel(reader.real(property), property.type);
       } else {
         values[static_cast<size_t>(slot)] = finiteFloat(reader.real(property), property, reader);
       }
@@ -706,6 +746,10 @@ void readVertices(Reader& reader, const ElementPlan& plan, PlyMeshInProgress& ou
     out.mesh.positions.emplace_back(values[kX], values[kY], values[kZ]);
     if (hasNormals) out.mesh.normals.emplace_back(values[kNx], values[kNy], values[kNz]);
     if (hasUvs) out.mesh.uvs.emplace_back(values[kU], values[kV]);
+    if (hasColors) {
+      out.mesh.colors.push_back(
+          linearFromDisplayColor({values[kRed], values[kGreen], values[kBlue]}));
+    }
   }
 }
 
@@ -833,6 +877,7 @@ TriangleMesh parseMesh(std::string_view bytes, std::string_view name) {
   if (out.mesh.faces.empty())
     diagnostics.failAtByte(bytes.size(), "no faces: every tristrip is degenerate");
   completeVertexNormals(out.mesh);
+  dropWhiteColors(out.mesh);
   return std::move(out.mesh);
 }
 
