@@ -149,6 +149,8 @@ TEST_SUITE("obj loader") {
     CHECK(scene.pointLights.empty());  // no framing light beside the model's own
     CHECK(scene.conventions == rt::Conventions::Physical);
     CHECK(scene.conventionsReason == "an OBJ file whose materials glow (Ke)");
+    // Framed straight on from +z, not from above: a lit room's ceiling would hide its lamp.
+    CHECK(scene.camera.forward == glm::vec3(0, 0, -1));
     // In a JSON scene the lamp stays a light, its shape index shifted past
     // the shapes before it; a JSON material on the model replaces its glow.
     const std::string camera =
@@ -241,6 +243,7 @@ TEST_SUITE("obj loader") {
     CHECK(glm::dot(glm::normalize(-glm::vec3(scene.camera.position)), scene.camera.forward) ==
           doctest::Approx(1.0f).epsilon(0.01).scale(0));
     CHECK(scene.camera.position.z > 1.0f);
+    CHECK(scene.camera.forward.y < -0.4f);
   }
 
   TEST_CASE("OBJ models in JSON scenes: type mesh, placement, and the JSON material wins") {

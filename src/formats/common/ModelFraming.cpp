@@ -11,14 +11,17 @@ constexpr uint32_t kFramingWidth = 800;
 constexpr uint32_t kFramingHeight = 600;
 constexpr float kFramingFovDegrees = 45.0f;
 
-// Fov 45, 800x600, looking at the bounding sphere's centre from above the +z
-// side (direction (0, 0.5, 1)), at the distance where the sphere fits.
-Camera framingCamera(const WorldBounds& bounds) {
+// Fov 45, 800x600, looking at the bounding sphere's centre from the +z side,
+// at the distance where the sphere fits: from above (direction (0, 0.5, 1)),
+// so that an object shows its top, or, for a model that glows, straight on:
+// such a model is a lit scene, often a room open at the front (the Cornell
+// box), whose ceiling would hide its lamp from above.
+Camera framingCamera(const WorldBounds& bounds, bool glows) {
   Camera camera;
   camera.width = kFramingWidth;
   camera.height = kFramingHeight;
   camera.fovYDegrees = kFramingFovDegrees;
-  glm::vec3 toCamera = glm::normalize(glm::vec3(0.0f, 0.5f, 1.0f));
+  glm::vec3 toCamera = glm::normalize(glm::vec3(0.0f, glows ? 0.0f : 0.5f, 1.0f));
   double distance =
       1.05 * bounds.radius() / std::sin(glm::radians(double(kFramingFovDegrees)) / 2.0);
   camera.position = bounds.center() + glm::dvec3(toCamera) * distance;
@@ -48,7 +51,7 @@ PointLight framingLight(const Camera& camera, const WorldBounds& bounds) {
 void frameModel(Scene& scene, const WorldBounds& bounds, const std::optional<Camera>& camera,
                 const ModelKind& kind) {
   scene.backgroundColor = glm::vec3(kModelBackgroundGrey);
-  scene.camera = camera ? *camera : framingCamera(bounds);
+  scene.camera = camera ? *camera : framingCamera(bounds, !scene.areaLights.empty());
   if (scene.pointLights.empty() && scene.areaLights.empty()) {
     scene.pointLights.push_back(framingLight(scene.camera, bounds));
   }

@@ -23,7 +23,8 @@ struct ModelKind {
 
 // Makes `scene`, a model file's content, a scene of its own: the grey
 // background; `camera`, else one looking at `bounds` (fov 45, 800x600, from
-// above the +z side, where the bounding sphere fits); a white light of
+// the +z side where the bounding sphere fits: from above, or straight on
+// where the model glows); a white light of
 // intensity 1 above and right of the camera when the model brings no light
 // (point or glowing); and textbook conventions, or physical where its
 // materials glow: an emitted radiance needs the physical falloff and units
