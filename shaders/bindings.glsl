@@ -122,8 +122,8 @@ GpuMaterial loadMaterial(uint index) {
   uvec4 profile = materialRow(index, 4u);
   return GpuMaterial(diffuse.xyz, diffuse.w, specular.xyz, specular.w, emission.xyz, emission.w,
                      uintBitsToFloat(optics.x), uintBitsToFloat(optics.y),
-                     uintBitsToFloat(optics.z), int(optics.w), profile.x, profile.y, profile.z,
-                     profile.w);
+                     uintBitsToFloat(optics.z), int(optics.w), profile.x, int(profile.y),
+                     uintBitsToFloat(profile.z), profile.w);
 }
 
 // Texel `row` (0..2) of point light `index` (see GpuPointLight).

@@ -222,9 +222,9 @@ struct GpuMaterial {
   float ior;
   int diffuseTexture;    // index into the texture table, -1: none
   uint emissionProfile;  // RT_EMISSION_*: how emission depends on the view
+  int normalTexture;     // tangent-space normal map (glTF normalTexture), -1: none
+  float normalScale;     // its x and y scale (glTF normalTexture.scale)
   uint pad0;
-  uint pad1;
-  uint pad2;
 };
 RT_ASSERT_STD430_SIZE(GpuMaterial, 80);
 // Read as RGBA32UI texels (bindings.glsl loadMaterial): rows diffuse/kd,
@@ -295,7 +295,7 @@ struct GpuTextureInfo {
   uint firstTexel;
   uint width;
   uint height;
-  uint pad0;
+  uint linear;  // 1: the texels are data (a normal map), 0: sRGB-encoded colours
 };
 RT_ASSERT_STD430_SIZE(GpuTextureInfo, 16);
 #define RT_TEXELS_PER_TEXTURE_INFO 1u  // one RGBA32UI texel (textures.glsl)

@@ -265,7 +265,7 @@ vec3 diffuseColorOf(GpuMaterial material, SurfacePoint surface) {
 bool shadeHit(inout RayStack stack, inout vec3 radiance, inout PendingRay job, SurfaceHit hit,
               uvec2 pixelSample, DepthLimits limits) {
   GpuMaterial material = loadMaterial(hitMaterial(hit));
-  SurfacePoint surface = surfaceAt(job.ray, hit);
+  SurfacePoint surface = surfaceAt(job.ray, hit, material);
   bool entering = dot(job.ray.direction, surface.geometricNormal) < 0.0;
   faceViewer(surface, -job.ray.direction);
 #ifdef RT_FEATURE_AREA_LIGHTS

@@ -6,6 +6,7 @@
 #include "bindings.glsl"
 #include "traverse.glsl"
 #include "geometry.glsl"
+#include "textures.glsl"
 
 #ifdef RT_FEATURE_VERTICES
 RT_FLOAT_ROWS(RT_BINDING_VERTICES, vertexTexels)
@@ -65,33 +66,79 @@ vec2 cylinderUv(vec3 p, vec4 centerRadius, vec4 axisHalfHeight) {
 #endif
 
 #ifdef RT_FEATURE_VERTICES
-// UVs and, if `smoothNormals`, the shading normal from the corners' vertex records.
-// `normalMatrix` takes vertex normals to world space.
-void interpolateVertices(uvec3 indices, bool smoothNormals, mat3 normalMatrix, vec2 barycentric,
-                         inout SurfacePoint surface) {
-  GpuVertex v0 = loadVertex(indices.x);
-  GpuVertex v1 = loadVertex(indices.y);
-  GpuVertex v2 = loadVertex(indices.z);
+// A triangle with vertex records: their indices, its corners (columns) in the
+// space of the records' normals, and the matrix that takes that space's
+// normals to world space.
+struct VertexTriangle {
+  uvec3 vertices;
+  mat3 corners;
+  mat3 normalMatrix;
+};
+
+#ifdef RT_FEATURE_NORMAL_MAPS
+// The normal `n` (unit) bent by a tangent-space normal map at `uv`. The
+// tangent frame is the triangle's own: x along the texture's u on the
+// surface (edges e1, e2 with texture coordinates d1, d2 apart), y against
+// its v (glTF: the map's +y is up in the image, whose rows v counts down),
+// both made perpendicular to n. Per triangle, not the vertex tangents
+// glTF's MikkTSpace interpolates: the same on flat faces.
+vec3 normalMapped(vec3 n, vec3 e1, vec3 e2, vec2 d1, vec2 d2, vec2 uv, GpuMaterial material) {
+  float det = d1.x * d2.y - d2.x * d1.y;
+  if (det == 0.0) return n;  // no texture direction on this face
+  float orientation = det > 0.0 ? 1.0 : -1.0;  // the derivatives without the division
+  vec3 alongU = orientation * (e1 * d2.y - e2 * d1.y);
+  vec3 alongV = orientation * (e2 * d1.x - e1 * d2.x);
+  vec3 tangent = alongU - n * dot(n, alongU);
+  if (!(dot(tangent, tangent) > 0.0)) return n;
+  tangent = normalize(tangent);
+  vec3 bitangent = cross(n, tangent);
+  if (dot(bitangent, alongV) > 0.0) bitangent = -bitangent;
+  vec3 m = sampleTexture(material.normalTexture, uv) * 2.0 - 1.0;
+  vec3 bent = material.normalScale * (m.x * tangent + m.y * bitangent) + m.z * n;
+  return dot(bent, bent) > 0.0 ? normalize(bent) : n;
+}
+#endif
+
+// UVs, vertex colours and the shading normal from the corners' vertex
+// records: interpolated where `smoothNormals`, bent by the material's normal
+// map where it has one; else the geometric normal stays.
+void interpolateVertices(VertexTriangle triangle, bool smoothNormals, GpuMaterial material,
+                         vec2 barycentric, inout SurfacePoint surface) {
+  GpuVertex v0 = loadVertex(triangle.vertices.x);
+  GpuVertex v1 = loadVertex(triangle.vertices.y);
+  GpuVertex v2 = loadVertex(triangle.vertices.z);
   vec3 weights = vec3(1.0 - barycentric.x - barycentric.y, barycentric);
   surface.uv = weights.x * vec2(v0.u, v0.v) + weights.y * vec2(v1.u, v1.v) +
                weights.z * vec2(v2.u, v2.v);
 #ifdef RT_FEATURE_VERTEX_COLORS
   surface.vertexColor = weights.x * v0.color + weights.y * v1.color + weights.z * v2.color;
 #endif
-  if (!smoothNormals) return;
-  vec3 interpolated = normalMatrix * (weights.x * v0.normal + weights.y * v1.normal +
-                                    weights.z * v2.normal);
-  if (dot(interpolated, interpolated) > 0.0) {
-    interpolated = normalize(interpolated);
+  vec3 normal = smoothNormals
+                    ? weights.x * v0.normal + weights.y * v1.normal + weights.z * v2.normal
+                    : vec3(0.0);
+#ifdef RT_FEATURE_NORMAL_MAPS
+  if (material.normalTexture >= 0) {
+    vec3 e1 = triangle.corners[1] - triangle.corners[0];
+    vec3 e2 = triangle.corners[2] - triangle.corners[0];
+    vec3 base = smoothNormals ? normal : cross(e1, e2);
+    if (dot(base, base) > 0.0) {
+      normal = normalMapped(normalize(base), e1, e2, vec2(v1.u, v1.v) - vec2(v0.u, v0.v),
+                            vec2(v2.u, v2.v) - vec2(v0.u, v0.v), surface.uv, material);
+    }
+  }
+#endif
+  vec3 world = triangle.normalMatrix * normal;
+  if (dot(world, world) > 0.0) {
+    world = normalize(world);
     // Interpolated normals may face away on silhouettes: keep them on the
     // geometric side, so shadow and reflection rays stay consistent.
-    surface.shadingNormal =
-        dot(interpolated, surface.geometricNormal) >= 0.0 ? interpolated : -interpolated;
+    surface.shadingNormal = dot(world, surface.geometricNormal) >= 0.0 ? world : -world;
   }
 }
 #endif
 
-SurfacePoint surfaceAt(Ray ray, SurfaceHit hit) {
+// `material`: the hit's (its normal map).
+SurfacePoint surfaceAt(Ray ray, SurfaceHit hit, GpuMaterial material) {
   SurfacePoint surface;
   vec4 point = hitPoint(ray, hit);
   surface.position = point.xyz;
@@ -112,17 +159,21 @@ SurfacePoint surfaceAt(Ray ray, SurfaceHit hit) {
 #ifdef RT_FEATURE_VERTICES
   bool smoothNormals = (prim.flags & RT_PRIM_SMOOTH) != 0u;
   if (prim.kind == RT_PRIM_TRIANGLE && (prim.flags & RT_PRIM_HAS_VERTICES) != 0u) {
-    uvec3 corners = floatBitsToUint(vec3(prim.a.w, prim.b.w, prim.c.w));
-    interpolateVertices(corners, smoothNormals, mat3(1.0), hit.barycentric, surface);
+    VertexTriangle triangle =
+        VertexTriangle(floatBitsToUint(vec3(prim.a.w, prim.b.w, prim.c.w)),
+                       mat3(prim.a.xyz, prim.b.xyz, prim.c.xyz), mat3(1.0));
+    interpolateVertices(triangle, smoothNormals, material, hit.barycentric, surface);
   }
 #ifdef RT_FEATURE_MESHES
   if (prim.kind == RT_PRIM_INSTANCE && (prim.flags & RT_PRIM_HAS_VERTICES) != 0u) {
-    uvec3 corners = floatBitsToUint(vec3(itemRow(hit.triangleIndex, 0u).w,
-                                         itemRow(hit.triangleIndex, 1u).w,
-                                         itemRow(hit.triangleIndex, 2u).w));
+    vec4 row0 = itemRow(hit.triangleIndex, 0u);
+    vec4 row1 = itemRow(hit.triangleIndex, 1u);
+    vec4 row2 = itemRow(hit.triangleIndex, 2u);
     // Columns a, b, c: the transpose of world-to-object, the normal matrix.
-    mat3 normalMatrix = mat3(prim.a.xyz, prim.b.xyz, prim.c.xyz);
-    interpolateVertices(corners, smoothNormals, normalMatrix, hit.barycentric, surface);
+    VertexTriangle triangle =
+        VertexTriangle(floatBitsToUint(vec3(row0.w, row1.w, row2.w)),
+                       mat3(row0.xyz, row1.xyz, row2.xyz), mat3(prim.a.xyz, prim.b.xyz, prim.c.xyz));
+    interpolateVertices(triangle, smoothNormals, material, hit.barycentric, surface);
   }
 #endif
 #endif

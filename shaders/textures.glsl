@@ -38,7 +38,11 @@ uint wrapTexel(int x, int size) {
 vec3 fetchTexel(GpuTextureInfo info, int x, int y) {
   uint tx = wrapTexel(x, int(info.width));
   uint ty = wrapTexel(y, int(info.height));
-  return srgbToLinear(unpackUnorm4x8(textureTexel(info.firstTexel + ty * info.width + tx)).rgb);
+  vec3 texel = unpackUnorm4x8(textureTexel(info.firstTexel + ty * info.width + tx)).rgb;
+#ifdef RT_FEATURE_NORMAL_MAPS
+  if (info.linear != 0u) return texel;
+#endif
+  return srgbToLinear(texel);
 }
 
 vec3 sampleTexture(int index, vec2 uv) {

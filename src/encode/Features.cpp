@@ -86,7 +86,8 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
   features.vertices = !flat.vertices.empty();
   features.vertexColors = shaded && usesVertexColors(scene);
   for (const gpu::GpuMaterial& material : flat.materials) {
-    features.textures |= shaded && material.diffuseTexture >= 0;
+    features.normalMaps |= shaded && material.normalTexture >= 0;
+    features.textures |= shaded && (material.diffuseTexture >= 0 || material.normalTexture >= 0);
   }
   features.thinLens =
       scene.camera.type == CameraType::ThinLens && scene.camera.apertureRadius > 0.0f;
@@ -146,6 +147,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(vertices, "RT_FEATURE_VERTICES");
   flag(vertexColors, "RT_FEATURE_VERTEX_COLORS");
   flag(textures, "RT_FEATURE_TEXTURES");
+  flag(normalMaps, "RT_FEATURE_NORMAL_MAPS");
   flag(areaLights, "RT_FEATURE_AREA_LIGHTS");
   flag(diffuseBounces, "RT_FEATURE_DIFFUSE_BOUNCES");
   flag(pathTracer, "RT_FEATURE_PATH_TRACER");

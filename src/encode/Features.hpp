@@ -39,6 +39,7 @@ struct ShaderFeatures {
   bool vertices = false;      // per-vertex normals / UVs on triangles
   bool vertexColors = false;  // some shaded mesh has vertex colours
   bool textures = false;
+  bool normalMaps = false;  // some shaded material has a normal map (needs textures)
   bool areaLights = false;
   bool diffuseBounces = false;        // sampled diffuse bounces (distributed bounces, path tracer)
   bool pathTracer = false;            // one continuation per hit

@@ -280,8 +280,10 @@ std::vector<std::optional<MeshBlas>> addMeshes(const Scene& scene,
   for (const PendingInstance& instance : instances) {
     uses.at(instance.mesh)++;
     const gpu::GpuPrimitive& prim = flat.primitives[instance.primitive];
+    // The GPU material: an area light's shape has its own copy, past the scene's.
+    const gpu::GpuMaterial& material = flat.materials.at(prim.materialIndex);
     textured[instance.mesh] =
-        textured[instance.mesh] || scene.materials[prim.materialIndex].diffuseTexture >= 0;
+        textured[instance.mesh] || material.diffuseTexture >= 0 || material.normalTexture >= 0;
   }
   MeshEncoder builder(scene, flat, options);
   std::vector<std::optional<MeshBlas>> meshes(scene.meshes.size());
@@ -389,6 +391,8 @@ gpu::GpuMaterial toGpu(const Material& m) {
   out.transmission = m.transmission;
   out.ior = m.ior;
   out.diffuseTexture = m.diffuseTexture;
+  out.normalTexture = m.normalTexture;
+  out.normalScale = m.normalScale;
   out.emission = glm::vec3(0.0f);
   out.emissionProfile = RT_EMISSION_ISOTROPIC;
   return out;
@@ -423,8 +427,8 @@ uint32_t gpuRenderMode(RenderMode mode) {
 void addTextures(const Scene& scene, FlatScene& flat) {
   for (const Texture& texture : scene.textures) {
     const ImageRgba8& image = texture.image;
-    flat.textureInfos.push_back(
-        {static_cast<uint32_t>(flat.texels.size()), image.width, image.height, 0});
+    flat.textureInfos.push_back({static_cast<uint32_t>(flat.texels.size()), image.width,
+                                 image.height, texture.linear ? 1u : 0u});
     for (size_t i = 0; i + 3 < image.rgba.size(); i += 4) {
       flat.texels.push_back(uint32_t(image.rgba[i]) | uint32_t(image.rgba[i + 1]) << 8 |
                             uint32_t(image.rgba[i + 2]) << 16 | uint32_t(image.rgba[i + 3]) << 24);

@@ -38,12 +38,19 @@ struct Material {
   // false: the texture replaces diffuseColor (coursework files);
   // true: texture * diffuseColor (glTF base colour factor).
   bool textureTintedByColor = false;
+  // A tangent-space normal map (glTF normalTexture: x right along u, y up
+  // against v, z out), index into Scene::textures, -1 when none; `normalScale`
+  // scales its x and y.
+  int32_t normalTexture = -1;
+  float normalScale = 1.0f;
 };
 
-// A decoded texture image; colours are sRGB-encoded as in the file.
+// A decoded texture image: sRGB-encoded colours as in the file, or data
+// (`linear`: a normal map's directions).
 struct Texture {
   std::string source;  // file path or glTF image name
   ImageRgba8 image;
+  bool linear = false;
 };
 
 struct Sphere {

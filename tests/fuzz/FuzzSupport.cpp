@@ -134,10 +134,12 @@ void checkMaterial(const Material& material, size_t textureCount) {
   if (!finiteWeights || !finite(material.diffuseColor) || !finite(material.specularColor)) {
     finding("material with a non-finite value");
   }
-  if (material.diffuseTexture < -1 ||
-      (material.diffuseTexture >= 0 && size_t(material.diffuseTexture) >= textureCount)) {
-    finding("material texture index " + std::to_string(material.diffuseTexture) + " out of range");
+  for (int32_t texture : {material.diffuseTexture, material.normalTexture}) {
+    if (texture < -1 || (texture >= 0 && size_t(texture) >= textureCount)) {
+      finding("material texture index " + std::to_string(texture) + " out of range");
+    }
   }
+  if (!std::isfinite(material.normalScale)) finding("non-finite normal map scale");
 }
 
 struct GeometryCheck {

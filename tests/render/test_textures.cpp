@@ -106,6 +106,48 @@ TEST_SUITE("render textures") {
     checkColor(renderedAt(render(scene), 0.25f, 0.25f), {0.5f, 0, 0});
   }
 
+  TEST_CASE("normal maps: x along u, y up the image, z out; texels are data; scale") {
+    // A white quad facing the camera (+z) with uvs as the quads' (u along +x,
+    // v down the image), lit by one light from `direction`: its brightness is
+    // the bent normal's cosine to the light.
+    auto brightness = [](glm::vec3 mapped, glm::vec3 direction, float scale = 1.0f) {
+      Scene scene = flatLitScene();
+      scene.textures = {{"normal map", {1, 1, {}}, true}};
+      glm::vec3 encoded = glm::round((mapped * 0.5f + 0.5f) * 255.0f);
+      scene.textures[0].image.rgba = {uint8_t(encoded.x), uint8_t(encoded.y), uint8_t(encoded.z),
+                                      255};
+      scene.materials[0].diffuseTexture = -1;
+      scene.materials[0].diffuseColor = glm::vec3(1.0f);
+      scene.materials[0].normalTexture = 0;
+      scene.materials[0].normalScale = scale;
+      scene.pointLights[0].position = glm::dvec3(glm::normalize(direction)) * 1e6;
+      TriangleMesh mesh;
+      mesh.positions = {{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
+      mesh.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+      // Counter-clockwise from the camera: its front. (Seen from the back, the
+      // whole bent normal turns over, as glTF's double-sided materials do.)
+      mesh.faces = {{0, 2, 1}, {0, 3, 2}};
+      scene.meshes.push_back(mesh);
+      Shape shape;
+      shape.geometry = MeshInstance{0, WorldTransform(1.0)};
+      scene.shapes.push_back(shape);
+      return renderedAt(render(scene), 0.5f, 0.5f).x;
+    };
+    const glm::vec3 towardsU(0.6f, 0.0f, 0.8f);  // the map's normal, tilted along +x
+    // 8-bit encoding moves the normal by up to 1/255.
+    CHECK(brightness(towardsU, {0.6f, 0.0f, 0.8f}) == doctest::Approx(1.0).epsilon(0.01));
+    CHECK(brightness(towardsU, {0.0f, 0.0f, 1.0f}) == doctest::Approx(0.8).epsilon(0.01));
+    CHECK(brightness(towardsU, {-0.6f, 0.0f, 0.8f}) == doctest::Approx(0.28).epsilon(0.03));
+    // +y of the map is up in the image: against v, along +y here.
+    CHECK(brightness({0.0f, 0.6f, 0.8f}, {0.0f, 0.6f, 0.8f}) == doctest::Approx(1.0).epsilon(0.01));
+    CHECK(brightness({0.0f, 0.6f, 0.8f}, {0.0f, -0.6f, 0.8f}) ==
+          doctest::Approx(0.28).epsilon(0.03));
+    // Scale 0.5 halves x and y before normalising: (0.3, 0, 0.8) / 0.854.
+    CHECK(brightness(towardsU, {0.0f, 0.0f, 1.0f}, 0.5f) == doctest::Approx(0.937).epsilon(0.01));
+    // The flat normal (0, 0, 1) changes nothing.
+    CHECK(brightness({0.0f, 0.0f, 1.0f}, {0.6f, 0.0f, 0.8f}) == doctest::Approx(0.8).epsilon(0.01));
+  }
+
   TEST_CASE("vertex colours multiply the textured colour, interpolated across the faces") {
     Scene scene = flatLitScene();
     scene.materials[0].diffuseColor = {0.5f, 0.5f, 0.5f};

@@ -832,6 +832,42 @@ TEST_SUITE("scene gltf") {
     CHECK(glm::length(turnedUvs[2] - glm::vec2(1, -1)) < 1e-6f);
   }
 
+  TEST_CASE("normal maps: decoded as data beside the same image as colour, scale, one uv set") {
+    writeTexture("tex.png");
+    GltfBuilder b;
+    int pos = b.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    int uv0 = b.floats({1, 0, 0, 1, 1, 1}, "VEC2", 2);
+    int uv1 = b.floats({0, 0, 1, 0, 0, 1}, "VEC2", 2);
+    b.doc["images"] = {{{"uri", "tex.png"}}};
+    b.doc["textures"] = {{{"source", 0}}};
+    b.doc["materials"] = {
+        {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+         {"normalTexture", {{"index", 0}, {"scale", 0.5}}}},
+        {{"normalTexture", {{"index", 0}, {"texCoord", 1}}}},  // alone: its uvs are the mesh's
+        {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+         {"normalTexture", {{"index", 0}, {"texCoord", 1}}}}};  // two uv sets: not drawn
+    Json attributes = {{"POSITION", pos}, {"TEXCOORD_0", uv0}, {"TEXCOORD_1", uv1}};
+    for (int material = 0; material < 3; ++material) {
+      b.node({{"mesh", b.mesh({{"attributes", attributes}, {"material", material}})}});
+    }
+    rt::Scene scene = loadDoc("normals.gltf", b.embedded());
+    // One image, twice: as sRGB colours and as linear data.
+    REQUIRE(scene.textures.size() == 2);
+    const rt::Material& both = scene.materials[scene.shapes[0].material];
+    CHECK_FALSE(scene.textures.at(size_t(both.diffuseTexture)).linear);
+    REQUIRE(both.normalTexture >= 0);
+    CHECK(scene.textures.at(size_t(both.normalTexture)).linear);
+    CHECK(both.normalScale == 0.5f);
+    const rt::Material& alone = scene.materials[scene.shapes[1].material];
+    CHECK(alone.normalTexture == both.normalTexture);
+    CHECK(alone.normalScale == 1.0f);
+    CHECK(meshOf(scene, 1).uvs == std::vector<glm::vec2>{{0, 0}, {1, 0}, {0, 1}});  // TEXCOORD_1
+    CHECK(scene.materials[scene.shapes[2].material].normalTexture == -1);
+    CHECK(hasWarning(scene,
+                     "materials[2].normalTexture: reads other texture coordinates than the "
+                     "base colour texture; ignored"));
+  }
+
   TEST_CASE("cameras: the first perspective camera of the scene, its node's axes and aspect") {
     GltfBuilder b = triangleModel();
     b.doc["cameras"] = {

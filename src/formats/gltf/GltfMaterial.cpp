@@ -77,7 +77,6 @@ void noteIgnoredFeatures(Context& context, const tinygltf::Material& gltf,
   if (gltf.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0) {
     context.ignored("metallic-roughness texture detail (the mean is used)", where);
   }
-  if (gltf.normalTexture.index >= 0) context.ignored("normal maps", where);
   if (gltf.occlusionTexture.index >= 0) context.ignored("occlusion maps", where);
   bool glows = std::any_of(gltf.emissiveFactor.begin(), gltf.emissiveFactor.end(),
                            [](double v) { return v > 0.0; });
@@ -165,14 +164,15 @@ Material defaultMaterial() {
   return out;
 }
 
-// KHR_texture_transform of the base colour texture, as a 3x3 UV matrix
-// (translation * rotation * scale, rotation counter-clockwise in UV space).
-UvMapping uvMappingOf(const Context& context, const tinygltf::TextureInfo& info,
-                      const std::string& where) {
+// A texture's texture coordinate set and KHR_texture_transform, as a 3x3 UV
+// matrix (translation * rotation * scale, rotation counter-clockwise in UV
+// space).
+UvMapping uvMappingOf(const Context& context, int texCoord,
+                      const tinygltf::ExtensionMap& extensions, const std::string& where) {
   UvMapping mapping;
-  mapping.set = std::max(info.texCoord, 0);
-  auto found = info.extensions.find("KHR_texture_transform");
-  if (found == info.extensions.end() || !found->second.IsObject()) return mapping;
+  mapping.set = std::max(texCoord, 0);
+  auto found = extensions.find("KHR_texture_transform");
+  if (found == extensions.end() || !found->second.IsObject()) return mapping;
   const tinygltf::Value& ext = found->second;
   std::string path = where + ".extensions.KHR_texture_transform";
   auto number = [&](const tinygltf::Value& v, const std::string& key) {
@@ -220,13 +220,14 @@ uint32_t MaterialTable::material(int index, const std::string& where) {
     const tinygltf::TextureInfo& info = gltf.pbrMetallicRoughness.baseColorTexture;
     if (info.index >= 0) {
       std::string infoWhere = name + ".pbrMetallicRoughness.baseColorTexture";
-      uvMappingOf(context_, info, infoWhere);  // validates the transform now
-      converted.diffuseTexture = texture(info, infoWhere);
+      uvMappingOf(context_, info.texCoord, info.extensions, infoWhere);  // validates it now
+      converted.diffuseTexture = texture(info.index, Encoding::Srgb, infoWhere);
       if (converted.diffuseTexture >= 0) {
         converted.texture = scene_.textures[size_t(converted.diffuseTexture)].source;
         converted.textureTintedByColor = true;  // glTF: base colour = factor * texture
       }
     }
+    addNormalMap(index, converted);
   }
   scene_.materials.push_back(std::move(converted));
   uint32_t added = static_cast<uint32_t>(scene_.materials.size() - 1);
@@ -239,12 +240,37 @@ glm::vec3 MaterialTable::emission(int index) const {
   return found == emissions_.end() ? glm::vec3(0.0f) : found->second;
 }
 
+// The base colour texture's mapping, else the normal map's: the one set of
+// texture coordinates a primitive's vertices carry.
 UvMapping MaterialTable::uvMapping(int index) const {
   if (index < 0 || size_t(index) >= context_.model().materials.size()) return {};
   const tinygltf::Material& gltf = context_.model().materials[size_t(index)];
   const tinygltf::TextureInfo& info = gltf.pbrMetallicRoughness.baseColorTexture;
-  if (info.index < 0) return {};
-  return uvMappingOf(context_, info, item("materials", index));
+  if (info.index >= 0) {
+    return uvMappingOf(context_, info.texCoord, info.extensions, item("materials", index));
+  }
+  const tinygltf::NormalTextureInfo& normal = gltf.normalTexture;
+  if (normal.index >= 0) {
+    return uvMappingOf(context_, normal.texCoord, normal.extensions, item("materials", index));
+  }
+  return {};
+}
+
+// The normal map of glTF material `index`, where it reads the texture
+// coordinates the base colour texture reads (a vertex carries one set).
+void MaterialTable::addNormalMap(int index, Material& converted) {
+  const tinygltf::NormalTextureInfo& info = context_.model().materials[size_t(index)].normalTexture;
+  if (info.index < 0) return;
+  std::string where = item("materials", index) + ".normalTexture";
+  UvMapping own = uvMappingOf(context_, info.texCoord, info.extensions, where);
+  UvMapping shared = uvMapping(index);
+  if (own.set != shared.set || own.transform != shared.transform) {
+    context_.warn(where, "reads other texture coordinates than the base colour texture; ignored");
+    return;
+  }
+  double scale = finiteNumber(context_, info.scale, where + ".scale");
+  converted.normalTexture = texture(info.index, Encoding::Linear, where);
+  converted.normalScale = static_cast<float>(std::clamp(scale, -1e3, 1e3));
 }
 
 int MaterialTable::imageOf(int textureIndex, const std::string& where) {
@@ -269,9 +295,9 @@ int MaterialTable::imageOf(int textureIndex, const std::string& where) {
   return image;
 }
 
-int32_t MaterialTable::texture(const tinygltf::TextureInfo& info, const std::string& where) {
-  int image = imageOf(info.index, where);
-  return image < 0 ? -1 : decodeImage(image, where);
+int32_t MaterialTable::texture(int textureIndex, Encoding encoding, const std::string& where) {
+  int image = imageOf(textureIndex, where);
+  return image < 0 ? -1 : decodeImage(image, encoding, where);
 }
 
 // Mean metallic (blue) and roughness (green) of a metallic-roughness texture,
@@ -296,13 +322,15 @@ glm::vec2 MaterialTable::metallicRoughnessAverage(const tinygltf::TextureInfo& i
   return mean;
 }
 
-int32_t MaterialTable::decodeImage(int index, const std::string& where) {
-  if (auto found = images_.find(index); found != images_.end()) return found->second;
+int32_t MaterialTable::decodeImage(int index, Encoding encoding, const std::string& where) {
+  std::pair<int, Encoding> key{index, encoding};
+  if (auto found = images_.find(key); found != images_.end()) return found->second;
   Texture texture;
   texture.image = readImage(index, where, texture.source);
+  texture.linear = encoding == Encoding::Linear;
   scene_.textures.push_back(std::move(texture));
   int32_t added = static_cast<int32_t>(scene_.textures.size() - 1);
-  images_.emplace(index, added);
+  images_.emplace(key, added);
   return added;
 }
 

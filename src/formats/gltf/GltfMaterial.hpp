@@ -1,5 +1,5 @@
-// glTF materials and base colour textures onto rt::Material (Blinn-Phong with
-// mirror and refraction weights) and Scene::textures.
+// glTF materials, base colour textures and normal maps onto rt::Material
+// (Blinn-Phong with mirror and refraction weights) and Scene::textures.
 #pragma once
 
 #include <filesystem>
@@ -32,8 +32,12 @@ class MaterialTable {
   glm::vec3 emission(int index) const;
 
  private:
-  int32_t texture(const tinygltf::TextureInfo& info, const std::string& where);
-  int32_t decodeImage(int image, const std::string& where);
+  // What a texture's texels are: sRGB-encoded colours, or data (normal maps).
+  enum class Encoding { Srgb, Linear };
+
+  int32_t texture(int textureIndex, Encoding encoding, const std::string& where);
+  int32_t decodeImage(int image, Encoding encoding, const std::string& where);
+  void addNormalMap(int index, Material& converted);
   glm::vec2 metallicRoughnessAverage(const tinygltf::TextureInfo& info, const std::string& where);
   // The image of glTF texture `textureIndex`, or -1 when it has none we can read.
   int imageOf(int textureIndex, const std::string& where);
@@ -43,11 +47,11 @@ class MaterialTable {
   Context& context_;
   Scene& scene_;
   std::filesystem::path baseDir_;
-  std::map<int, uint32_t> materials_;   // glTF material -> Scene::materials
-  std::map<int, glm::vec3> emissions_;  // glTF material -> emitted radiance
-  std::map<int, int32_t> images_;       // glTF image -> Scene::textures
-  std::map<int, glm::vec2> averages_;   // glTF image -> mean (metallic, roughness)
-  uint64_t decodedBytes_ = 0;           // all images decoded so far, bounded
+  std::map<int, uint32_t> materials_;                   // glTF material -> Scene::materials
+  std::map<int, glm::vec3> emissions_;                  // glTF material -> emitted radiance
+  std::map<std::pair<int, Encoding>, int32_t> images_;  // glTF image -> Scene::textures
+  std::map<int, glm::vec2> averages_;                   // glTF image -> mean (metallic, roughness)
+  uint64_t decodedBytes_ = 0;                           // all images decoded so far, bounded
 };
 
 }  // namespace rt::gltf
