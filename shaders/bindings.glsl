@@ -123,7 +123,7 @@ GpuMaterial loadMaterial(uint index) {
   return GpuMaterial(diffuse.xyz, diffuse.w, specular.xyz, specular.w, emission.xyz, emission.w,
                      uintBitsToFloat(optics.x), uintBitsToFloat(optics.y),
                      uintBitsToFloat(optics.z), int(optics.w), profile.x, int(profile.y),
-                     uintBitsToFloat(profile.z), profile.w);
+                     uintBitsToFloat(profile.z), int(profile.w));
 }
 
 // Texel `row` (0..2) of point light `index` (see GpuPointLight).

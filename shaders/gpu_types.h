@@ -215,7 +215,9 @@ struct GpuMaterial {
   float kd;
   vec3 specularColor;
   float ks;
-  vec3 emission;  // area lights: radiance leaving the surface, times pi (README "Area lights")
+  // Area lights: radiance leaving the surface, times pi (README "Area lights");
+  // a glow (RT_EMISSION_GLOW): the radiance it shows, times its texture.
+  vec3 emission;
   float specularExponent;
   float reflectivity;
   float transmission;
@@ -224,12 +226,12 @@ struct GpuMaterial {
   uint emissionProfile;  // RT_EMISSION_*: how emission depends on the view
   int normalTexture;     // tangent-space normal map (glTF normalTexture), -1: none
   float normalScale;     // its x and y scale (glTF normalTexture.scale)
-  uint pad0;
+  int emissionTexture;   // a glow's texture (glTF emissiveTexture), -1: none
 };
 RT_ASSERT_STD430_SIZE(GpuMaterial, 80);
 // Read as RGBA32UI texels (bindings.glsl loadMaterial): rows diffuse/kd,
 // specular/ks, emission/exponent, reflectivity/transmission/ior/texture,
-// profile/pads.
+// profile/normal map/emission texture.
 #define RT_TEXELS_PER_MATERIAL 5u
 RT_ASSERT_TEXELS(GpuMaterial, RT_TEXELS_PER_MATERIAL);
 
@@ -237,6 +239,10 @@ RT_ASSERT_TEXELS(GpuMaterial, RT_TEXELS_PER_MATERIAL);
 // GpuAreaLight::profile). Spheres are always lamps (Lambertian).
 #define RT_EMISSION_ISOTROPIC 0u   // each point shines equally in all directions (coursework)
 #define RT_EMISSION_LAMBERTIAN 1u  // radiance the same in every direction (physical)
+// Not a light: the surface shows emission times its emission texture to the
+// rays that count emission (camera, mirror, refraction), and lights nothing
+// (glTF emissive textures, whose detail cannot be one light).
+#define RT_EMISSION_GLOW 2u
 
 // ---- Area lights (src/render/AreaLights.cpp, shaders/lights.glsl) ----
 // An area light is a list of emitter pieces (a sphere, a cylinder, or the

@@ -268,9 +268,10 @@ bool shadeHit(inout RayStack stack, inout vec3 radiance, inout PendingRay job, S
   SurfacePoint surface = surfaceAt(job.ray, hit, material);
   bool entering = dot(job.ray.direction, surface.geometricNormal) < 0.0;
   faceViewer(surface, -job.ray.direction);
-#ifdef RT_FEATURE_AREA_LIGHTS
+#if defined(RT_FEATURE_AREA_LIGHTS) || defined(RT_FEATURE_GLOW)
   if (job.countsEmission) {
-    radiance += clampedContribution(job.weight * emittedRadiance(material, hit, job.ray.direction), job);
+    vec3 emitted = emittedRadiance(material, hit, job.ray.direction, surface.uv);
+    radiance += clampedContribution(job.weight * emitted, job);
   }
 #endif
   ShadingContext context = ShadingContext(surface, -job.ray.direction, material,

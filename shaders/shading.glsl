@@ -249,12 +249,20 @@ LightSample areaLightSample(ShadingContext context, GpuAreaLight light, uint lig
   return lit;
 }
 
+#endif
+
+#if defined(RT_FEATURE_AREA_LIGHTS) || defined(RT_FEATURE_GLOW)
 // Radiance a ray sees leaving an area light's surface (material.emission
 // holds it head on): spheres and Lambertian lights the same from every
 // direction; isotropic ones are sheets of points shining in all directions,
 // brighter where seen edge on (by the cosine, bounded so that grazing views
-// stay finite).
-vec3 emittedRadiance(GpuMaterial material, SurfaceHit hit, vec3 direction) {
+// stay finite). A glow shows its emission times its texture at `uv`.
+vec3 emittedRadiance(GpuMaterial material, SurfaceHit hit, vec3 direction, vec2 uv) {
+#ifdef RT_FEATURE_GLOW
+  if (material.emissionProfile == RT_EMISSION_GLOW) {
+    return material.emission * sampleTexture(material.emissionTexture, uv);
+  }
+#endif
   if (material.emissionProfile == RT_EMISSION_LAMBERTIAN ||
       primitiveInfo(hit.primitiveIndex).x == RT_PRIM_SPHERE) {
     return material.emission;

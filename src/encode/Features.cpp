@@ -87,7 +87,9 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
   features.vertexColors = shaded && usesVertexColors(scene);
   for (const gpu::GpuMaterial& material : flat.materials) {
     features.normalMaps |= shaded && material.normalTexture >= 0;
-    features.textures |= shaded && (material.diffuseTexture >= 0 || material.normalTexture >= 0);
+    features.glow |= shaded && material.emissionTexture >= 0;
+    features.textures |= shaded && (material.diffuseTexture >= 0 || material.normalTexture >= 0 ||
+                                    material.emissionTexture >= 0);
   }
   features.thinLens =
       scene.camera.type == CameraType::ThinLens && scene.camera.apertureRadius > 0.0f;
@@ -148,6 +150,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(vertexColors, "RT_FEATURE_VERTEX_COLORS");
   flag(textures, "RT_FEATURE_TEXTURES");
   flag(normalMaps, "RT_FEATURE_NORMAL_MAPS");
+  flag(glow, "RT_FEATURE_GLOW");
   flag(areaLights, "RT_FEATURE_AREA_LIGHTS");
   flag(diffuseBounces, "RT_FEATURE_DIFFUSE_BOUNCES");
   flag(pathTracer, "RT_FEATURE_PATH_TRACER");

@@ -40,6 +40,7 @@ struct ShaderFeatures {
   bool vertexColors = false;  // some shaded mesh has vertex colours
   bool textures = false;
   bool normalMaps = false;  // some shaded material has a normal map (needs textures)
+  bool glow = false;        // some shaded material glows through a texture (RT_EMISSION_GLOW)
   bool areaLights = false;
   bool diffuseBounces = false;        // sampled diffuse bounces (distributed bounces, path tracer)
   bool pathTracer = false;            // one continuation per hit

@@ -53,6 +53,13 @@ gpu::GpuVertex vertexRecord(const glm::vec3& normal, const glm::vec2& uv,
   return {normal, uv.x, color, uv.y};
 }
 
+// Whether a material samples a texture (colour, normals, glow): its
+// triangles then need texture coordinates.
+bool samplesTextures(const gpu::GpuMaterial& material) {
+  return material.diffuseTexture >= 0 || material.normalTexture >= 0 ||
+         material.emissionTexture >= 0;
+}
+
 // Points a triangle at three GpuVertex records.
 void attachVertices(gpu::GpuPrimitive& prim, glm::uvec3 indices, bool smooth) {
   setTriangleRows(prim,
@@ -82,7 +89,7 @@ struct PendingInstance {
 // Turns shapes into GPU primitives, and adds vertex records where a
 // triangle needs more than its corners: smooth normals or texture coordinates.
 struct PrimitiveSink {
-  const Material& material;
+  const gpu::GpuMaterial& material;
   FlatScene& flat;
   std::vector<PendingInstance>& instances;
 
@@ -102,7 +109,7 @@ struct PrimitiveSink {
   void operator()(const Quad& q) const {
     gpu::GpuPrimitive first = makeTriangle(at(q.v0), at(q.v1), at(q.v2));
     gpu::GpuPrimitive second = makeTriangle(at(q.v0), at(q.v2), at(q.v3));
-    if (material.diffuseTexture >= 0) {
+    if (samplesTextures(material)) {
       uint32_t base = addVertices({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
       attachVertices(first, {base, base + 1, base + 2}, false);
       attachVertices(second, {base, base + 2, base + 3}, false);
@@ -251,7 +258,8 @@ std::vector<PendingInstance> collectPrimitives(const Scene& scene,
   for (uint32_t shapeIndex = 0; shapeIndex < scene.shapes.size(); ++shapeIndex) {
     const Shape& shape = scene.shapes[shapeIndex];
     size_t first = flat.primitives.size();
-    std::visit(PrimitiveSink{scene.materials.at(shape.material), flat, instances}, shape.geometry);
+    const gpu::GpuMaterial& material = flat.materials.at(shapeMaterials[shapeIndex]);
+    std::visit(PrimitiveSink{material, flat, instances}, shape.geometry);
     for (size_t i = first; i < flat.primitives.size(); ++i) {
       flat.primitives[i].materialIndex = shapeMaterials[shapeIndex];
       flat.primitives[i].shapeIndex = shapeIndex;
@@ -281,9 +289,8 @@ std::vector<std::optional<MeshBlas>> addMeshes(const Scene& scene,
     uses.at(instance.mesh)++;
     const gpu::GpuPrimitive& prim = flat.primitives[instance.primitive];
     // The GPU material: an area light's shape has its own copy, past the scene's.
-    const gpu::GpuMaterial& material = flat.materials.at(prim.materialIndex);
     textured[instance.mesh] =
-        textured[instance.mesh] || material.diffuseTexture >= 0 || material.normalTexture >= 0;
+        textured[instance.mesh] || samplesTextures(flat.materials.at(prim.materialIndex));
   }
   MeshEncoder builder(scene, flat, options);
   std::vector<std::optional<MeshBlas>> meshes(scene.meshes.size());
@@ -395,6 +402,11 @@ gpu::GpuMaterial toGpu(const Material& m) {
   out.normalScale = m.normalScale;
   out.emission = glm::vec3(0.0f);
   out.emissionProfile = RT_EMISSION_ISOTROPIC;
+  out.emissionTexture = m.glowTexture;
+  if (m.glowTexture >= 0) {
+    out.emission = m.glow;
+    out.emissionProfile = RT_EMISSION_GLOW;
+  }
   return out;
 }
 
@@ -408,6 +420,7 @@ std::vector<uint32_t> addLightMaterials(const Scene& scene, const FlatAreaLights
     uint32_t shape = scene.areaLights[i].shape;
     gpu::GpuMaterial material = flat.materials.at(shapeMaterials[shape]);
     material.emission = lights.emission[i];
+    material.emissionTexture = -1;  // a light, not a glow
     material.emissionProfile = flat.areaLights.at(i).profile;
     flat.materials.push_back(material);
     shapeMaterials[shape] = static_cast<uint32_t>(flat.materials.size() - 1);

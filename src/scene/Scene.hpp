@@ -43,6 +43,11 @@ struct Material {
   // scales its x and y.
   int32_t normalTexture = -1;
   float normalScale = 1.0f;
+  // A glow: light the surface shows, `glow` times the texture `glowTexture`
+  // (index into Scene::textures), and that lights nothing else (glTF
+  // emissive textures, whose detail cannot be one light). -1: none.
+  glm::vec3 glow{0.0f};
+  int32_t glowTexture = -1;
 };
 
 // A decoded texture image: sRGB-encoded colours as in the file, or data

@@ -134,12 +134,13 @@ void checkMaterial(const Material& material, size_t textureCount) {
   if (!finiteWeights || !finite(material.diffuseColor) || !finite(material.specularColor)) {
     finding("material with a non-finite value");
   }
-  for (int32_t texture : {material.diffuseTexture, material.normalTexture}) {
+  for (int32_t texture : {material.diffuseTexture, material.normalTexture, material.glowTexture}) {
     if (texture < -1 || (texture >= 0 && size_t(texture) >= textureCount)) {
       finding("material texture index " + std::to_string(texture) + " out of range");
     }
   }
   if (!std::isfinite(material.normalScale)) finding("non-finite normal map scale");
+  if (!finite(material.glow) || !nonNegative(material.glow)) finding("bad glow colour");
 }
 
 struct GeometryCheck {

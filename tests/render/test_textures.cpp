@@ -148,6 +148,30 @@ TEST_SUITE("render textures") {
     CHECK(brightness({0.0f, 0.0f, 1.0f}, {0.6f, 0.0f, 0.8f}) == doctest::Approx(0.8).epsilon(0.01));
   }
 
+  TEST_CASE("a glow shows its colour times its texture, unlit, and lights nothing") {
+    Scene scene = flatLitScene();
+    scene.pointLights[0].diffuseIntensity = glm::vec3(0.0f);  // nothing lit
+    scene.materials[0].diffuseTexture = -1;
+    scene.materials[0].glow = {1.0f, 0.5f, 1.0f};
+    scene.materials[0].glowTexture = 0;
+    Shape quad;
+    quad.geometry = Quad{{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
+    scene.shapes.push_back(quad);
+    // A white sphere beside the quad, in front of it: it would be lit if the glow were a light.
+    Material white;
+    white.diffuseColor = glm::vec3(1.0f);
+    scene.materials.push_back(white);
+    Shape sphere;
+    sphere.geometry = Sphere{{0.5, 0.5, 0.5}, 0.2f};
+    sphere.material = 1;
+    scene.shapes.push_back(sphere);
+    ImageF image = render(scene);
+    checkColor(renderedAt(image, 0.25f, 0.25f), {1, 0, 0});                       // red texel
+    checkColor(renderedAt(image, 0.75f, 0.75f), {0.21586f, 0.10793f, 0.21586f});  // grey x glow
+    checkColor(renderedAt(image, 0.25f, 0.75f), {0, 0, 1});                       // blue
+    checkColor(renderedAt(image, 0.75f, 0.25f), {0, 0, 0});  // the sphere: unlit
+  }
+
   TEST_CASE("vertex colours multiply the textured colour, interpolated across the faces") {
     Scene scene = flatLitScene();
     scene.materials[0].diffuseColor = {0.5f, 0.5f, 0.5f};

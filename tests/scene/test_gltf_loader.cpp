@@ -778,8 +778,11 @@ TEST_SUITE("scene gltf") {
     CHECK(light.profile == rt::EmissionProfile::Lambertian);
     CHECK(scene.pointLights.empty());  // no framing light beside the model's own
     CHECK(scene.conventions == rt::Conventions::Physical);
-    CHECK(
-        hasWarning(scene, "emissive textures (the material does not glow) ignored (materials[1])"));
+    // An emissive texture makes a glow, not a light: its detail cannot be one light.
+    const rt::Material& glowing = scene.materials.at(scene.shapes[2].material);
+    CHECK(glowing.glow == glm::vec3(1.0f));
+    REQUIRE(glowing.glowTexture >= 0);
+    CHECK_FALSE(scene.textures.at(size_t(glowing.glowTexture)).linear);
     // Beside punctual lights (normalised to unit lights) a radiance has no
     // meaning: the shapes are drawn, but do not light.
     b.doc["extensionsUsed"].push_back("KHR_lights_punctual");

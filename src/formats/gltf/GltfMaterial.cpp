@@ -78,11 +78,6 @@ void noteIgnoredFeatures(Context& context, const tinygltf::Material& gltf,
     context.ignored("metallic-roughness texture detail (the mean is used)", where);
   }
   if (gltf.occlusionTexture.index >= 0) context.ignored("occlusion maps", where);
-  bool glows = std::any_of(gltf.emissiveFactor.begin(), gltf.emissiveFactor.end(),
-                           [](double v) { return v > 0.0; });
-  if (glows && gltf.emissiveTexture.index >= 0) {
-    context.ignored("emissive textures (the material does not glow)", where);
-  }
   if (gltf.alphaMode != "OPAQUE") context.ignored("alpha modes BLEND and MASK", where);
   if (hasExtension(gltf.extensions, "KHR_materials_transmission", "transmissionTexture")) {
     context.ignored("transmission textures", where);
@@ -140,11 +135,10 @@ Material convertMaterial(Context& context, const tinygltf::Material& gltf, const
   return out;
 }
 
-// Radiance of an emissive material without an emissive texture (see
-// MaterialTable::emission).
-glm::vec3 emittedRadiance(Context& context, const tinygltf::Material& gltf,
-                          const std::string& where) {
-  if (gltf.emissiveTexture.index >= 0) return glm::vec3(0.0f);
+// emissiveFactor times KHR_materials_emissive_strength: the radiance an
+// emissive material emits, times its emissive texture where it has one.
+glm::vec3 emissiveColour(Context& context, const tinygltf::Material& gltf,
+                         const std::string& where) {
   glm::vec3 colour = colourFactor(context, gltf.emissiveFactor, 3, where + ".emissiveFactor");
   double strength = extensionNumber(context, gltf.extensions, "KHR_materials_emissive_strength",
                                     "emissiveStrength", 1.0, where);
@@ -216,7 +210,12 @@ uint32_t MaterialTable::material(int index, const std::string& where) {
         metallicRoughnessAverage(gltf.pbrMetallicRoughness.metallicRoughnessTexture,
                                  name + ".pbrMetallicRoughness.metallicRoughnessTexture");
     converted = convertMaterial(context_, gltf, name, average);
-    emissions_[index] = emittedRadiance(context_, gltf, name);
+    glm::vec3 emissive = emissiveColour(context_, gltf, name);
+    if (gltf.emissiveTexture.index < 0) {
+      emissions_[index] = emissive;
+    } else if (emissive != glm::vec3(0.0f)) {
+      addGlow(index, emissive, converted);
+    }
     const tinygltf::TextureInfo& info = gltf.pbrMetallicRoughness.baseColorTexture;
     if (info.index >= 0) {
       std::string infoWhere = name + ".pbrMetallicRoughness.baseColorTexture";
@@ -256,18 +255,34 @@ UvMapping MaterialTable::uvMapping(int index) const {
   return {};
 }
 
-// The normal map of glTF material `index`, where it reads the texture
-// coordinates the base colour texture reads (a vertex carries one set).
+// Whether a texture of glTF material `index` reads the texture coordinates
+// its base colour texture reads (a vertex carries one set); warns if not.
+bool MaterialTable::readsSharedUvs(int index, int texCoord,
+                                   const tinygltf::ExtensionMap& extensions,
+                                   const std::string& where) {
+  UvMapping own = uvMappingOf(context_, texCoord, extensions, where);
+  UvMapping shared = uvMapping(index);
+  if (own.set == shared.set && own.transform == shared.transform) return true;
+  context_.warn(where, "reads other texture coordinates than the base colour texture; ignored");
+  return false;
+}
+
+// The emissive texture of glTF material `index` times `emissive`, as a glow:
+// its detail cannot be one light.
+void MaterialTable::addGlow(int index, glm::vec3 emissive, Material& converted) {
+  const tinygltf::TextureInfo& info = context_.model().materials[size_t(index)].emissiveTexture;
+  std::string where = item("materials", index) + ".emissiveTexture";
+  if (!readsSharedUvs(index, info.texCoord, info.extensions, where)) return;
+  converted.glowTexture = texture(info.index, Encoding::Srgb, where);
+  converted.glow = emissive;
+}
+
+// The normal map of glTF material `index`.
 void MaterialTable::addNormalMap(int index, Material& converted) {
   const tinygltf::NormalTextureInfo& info = context_.model().materials[size_t(index)].normalTexture;
   if (info.index < 0) return;
   std::string where = item("materials", index) + ".normalTexture";
-  UvMapping own = uvMappingOf(context_, info.texCoord, info.extensions, where);
-  UvMapping shared = uvMapping(index);
-  if (own.set != shared.set || own.transform != shared.transform) {
-    context_.warn(where, "reads other texture coordinates than the base colour texture; ignored");
-    return;
-  }
+  if (!readsSharedUvs(index, info.texCoord, info.extensions, where)) return;
   double scale = finiteNumber(context_, info.scale, where + ".scale");
   converted.normalTexture = texture(info.index, Encoding::Linear, where);
   converted.normalScale = static_cast<float>(std::clamp(scale, -1e3, 1e3));

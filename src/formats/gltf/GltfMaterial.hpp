@@ -25,10 +25,10 @@ class MaterialTable {
   // How primitives with this material map texture coordinates.
   UvMapping uvMapping(int index) const;
 
-  // The radiance glTF material `index` emits: emissiveFactor times
-  // KHR_materials_emissive_strength; zero for the default material and for
-  // an emissive texture (its detail cannot be drawn as one light, and is
-  // warned about as ignored). Call after material(index).
+  // The radiance glTF material `index` emits as a light: emissiveFactor
+  // times KHR_materials_emissive_strength; zero for the default material and
+  // where an emissive texture makes it a glow (Material::glow: its detail
+  // cannot be one light). Call after material(index).
   glm::vec3 emission(int index) const;
 
  private:
@@ -37,7 +37,10 @@ class MaterialTable {
 
   int32_t texture(int textureIndex, Encoding encoding, const std::string& where);
   int32_t decodeImage(int image, Encoding encoding, const std::string& where);
+  bool readsSharedUvs(int index, int texCoord, const tinygltf::ExtensionMap& extensions,
+                      const std::string& where);
   void addNormalMap(int index, Material& converted);
+  void addGlow(int index, glm::vec3 emissive, Material& converted);
   glm::vec2 metallicRoughnessAverage(const tinygltf::TextureInfo& info, const std::string& where);
   // The image of glTF texture `textureIndex`, or -1 when it has none we can read.
   int imageOf(int textureIndex, const std::string& where);
