@@ -2,6 +2,8 @@
 // repeat wrapping and sRGB decoding, through the real render kernel.
 #include <doctest/doctest.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "render/Renderer.hpp"
 #include "support/TestSupport.hpp"
 
@@ -58,6 +60,38 @@ void checkColor(glm::vec3 actual, glm::vec3 expected) {
 
 constexpr float kGreyLinear = 0.21586f;  // sRGB 128 decoded
 
+// A white quad facing the camera (+z) with uvs as the quads' (u along +x, v
+// down the image) and a uniform normal map of `mapped`, lit by one light from
+// `direction`: its brightness is the bent normal's cosine to the light. The
+// mesh is placed by `placement`, `copies` times (more than once: stored in
+// object space, the others far off to the side).
+float normalMappedBrightness(glm::vec3 mapped, glm::vec3 direction, float scale = 1.0f,
+                             WorldTransform placement = WorldTransform(1.0), int copies = 1) {
+  Scene scene = flatLitScene();
+  scene.textures = {{"normal map", {1, 1, {}}, true}};
+  glm::vec3 encoded = glm::round((mapped * 0.5f + 0.5f) * 255.0f);
+  scene.textures[0].image.rgba = {uint8_t(encoded.x), uint8_t(encoded.y), uint8_t(encoded.z), 255};
+  scene.materials[0].diffuseTexture = -1;
+  scene.materials[0].diffuseColor = glm::vec3(1.0f);
+  scene.materials[0].normalTexture = 0;
+  scene.materials[0].normalScale = scale;
+  scene.pointLights[0].position = glm::dvec3(glm::normalize(direction)) * 1e6;
+  TriangleMesh mesh;
+  mesh.positions = {{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
+  mesh.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  // Counter-clockwise from the camera: its front. (Seen from the back, the
+  // whole bent normal turns over, as glTF's double-sided materials do.)
+  mesh.faces = {{0, 2, 1}, {0, 3, 2}};
+  scene.meshes.push_back(mesh);
+  for (int copy = 0; copy < copies; ++copy) {
+    Shape shape;
+    shape.geometry = MeshInstance{
+        0, glm::translate(WorldTransform(1.0), glm::dvec3(100.0 * copy, 0, 0)) * placement};
+    scene.shapes.push_back(shape);
+  }
+  return renderedAt(render(scene), 0.5f, 0.5f).x;
+}
+
 }  // namespace
 
 TEST_SUITE("render textures") {
@@ -107,45 +141,40 @@ TEST_SUITE("render textures") {
   }
 
   TEST_CASE("normal maps: x along u, y up the image, z out; texels are data; scale") {
-    // A white quad facing the camera (+z) with uvs as the quads' (u along +x,
-    // v down the image), lit by one light from `direction`: its brightness is
-    // the bent normal's cosine to the light.
-    auto brightness = [](glm::vec3 mapped, glm::vec3 direction, float scale = 1.0f) {
-      Scene scene = flatLitScene();
-      scene.textures = {{"normal map", {1, 1, {}}, true}};
-      glm::vec3 encoded = glm::round((mapped * 0.5f + 0.5f) * 255.0f);
-      scene.textures[0].image.rgba = {uint8_t(encoded.x), uint8_t(encoded.y), uint8_t(encoded.z),
-                                      255};
-      scene.materials[0].diffuseTexture = -1;
-      scene.materials[0].diffuseColor = glm::vec3(1.0f);
-      scene.materials[0].normalTexture = 0;
-      scene.materials[0].normalScale = scale;
-      scene.pointLights[0].position = glm::dvec3(glm::normalize(direction)) * 1e6;
-      TriangleMesh mesh;
-      mesh.positions = {{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
-      mesh.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-      // Counter-clockwise from the camera: its front. (Seen from the back, the
-      // whole bent normal turns over, as glTF's double-sided materials do.)
-      mesh.faces = {{0, 2, 1}, {0, 3, 2}};
-      scene.meshes.push_back(mesh);
-      Shape shape;
-      shape.geometry = MeshInstance{0, WorldTransform(1.0)};
-      scene.shapes.push_back(shape);
-      return renderedAt(render(scene), 0.5f, 0.5f).x;
-    };
     const glm::vec3 towardsU(0.6f, 0.0f, 0.8f);  // the map's normal, tilted along +x
     // 8-bit encoding moves the normal by up to 1/255.
-    CHECK(brightness(towardsU, {0.6f, 0.0f, 0.8f}) == doctest::Approx(1.0).epsilon(0.01));
-    CHECK(brightness(towardsU, {0.0f, 0.0f, 1.0f}) == doctest::Approx(0.8).epsilon(0.01));
-    CHECK(brightness(towardsU, {-0.6f, 0.0f, 0.8f}) == doctest::Approx(0.28).epsilon(0.03));
+    CHECK(normalMappedBrightness(towardsU, {0.6f, 0.0f, 0.8f}) ==
+          doctest::Approx(1.0).epsilon(0.01));
+    CHECK(normalMappedBrightness(towardsU, {0.0f, 0.0f, 1.0f}) ==
+          doctest::Approx(0.8).epsilon(0.01));
+    CHECK(normalMappedBrightness(towardsU, {-0.6f, 0.0f, 0.8f}) ==
+          doctest::Approx(0.28).epsilon(0.03));
     // +y of the map is up in the image: against v, along +y here.
-    CHECK(brightness({0.0f, 0.6f, 0.8f}, {0.0f, 0.6f, 0.8f}) == doctest::Approx(1.0).epsilon(0.01));
-    CHECK(brightness({0.0f, 0.6f, 0.8f}, {0.0f, -0.6f, 0.8f}) ==
+    CHECK(normalMappedBrightness({0.0f, 0.6f, 0.8f}, {0.0f, 0.6f, 0.8f}) ==
+          doctest::Approx(1.0).epsilon(0.01));
+    CHECK(normalMappedBrightness({0.0f, 0.6f, 0.8f}, {0.0f, -0.6f, 0.8f}) ==
           doctest::Approx(0.28).epsilon(0.03));
     // Scale 0.5 halves x and y before normalising: (0.3, 0, 0.8) / 0.854.
-    CHECK(brightness(towardsU, {0.0f, 0.0f, 1.0f}, 0.5f) == doctest::Approx(0.937).epsilon(0.01));
+    CHECK(normalMappedBrightness(towardsU, {0.0f, 0.0f, 1.0f}, 0.5f) ==
+          doctest::Approx(0.937).epsilon(0.01));
     // The flat normal (0, 0, 1) changes nothing.
-    CHECK(brightness({0.0f, 0.0f, 1.0f}, {0.6f, 0.0f, 0.8f}) == doctest::Approx(0.8).epsilon(0.01));
+    CHECK(normalMappedBrightness({0.0f, 0.0f, 1.0f}, {0.6f, 0.0f, 0.8f}) ==
+          doctest::Approx(0.8).epsilon(0.01));
+  }
+
+  TEST_CASE("normal maps on mirrored meshes follow the mirrored texture, stored once or shared") {
+    // Mirrored in x: u runs along -x, and so does the map's tilt.
+    const WorldTransform mirror = glm::scale(WorldTransform(1.0), glm::dvec3(-1, 1, 1));
+    const glm::vec3 towardsU(0.6f, 0.0f, 0.8f);
+    for (int copies : {1, 2}) {  // in world space, or in object space with a normal matrix
+      CAPTURE(copies);
+      CHECK(normalMappedBrightness(towardsU, {-0.6f, 0.0f, 0.8f}, 1.0f, mirror, copies) ==
+            doctest::Approx(1.0).epsilon(0.01));
+      CHECK(normalMappedBrightness(towardsU, {0.6f, 0.0f, 0.8f}, 1.0f, mirror, copies) ==
+            doctest::Approx(0.28).epsilon(0.03));
+      CHECK(normalMappedBrightness(towardsU, {0.6f, 0.0f, 0.8f}, 1.0f, WorldTransform(1.0),
+                                   copies) == doctest::Approx(1.0).epsilon(0.01));
+    }
   }
 
   TEST_CASE("a glow shows its colour times its texture, unlit, and lights nothing") {
