@@ -10,6 +10,7 @@
 #include "formats/SceneFile.hpp"
 #include "formats/json/JsonSceneLoader.hpp"
 #include "formats/obj/ObjLoader.hpp"
+#include "io/Image.hpp"
 #include "support/TestSupport.hpp"
 #include "util/Error.hpp"
 
@@ -195,6 +196,42 @@ TEST_SUITE("obj loader") {
     CHECK(parseObj("v 0 0 0 1 1 1\nv 1 0 0 1 1 1\nv 0 1 0 1 1 1\nf 1 2 3\n")
               .meshes.at(0)
               .colors.empty());  // all white
+  }
+
+  TEST_CASE("normal maps: norm, or map_Bump with -bm where it is not a grey height map") {
+    TempDir dir;
+    // A bluish normal map and a grey height map, 2 x 2.
+    rt::writeImage(
+        dir.path() / "normals.png",
+        rt::ImageF{2, 2, {0.5f, 0.5f, 1, 1, 0.6f, 0.5f, 1, 1, 0.5f, 0.5f, 1, 1, 0.5f, 0.4f, 1, 1}},
+        {});
+    rt::writeImage(
+        dir.path() / "height.png",
+        rt::ImageF{2, 2, {0.2f, 0.2f, 0.2f, 1, 0.7f, 0.7f, 0.7f, 1, 0, 0, 0, 1, 1, 1, 1, 1}}, {});
+    dir.write("model.obj",
+              "mtllib model.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+              "usemtl named\nf 1/1 2/2 3/3\nusemtl blender\nf 1/1 3/3 2/2\n"
+              "usemtl bumpy\nf 1/1 2/2 3/3\nusemtl lost\nf 1/1 3/3 2/2\n");
+    dir.write("model.mtl",
+              "newmtl named\nnorm normals.png\n"
+              "newmtl blender\nmap_Bump -bm 0.5 normals.png\n"
+              "newmtl bumpy\nmap_Bump height.png\n"
+              "newmtl lost\nnorm gone.png\n");
+    const rt::Scene scene = rt::loadObjPart(dir.path() / "model.obj", rt::WorldTransform(1.0));
+    const rt::Material& named = materialOf(scene, "'named'");
+    REQUIRE(named.normalTexture >= 0);
+    CHECK(scene.textures.at(size_t(named.normalTexture)).linear);
+    CHECK(named.normalScale == 1.0f);
+    const rt::Material& blender = materialOf(scene, "'blender'");
+    CHECK(blender.normalTexture == named.normalTexture);  // the file read once
+    CHECK(blender.normalScale == 0.5f);
+    CHECK(materialOf(scene, "'bumpy'").normalTexture == -1);
+    CHECK(materialOf(scene, "'lost'").normalTexture == -1);
+    CHECK(scene.textures.size() == 1);
+    REQUIRE(scene.warnings.size() == 2);
+    CHECK(scene.warnings[0].find("map_Bump height.png is a height map (grey)") !=
+          std::string::npos);
+    CHECK(scene.warnings[1].find("norm: texture file not found") != std::string::npos);
   }
 
   TEST_CASE("a missing material library or texture is a warning with a visible stand-in") {

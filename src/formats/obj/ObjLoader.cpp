@@ -17,6 +17,7 @@
 #include "formats/common/ModelFraming.hpp"
 #include "formats/common/SceneTextures.hpp"
 #include "formats/common/VertexColors.hpp"
+#include "io/Image.hpp"
 #include "util/Error.hpp"
 #include "util/Text.hpp"
 
@@ -108,6 +109,14 @@ constexpr float kMaxEmission = 1e6f;
 
 float finiteOr(float value, float fallback) { return std::isfinite(value) ? value : fallback; }
 
+// Every texel has red = green = blue: a height map, not a normal map.
+bool isGrey(const ImageRgba8& image) {
+  for (size_t i = 0; i + 2 < image.rgba.size(); i += 4) {
+    if (image.rgba[i] != image.rgba[i + 1] || image.rgba[i] != image.rgba[i + 2]) return false;
+  }
+  return true;
+}
+
 class ObjImporter {
  public:
   ObjImporter(const fs::path& file, const WorldTransform& placement)
@@ -171,6 +180,7 @@ class ObjImporter {
       out.ior = std::clamp(finiteOr(source.ior, 1.0f), 1e-3f, 1e3f);
       applyIlluminationModel(source, out);
       if (!source.diffuse_texname.empty()) addDiffuseTexture(source, out);
+      addNormalMap(source, out);
       if (!source.emissive_texname.empty()) {
         diagnostics_.warn("material '" + source.name + "'",
                           "emission texture map_Ke ignored (Ke alone decides the glow)");
@@ -219,6 +229,48 @@ class ObjImporter {
       diagnostics_.fail("material '" + source.name + "'",
                         std::string("cannot use texture: ") + error.what());
     }
+  }
+
+  // `norm`, else `map_Bump` (where Blender's exporter writes a normal map,
+  // its strength in `-bm`): a tangent-space normal map, as glTF's. A grey
+  // `map_Bump` is a height map, which the renderer cannot use: a warning.
+  void addNormalMap(const tinyobj::material_t& source, Material& out) {
+    const bool named = !source.normal_texname.empty();
+    const std::string& written = named ? source.normal_texname : source.bump_texname;
+    if (written.empty()) return;
+    const std::string where = "material '" + source.name + "'";
+    const fs::path found = (folder_ / portablePath(written)).lexically_normal();
+    auto known = normalMaps_.find(found);
+    if (known == normalMaps_.end())
+      known = normalMaps_.emplace(found, readNormalMap(found, named, where)).first;
+    out.normalTexture = known->second;
+    if (!named && out.normalTexture >= 0) {
+      out.normalScale = std::clamp(finiteOr(source.bump_texopt.bump_multiplier, 1.0f), -1e3f, 1e3f);
+    }
+  }
+
+  // Index in scene_.textures of the normal map `file`, or -1 after a warning.
+  int32_t readNormalMap(const fs::path& file, bool named, const std::string& where) {
+    const std::string key = named ? "norm" : "map_Bump";
+    std::error_code ignored;
+    if (!fs::is_regular_file(file, ignored)) {
+      diagnostics_.warn(where,
+                        key + ": texture file not found: " + file.string() + "; no normal map");
+      return -1;
+    }
+    ImageRgba8 image;
+    try {
+      image = readImageRgba8(file);
+    } catch (const Error& error) {
+      diagnostics_.fail(where, key + ": cannot use texture: " + error.what());
+    }
+    if (!named && isGrey(image)) {
+      diagnostics_.warn(where, "map_Bump " + file.filename().string() +
+                                   " is a height map (grey); bump maps are not supported, ignored");
+      return -1;
+    }
+    scene_.textures.push_back({file.string(), std::move(image), true});
+    return static_cast<int32_t>(scene_.textures.size() - 1);
   }
 
   // Faces of a material with `Ke` glow: their mesh becomes an area light of
@@ -355,6 +407,7 @@ class ObjImporter {
   std::vector<std::string> materialNames_;   // of the file's materials, by index
   std::vector<glm::vec3> materialEmission_;  // Ke of every material, the default's last
   std::map<uint32_t, PendingMesh> pending_;
+  std::map<fs::path, int32_t> normalMaps_;  // each file read once; -1: not used
 };
 
 // The texts of the file's material libraries, one after the other; a
