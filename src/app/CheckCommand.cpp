@@ -69,13 +69,21 @@ std::string geometryText(const rt::Geometry& geometry, const rt::Scene& scene) {
       geometry);
 }
 
-std::string materialText(const rt::Material& m) {
+std::string materialText(const rt::Scene& scene, const rt::Material& m) {
   std::string text =
       fmt::format("kd {:g} diffuse {}, ks {:g} specular {} exponent {:g}", m.kd,
                   vec(m.diffuseColor), m.ks, vec(m.specularColor), m.specularExponent);
   if (m.reflectivity > 0.0f) text += fmt::format(", mirror {:g}", m.reflectivity);
   if (m.transmission > 0.0f) text += fmt::format(", glass {:g} ior {:g}", m.transmission, m.ior);
   if (!m.texture.empty()) text += ", texture " + m.texture.string();
+  if (m.normalTexture >= 0) {
+    text += fmt::format(", normal map {}", scene.textures.at(size_t(m.normalTexture)).source);
+    if (m.normalScale != 1.0f) text += fmt::format(" scale {:g}", m.normalScale);
+  }
+  if (m.glowTexture >= 0) {
+    text += fmt::format(", glow {} times {}", vec(m.glow),
+                        scene.textures.at(size_t(m.glowTexture)).source);
+  }
   return text;
 }
 
@@ -123,7 +131,8 @@ void printShapes(const rt::Scene& scene) {
     if (!shape.label.empty() && shape.label != from) from += " '" + shape.label + "'";
     std::printf("  %zu%s: %s\n", i, from.empty() ? "" : (" [" + from + "]").c_str(),
                 geometryText(shape.geometry, scene).c_str());
-    std::printf("     material: %s\n", materialText(scene.materials.at(shape.material)).c_str());
+    std::printf("     material: %s\n",
+                materialText(scene, scene.materials.at(shape.material)).c_str());
   }
 }
 
