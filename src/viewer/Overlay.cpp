@@ -29,7 +29,8 @@ void checkImGuiVulkanResult(VkResult result) {
 void showStatistics(const OverlayStats& stats) {
   ImGui::Text("%s", stats.scene.c_str());
   ImGui::Text("%ux%u on %s", stats.renderSize.x, stats.renderSize.y, stats.device.c_str());
-  ImGui::Text("features: %s", stats.features.c_str());
+  // Wrapped: a textured, normal-mapped, glowing mesh lists more than a line holds.
+  ImGui::TextWrapped("features: %s", stats.features.c_str());
   ImGui::Separator();
   if (stats.adaptive) {
     ImGui::Text("samples per pixel: %.1f / %u (mean)", stats.samplesDone, stats.samplesTarget);
