@@ -170,9 +170,9 @@ SurfacePoint surfaceAt(Ray ray, SurfaceHit hit, GpuMaterial material) {
     vec4 row1 = itemRow(hit.triangleIndex, 1u);
     vec4 row2 = itemRow(hit.triangleIndex, 2u);
     // Columns a, b, c: the transpose of world-to-object, the normal matrix.
-    VertexTriangle triangle =
-        VertexTriangle(floatBitsToUint(vec3(row0.w, row1.w, row2.w)),
-                       mat3(row0.xyz, row1.xyz, row2.xyz), mat3(prim.a.xyz, prim.b.xyz, prim.c.xyz));
+    mat3 normalMatrix = mat3(prim.a.xyz, prim.b.xyz, prim.c.xyz);
+    VertexTriangle triangle = VertexTriangle(floatBitsToUint(vec3(row0.w, row1.w, row2.w)),
+                                             mat3(row0.xyz, row1.xyz, row2.xyz), normalMatrix);
     interpolateVertices(triangle, smoothNormals, material, hit.barycentric, surface);
   }
 #endif
