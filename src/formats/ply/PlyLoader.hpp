@@ -1,8 +1,10 @@
 // Reads Stanford PLY triangle meshes (ASCII, binary little and big endian).
 //
 // What is read: the `vertex` element's x, y, z (any scalar type), optional
-// normals nx, ny, nz and texture coordinates (u, v), (s, t), (texture_u,
-// texture_v) or (texture_s, texture_t); the `face` element's `vertex_indices`
+// normals nx, ny, nz, texture coordinates (u, v), (s, t), (texture_u,
+// texture_v) or (texture_s, texture_t), and colours (red, green, blue), (r, g,
+// b) or (diffuse_red, diffuse_green, diffuse_blue), sRGB-encoded, integers
+// over their type's range; the `face` element's `vertex_indices`
 // (or `vertex_index`) lists, fanned into triangles; a `tristrips` element
 // (-1 restarts a strip). Other properties and elements are skipped; elements
 // may come in any order.
