@@ -88,8 +88,7 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
   for (const gpu::GpuMaterial& material : flat.materials) {
     features.normalMaps |= shaded && material.normalTexture >= 0;
     features.glow |= shaded && material.emissionTexture >= 0;
-    features.textures |= shaded && (material.diffuseTexture >= 0 || material.normalTexture >= 0 ||
-                                    material.emissionTexture >= 0);
+    features.textures |= shaded && samplesTextures(material);
   }
   features.thinLens =
       scene.camera.type == CameraType::ThinLens && scene.camera.apertureRadius > 0.0f;

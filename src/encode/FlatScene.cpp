@@ -53,13 +53,6 @@ gpu::GpuVertex vertexRecord(const glm::vec3& normal, const glm::vec2& uv,
   return {normal, uv.x, color, uv.y};
 }
 
-// Whether a material samples a texture (colour, normals, glow): its
-// triangles then need texture coordinates.
-bool samplesTextures(const gpu::GpuMaterial& material) {
-  return material.diffuseTexture >= 0 || material.normalTexture >= 0 ||
-         material.emissionTexture >= 0;
-}
-
 // Points a triangle at three GpuVertex records.
 void attachVertices(gpu::GpuPrimitive& prim, glm::uvec3 indices, bool smooth) {
   setTriangleRows(prim,
@@ -457,6 +450,11 @@ uint32_t dominantAxis(const glm::vec3& v) {
 }
 
 }  // namespace
+
+bool samplesTextures(const gpu::GpuMaterial& material) {
+  return material.diffuseTexture >= 0 || material.normalTexture >= 0 ||
+         material.emissionTexture >= 0;
+}
 
 Aabb primitiveBounds(const gpu::GpuPrimitive& prim) {
   Aabb box;
