@@ -8,6 +8,7 @@ find_package(nlohmann_json REQUIRED CONFIG)
 find_package(CLI11 REQUIRED CONFIG)
 find_package(fmt REQUIRED CONFIG)
 find_package(tinyexr REQUIRED CONFIG)
+find_package(draco REQUIRED CONFIG)
 # tinyobjloader: header-only use (src/formats/obj/ObjTiny.cpp compiles its
 # implementation), so that sanitizer and fuzzer builds instrument it too.
 find_path(TINYOBJLOADER_INCLUDE_DIR tiny_obj_loader.h REQUIRED)

@@ -14,7 +14,7 @@ PACKAGES=(
   glslang-dev glslang-tools spirv-tools
   libglfw3-dev libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
   libcli11-dev doctest-dev libtinyexr-dev libfmt-dev libimgui-dev
-  libtinyobjloader-dev
+  libtinyobjloader-dev libdraco-dev
   xvfb xauth
   # clang with its sanitizer and libFuzzer runtimes (scripts/build-sanitized.sh)
   clang-14 libclang-rt-14-dev

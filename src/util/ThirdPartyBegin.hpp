@@ -1,7 +1,7 @@
 // Include before a third-party header that is compiled into our targets, and
 // include util/ThirdPartyEnd.hpp after it: its own warnings are not ours to
 // fix, and they must not fail the -Werror build. One list for every such
-// header (tinyobjloader, tinygltf, GLFW, Dear ImGui).
+// header (tinyobjloader, tinygltf, Draco, GLFW, Dear ImGui).
 // No include guard: each use opens a new diagnostic scope. Wrap the three
 // includes in clang-format off/on, or include sorting moves them apart.
 #pragma GCC diagnostic push

@@ -459,6 +459,16 @@ if [[ -d "$SHARED/scene-format/official" ]]; then
   else
     fail "DamagedHelmet check: $(grep -E 'material:|features|ignored' "$SCRATCH/check.txt")"
   fi
+  # A Draco-compressed glTF file (KHR_draco_mesh_compression) is decoded and rendered.
+  duck=$(find "$SHARED/assets/gltf" -path '*glTF-Draco/Duck.gltf' | head -1)
+  if "$RAYTRACER" check "$duck" >"$SCRATCH/check.txt" 2>&1 &&
+    grep -q 'mesh of 4212 triangles, smooth normals, texture coordinates' "$SCRATCH/check.txt" &&
+    "$RAYTRACER" "$duck" "$SCRATCH/duck.png" --size 64x48 --spp 1 -q 2>"$SCRATCH/stderr" &&
+    [[ -s "$SCRATCH/duck.png" ]]; then
+    pass
+  else
+    fail "Draco Duck: $(cat "$SCRATCH/check.txt" "$SCRATCH/stderr")"
+  fi
 else
   echo "skipped official scenes: $SHARED not found"
 fi

@@ -14,6 +14,7 @@
 #include "formats/common/FileBytes.hpp"
 #include "formats/common/JsonSyntax.hpp"
 #include "formats/gltf/GltfContext.hpp"
+#include "formats/gltf/GltfDraco.hpp"
 #include "util/Error.hpp"
 
 namespace rt::gltf {
@@ -40,6 +41,7 @@ constexpr std::array kSupportedExtensions = {
     "KHR_texture_transform",
     "KHR_materials_emissive_strength",
     "KHR_mesh_quantization",
+    "KHR_draco_mesh_compression",
     "EXT_mesh_gpu_instancing",
 };
 
@@ -459,8 +461,8 @@ void locateComplaint(std::string_view json, const std::string& complaint,
 }
 
 // When tinygltf refuses a file, the reason may be a version or a required
-// extension that changes what the data means (Draco-compressed accessors have
-// no buffer view, for instance), or a missing buffer file; those make better
+// extension that changes what the data means (an unsupported compression's
+// accessors have no buffer view, for instance), or a missing buffer file; those make better
 // messages. Only "asset", "extensionsRequired" and "buffers" are kept from
 // this second parse.
 void explainRefusal(std::string_view json, const fs::path& baseDir, const std::string& fileName) {
@@ -516,6 +518,28 @@ struct Source {
   bool glb = false;
 };
 
+// A source of canonical GLB bytes built from `chunks`.
+void setGlb(Source& source, const GlbChunks& chunks) {
+  std::vector<unsigned char> canonical = canonicalGlb(chunks);
+  size_t jsonSize = chunks.json.size();
+  source.bytes.swap(canonical);  // `chunks` may point into the old bytes
+  source.json = std::string_view(reinterpret_cast<const char*>(source.bytes.data() + 20), jsonSize);
+}
+
+// The same document with its JSON text replaced (and the BIN chunk kept).
+void replaceJson(Source& source, const std::string& json, const std::string& fileName) {
+  if (source.glb) {
+    std::vector<std::string> none;  // a canonical GLB has nothing to warn about
+    GlbChunks chunks = splitGlb(source.bytes, fileName, none);
+    chunks.json = json;
+    setGlb(source, chunks);
+  } else {
+    source.bytes.assign(json.begin(), json.end());
+    source.json =
+        std::string_view(reinterpret_cast<const char*>(source.bytes.data()), source.bytes.size());
+  }
+}
+
 // Reads the file and runs every check that must come before tinygltf.
 Source readSource(const fs::path& file, const std::string& fileName,
                   std::vector<std::string>& warnings) {
@@ -525,12 +549,7 @@ Source readSource(const fs::path& file, const std::string& fileName,
   }
   source.glb = source.bytes.size() >= 4 && std::memcmp(source.bytes.data(), "glTF", 4) == 0;
   if (source.glb) {
-    GlbChunks chunks = splitGlb(source.bytes, fileName, warnings);
-    std::vector<unsigned char> canonical = canonicalGlb(chunks);
-    size_t jsonSize = chunks.json.size();
-    source.bytes.swap(canonical);  // `chunks` pointed into the old bytes
-    source.json =
-        std::string_view(reinterpret_cast<const char*>(source.bytes.data() + 20), jsonSize);
+    setGlb(source, splitGlb(source.bytes, fileName, warnings));
   } else {
     source.json =
         std::string_view(reinterpret_cast<const char*>(source.bytes.data()), source.bytes.size());
@@ -540,6 +559,9 @@ Source readSource(const fs::path& file, const std::string& fileName,
   }
   if (source.json.find("\"images\"") != std::string_view::npos) {
     checkImageViews(source.json, fileName);
+  }
+  if (std::optional<std::string> json = jsonWithoutDracoIndices(source.json)) {
+    replaceJson(source, *json, fileName);
   }
   return source;
 }

@@ -14,6 +14,7 @@
 #include "formats/common/ModelFraming.hpp"
 #include "formats/gltf/GltfContext.hpp"
 #include "formats/gltf/GltfDocument.hpp"
+#include "formats/gltf/GltfDraco.hpp"
 #include "formats/gltf/GltfMaterial.hpp"
 #include "formats/gltf/GltfMesh.hpp"
 #include "formats/gltf/GltfNodes.hpp"
@@ -358,6 +359,7 @@ Imported importFile(const fs::path& file, const glm::dmat4& placement) {
   return withPrintableErrors([&] {
     Imported out;
     tinygltf::Model model = gltf::readModel(file, out.scene.warnings);
+    gltf::decodeDracoPrimitives(model, file.string());
     Context context(file.string(), model);
     Importer importer(context, out.scene, fs::absolute(file).parent_path(), placement);
     out.result = importer.run();
