@@ -18,6 +18,8 @@
 
 #include "formats/SceneFile.hpp"
 #include "formats/ply/PlyLoader.hpp"
+#include "io/Image.hpp"
+#include "render/Renderer.hpp"
 #include "support/TestSupport.hpp"
 #include "util/Error.hpp"
 
@@ -176,7 +178,7 @@ std::vector<TestElement> richMesh() {
                        {}};
   for (const glm::vec3& p : kSquare)
     vertices.records.push_back({p.x, p.y, p.z, 7, 0, 0, 1, p.x, p.y});
-  TestElement faces{"face", {{"int", "vertex_indices", "uchar"}, {"float", "texcoord", "int"}}, {}};
+  TestElement faces{"face", {{"int", "vertex_indices", "uchar"}, {"float", "weights", "int"}}, {}};
   faces.records.push_back({4, 0, 1, 2, 3, 2, 0.5, 0.25});
   faces.records.push_back({3, 0, 2, 3, 0});
   return {vertices, faces};
@@ -248,8 +250,8 @@ std::map<std::string, Expected> expectedOutcomes() {
       {assimp + "PLY/points.ply", rejected(kNoFaces)},  // a point cloud
       {assimp + "PLY/pond.0.ply", rejected(kNoFaces)},  // a binary point cloud
       {assimp + "invalid/empty.ply", rejected("byte 0: empty file")},
-      {draco + "Box.ply", loads(24, 12, true)},       // CR-only header, extra 'material' element
-      {draco + "cube_att.ply", loads(24, 12, true)},  // per-corner texcoord list: skipped
+      {draco + "Box.ply", loads(24, 12, true)},  // CR-only header, extra 'material' element
+      {draco + "cube_att.ply", loads(24, 12, true, true)},  // per-corner texcoord lists
       {draco + "cube_quads.ply", loads(8, 12)},
       {draco + "delim_test.ply", loads(24, 12, true)},  // CR-only, first data byte is CR
       {draco + "float_inf_point_cloud.ply", rejected(kNoFaces)},
@@ -272,7 +274,8 @@ std::map<std::string, Expected> expectedOutcomes() {
       {tinyply + "elephant.ply", loads(19753, 39290)},  // one tristrip, -1 restarts
       {tinyply + "icosahedron.ply", loads(12, 20, true)},
       {tinyply + "icosahedron_ascii.ply", loads(12, 20, true)},
-      {tinyply + "sofa.ply", loads(12103, 24104)},
+      // MeshLab's per-corner texcoord lists: 12103 vertices, split along the seams.
+      {tinyply + "sofa.ply", loads(13347, 24104, false, true)},
       {tinyply + "sofa_ascii.ply", loads(12103, 24104)},
       // Raw range scans: a range_grid element, no faces.
       {bunny + "data/bun000.ply", rejected("byte 605: " + kNoFaces)},
@@ -608,6 +611,75 @@ TEST_SUITE("scene ply: synthetic files") {
     CHECK(glm::length(loaded.normals[1] - glm::vec3(0, 0, 1)) < 1e-6f);
   }
 
+  TEST_CASE("per-face texcoord lists: vertices split only along seams, in every layout") {
+    // Two triangles and a quad over five vertices; vertex 2 has other
+    // coordinates in the quad than in the triangles (a seam), the others one
+    // pair each. Each vertex has its own normal, which its copies keep.
+    const std::vector<glm::vec3> positions = {
+        {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 1}};
+    TestElement vertices{"vertex",
+                         {{"float", "x", ""},
+                          {"float", "y", ""},
+                          {"float", "z", ""},
+                          {"float", "nx", ""},
+                          {"float", "ny", ""},
+                          {"float", "nz", ""}},
+                         {}};
+    for (size_t v = 0; v < positions.size(); ++v) {
+      const glm::vec3 p = positions[v];
+      vertices.records.push_back({p.x, p.y, p.z, 0, 0.6 * double(v % 2), v % 2 ? 0.8 : 1.0});
+    }
+    TestElement faces{
+        "face", {{"int", "vertex_indices", "uchar"}, {"float", "texcoord", "uchar"}}, {}};
+    faces.records.push_back({3, 0, 1, 2, 6, 0, 0, 1, 0, 1, 1});
+    faces.records.push_back({3, 0, 2, 3, 6, 0, 0, 1, 1, 0, 1});
+    faces.records.push_back({4, 0, 1, 4, 2, 8, 0, 0, 1, 0, 0.5, 0.5, 0.25, 0.75});
+    // The faces come first, as some writers put them.
+    const std::vector<TestElement> mesh = {faces, vertices};
+    const std::vector<std::vector<glm::vec2>> written = {{{0, 0}, {1, 0}, {1, 1}},
+                                                         {{0, 0}, {1, 1}, {0, 1}},
+                                                         {{0, 0}, {1, 0}, {0.5, 0.5}},
+                                                         {{0, 0}, {0.5, 0.5}, {0.25, 0.75}}};
+    const std::vector<std::vector<uint32_t>> corners = {{0, 1, 2}, {0, 2, 3}, {0, 1, 4}, {0, 4, 2}};
+    for (Layout layout : {Layout::Ascii, Layout::LittleEndian, Layout::BigEndian}) {
+      CAPTURE(std::string(formatName(layout)));
+      const rt::TriangleMesh loaded = rt::parsePly(writePly(mesh, layout), "t.ply");
+      REQUIRE(loaded.faces.size() == 4);
+      REQUIRE(loaded.uvs.size() == loaded.positions.size());
+      CHECK(loaded.positions.size() == 6);  // five, and vertex 2's second copy
+      CHECK(loaded.normals.size() == loaded.positions.size());
+      for (size_t f = 0; f < 4; ++f) {
+        for (int c = 0; c < 3; ++c) {
+          const uint32_t v = loaded.faces[f][c];
+          CHECK(loaded.positions[v] == positions[corners[f][size_t(c)]]);
+          CHECK(loaded.uvs[v] == written[f][size_t(c)]);
+        }
+      }
+      // The copies of a split vertex keep the smooth normal of the whole surface.
+      for (size_t a = 0; a < loaded.positions.size(); ++a) {
+        for (size_t b = 0; b < loaded.positions.size(); ++b) {
+          if (loaded.positions[a] == loaded.positions[b])
+            CHECK(loaded.normals[a] == loaded.normals[b]);
+        }
+      }
+    }
+    // An empty list is a face without coordinates (zeros); a list of the wrong
+    // length is an error that names the face.
+    TestElement untextured = faces;
+    untextured.records[1] = {3, 0, 2, 3, 0};
+    const rt::TriangleMesh loaded =
+        rt::parsePly(writePly({vertexElement(positions), untextured}, Layout::Ascii), "t.ply");
+    CHECK(loaded.uvs[loaded.faces[1].z] == glm::vec2(0.0f));
+    TestElement short_ = faces;
+    short_.records[1] = {3, 0, 2, 3, 4, 0, 0, 1, 1};
+    CHECK(contains(plyError(writePly({vertexElement(positions), short_}, Layout::Ascii)),
+                   "face 1: the face has 3 corners but texture coordinates for 2"));
+    TestElement odd = faces;
+    odd.records[0] = {3, 0, 1, 2, 5, 0, 0, 1, 0, 1};
+    CHECK(contains(plyError(writePly({vertexElement(positions), odd}, Layout::Ascii)),
+                   "face 0: 'texcoord' has 5 values, not a u and a v for each corner"));
+  }
+
   TEST_CASE("faces before vertices, extra elements in between, index lists named vertex_index") {
     TestElement faces = faceElement({{2, 1, 0}}, "int", "uint");
     faces.properties[0].name = "vertex_index";
@@ -832,7 +904,7 @@ TEST_SUITE("scene ply: rejected input") {
     const std::string text = writePly(richMesh(), Layout::LittleEndian);
     CHECK(plyError(text.substr(0, text.size() - 1)) ==
           "t.ply: byte " + std::to_string(text.size() - 4) +
-              ": the file ends inside face 1 at property 'texcoord' (the header declares 2 "
+              ": the file ends inside face 1 at property 'weights' (the header declares 2 "
               "'face' records)");
     CHECK(contains(plyError(text.substr(0, text.size() - 20)),
                    "more than the " +
@@ -881,5 +953,88 @@ TEST_SUITE("scene ply: files") {
             missing.string() + ": cannot open: No such file or directory");
     }
     CHECK_THROWS_AS(rt::loadPly(outputDir()), rt::Error);
+  }
+
+  TEST_CASE("a PLY on its own draws its TextureFile, its coordinates up the image") {
+    // A 2 x 2 texture: red and green on the top row, blue and white below.
+    fs::create_directories(outputDir() / "tex dir");
+    rt::ImageF texture{2, 2, {1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1, 1, 1, 1, 1}};
+    rt::writeImage(outputDir() / "tex dir" / "corners.png", texture, {});
+    // A unit square facing +z, red vertex colours, MeshLab's corner lists.
+    auto textured = [](const std::string& comment, bool texcoords) {
+      std::string ply = "ply\nformat ascii 1.0\n" + comment +
+                        "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                        "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+                        "element face 2\nproperty list uchar int vertex_indices\n";
+      if (texcoords) ply += "property list uchar float texcoord\n";
+      ply += "end_header\n0 0 0 255 0 0\n1 0 0 255 0 0\n1 1 0 255 0 0\n0 1 0 255 0 0\n";
+      ply += texcoords ? "3 0 1 2 6 0 0 1 0 1 1\n3 0 2 3 6 0 0 1 1 0 1\n" : "3 0 1 2\n3 0 2 3\n";
+      return ply;
+    };
+    const fs::path file =
+        writeFile("textured.ply", textured("comment TextureFile tex dir\\corners.png\n", true));
+    rt::Scene scene = rt::loadSceneFile(file);
+    REQUIRE(scene.textures.size() == 1);
+    CHECK(scene.materials[0].diffuseTexture == 0);
+    CHECK(scene.materials[0].texture == outputDir() / "tex dir" / "corners.png");
+    const rt::TriangleMesh& mesh = scene.meshes[0];
+    CHECK(mesh.colors.empty());
+    auto warned = [&](const std::string& what) {
+      return std::any_of(scene.warnings.begin(), scene.warnings.end(),
+                         [&](const std::string& line) { return contains(line, what); });
+    };
+    CHECK(warned("the vertex colours are ignored, the texture is drawn"));
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {  // (u, v) of a corner is (x, y) here
+      CHECK(mesh.uvs[v] == glm::vec2(mesh.positions[v].x, 1.0f - mesh.positions[v].y));
+    }
+    // Rendered: red at the top left, green top right, blue bottom left.
+    rt::Renderer renderer(rt::test::gpu(), rt::test::shaderCompiler());
+    rt::RenderOptions options;
+    options.width = 48;
+    options.height = 48;
+    options.samplesPerPixel = 1;
+    const rt::ImageF image = renderer.render(scene, options);
+    rt::test::checkNoValidationMessages();
+    // Where a channel dominates: how many pixels, and their mean column and row.
+    auto dominant = [&](int channel) {
+      glm::dvec3 found(0.0);
+      for (size_t i = 0; i < image.rgba.size(); i += 4) {
+        const float c = image.rgba[i + size_t(channel)];
+        const float others = image.rgba[i] + image.rgba[i + 1] + image.rgba[i + 2] - c;
+        if (c > 0.2f && c > 2.0f * others) {
+          found += glm::dvec3(1.0, double(i / 4 % image.width), double(i / 4 / image.width));
+        }
+      }
+      return glm::dvec3(found.x, found.y / found.x, found.z / found.x);
+    };
+    rt::test::savePng(rt::toneMap(image, {}), "ply-texture-file.png");
+    const glm::dvec3 red = dominant(0), green = dominant(1), blue = dominant(2);
+    CHECK(red.x > 20);
+    CHECK(green.x > 20);
+    CHECK(blue.x > 20);
+    CHECK(red.y < green.y);  // left of it
+    CHECK(red.z < blue.z);   // above it
+
+    // A missing file: the missing-texture squares; no coordinates: no texture.
+    scene = rt::loadSceneFile(
+        writeFile("missing-texture.ply", textured("comment TextureFile no.png\n", true)));
+    CHECK(scene.materials[0].diffuseTexture >= 0);
+    CHECK(warned("TextureFile no.png: file not found; drawn with the missing-texture squares"));
+    scene = rt::loadSceneFile(
+        writeFile("no-uvs.ply", textured("comment TextureFile tex dir/corners.png\n", false)));
+    CHECK(scene.materials[0].diffuseTexture == -1);
+    CHECK(scene.meshes[0].colors.size() == 4);
+    CHECK(warned("ignored, the mesh has no texture coordinates"));
+    // A file that is no image: one line naming the PLY and the texture.
+    writeFile("not-an-image.png", "not an image");
+    const fs::path broken =
+        writeFile("broken-texture.ply", textured("comment TextureFile not-an-image.png\n", true));
+    try {
+      rt::loadSceneFile(broken);
+      FAIL("a texture that is no image must fail");
+    } catch (const rt::Error& error) {
+      CHECK(contains(error.what(),
+                     broken.string() + ": TextureFile not-an-image.png: cannot use texture: "));
+    }
   }
 }

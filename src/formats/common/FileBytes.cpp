@@ -1,5 +1,6 @@
 #include "formats/common/FileBytes.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -48,6 +49,11 @@ std::string readFileOrThrow(const fs::path& file) {
     throw Error(file.string() + ": " + problem);
   }
   return bytes;
+}
+
+fs::path portablePath(std::string written) {
+  std::replace(written.begin(), written.end(), '\\', '/');
+  return fs::path(written);
 }
 
 }  // namespace rt

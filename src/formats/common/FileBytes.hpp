@@ -22,4 +22,9 @@ std::string readFileBytes(const std::filesystem::path& file, std::vector<unsigne
 // The same, throwing rt::Error "<file>: <problem>".
 std::string readFileOrThrow(const std::filesystem::path& file);
 
+// A path as a model file writes it (an OBJ's mtllib and map_Kd, a PLY's
+// TextureFile), with the backslashes of files written on Windows read as
+// slashes.
+std::filesystem::path portablePath(std::string written);
+
 }  // namespace rt

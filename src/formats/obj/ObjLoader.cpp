@@ -91,12 +91,6 @@ std::string withoutSkinWeights(std::string_view obj) {
   return text;
 }
 
-// OBJ files written on Windows give texture paths with backslashes.
-fs::path portablePath(std::string written) {
-  std::replace(written.begin(), written.end(), '\\', '/');
-  return fs::path(written);
-}
-
 glm::vec3 colour(const tinyobj::real_t* rgb) {
   glm::vec3 c(rgb[0], rgb[1], rgb[2]);
   for (int i = 0; i < 3; ++i) c[i] = std::isfinite(c[i]) ? std::max(c[i], 0.0f) : 0.0f;

@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 #include <system_error>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include "formats/common/MeshNormals.hpp"
 #include "formats/common/MessageText.hpp"
 #include "formats/common/ModelFraming.hpp"
+#include "formats/common/SceneTextures.hpp"
 #include "formats/common/VertexColors.hpp"
 #include "util/Error.hpp"
 #include "util/Text.hpp"
@@ -139,8 +141,9 @@ enum class Format { Ascii, BinaryLittleEndian, BinaryBigEndian };
 struct Header {
   Format format = Format::Ascii;
   std::vector<Element> elements;
-  size_t endLine = 0;    // offset of the end_header line
-  size_t dataStart = 0;  // first byte after it
+  std::vector<std::string> textureFiles;  // `comment TextureFile NAME` lines, in order
+  size_t endLine = 0;                     // offset of the end_header line
+  size_t dataStart = 0;                   // first byte after it
 };
 
 struct HeaderLine {
@@ -273,10 +276,25 @@ void addProperty(const HeaderLine& line, Element& element, const Diagnostics& di
   element.properties.push_back(std::move(property));
 }
 
+// MeshLab's and photogrammetry tools' `comment TextureFile NAME`: the rest
+// of the line is the image's name, spaces and all.
+std::optional<std::string> textureFileComment(const HeaderLine& line) {
+  if (line.words.size() < 3 || line.words[0] != "comment" ||
+      lowercase(std::string(line.words[1])) != "texturefile") {
+    return std::nullopt;
+  }
+  const char* begin = line.words[2].data();
+  const char* end = line.words.back().data() + line.words.back().size();
+  return std::string(begin, static_cast<size_t>(end - begin));
+}
+
 // Returns true at end_header.
 bool readHeaderLine(const HeaderLine& line, Header& header, bool& haveFormat,
                     const Diagnostics& diagnostics) {
   const std::string_view keyword = line.words[0];
+  if (std::optional<std::string> texture = textureFileComment(line)) {
+    header.textureFiles.push_back(std::move(*texture));
+  }
   if (keyword == "comment" || keyword == "obj_info") return false;
   if (keyword == "format") {
     if (haveFormat) diagnostics.failAtByte(line.offset, "a second 'format' line");
@@ -340,10 +358,18 @@ enum Slot : int {
   kUnused = -1
 };
 
+// The slots of a face record's lists.
+constexpr int kIndexList = 0;
+constexpr int kTexcoordList = 1;
+
 struct ElementPlan {
   const Element* element = nullptr;
   Role role = Role::Skip;
-  std::vector<int> slots;  // per property: a Slot for vertices; 0 marks the index list
+  // Per property: a Slot for vertices; kIndexList or kTexcoordList for faces.
+  std::vector<int> slots;
+  bool hasTexcoords() const {
+    return std::find(slots.begin(), slots.end(), kTexcoordList) != slots.end();
+  }
 };
 
 constexpr std::array<std::array<std::string_view, 2>, 4> kUvNames = {
@@ -412,7 +438,13 @@ ElementPlan planIndexLists(const Element& element, Role role, const Diagnostics&
     diagnostics.failAtByte(element.offset, "property '" + list.name + "' of element '" +
                                                element.name + "' must be a list of integers");
   }
-  plan.slots[static_cast<size_t>(index)] = 0;
+  plan.slots[static_cast<size_t>(index)] = kIndexList;
+  // MeshLab's per-face texture coordinates: u and v for each corner in turn.
+  const int texcoords = propertyIndex(element, "texcoord");
+  if (role == Role::Faces && texcoords >= 0 &&
+      element.properties[static_cast<size_t>(texcoords)].isList()) {
+    plan.slots[static_cast<size_t>(texcoords)] = kTexcoordList;
+  }
   return plan;
 }
 
@@ -455,7 +487,7 @@ uint64_t minimumRecordBytes(const ElementPlan& plan, Format format) {
   uint64_t bytes = 0;
   for (size_t i = 0; i < plan.element->properties.size(); ++i) {
     const Property& property = plan.element->properties[i];
-    const uint64_t items = plan.role == Role::Faces && plan.slots[i] == 0 ? 3 : 0;
+    const uint64_t items = plan.role == Role::Faces && plan.slots[i] == kIndexList ? 3 : 0;
     if (format == Format::Ascii) {
       bytes += 2 * (1 + items);
     } else {
@@ -696,6 +728,11 @@ struct PlyMeshInProgress {
   TriangleMesh mesh;
   uint64_t vertexCount = 0;       // from the header: faces may come before vertices
   std::vector<uint32_t> corners;  // one polygon or strip, reused
+  // Per-face texture coordinates: one list a record (reused), and once any
+  // face has them, three per triangle in mesh.faces (zero for strips).
+  std::vector<glm::vec2> faceUvs;
+  std::vector<glm::vec2> cornerUvs;
+  bool perCornerUvs = false;
 };
 
 float finiteFloat(double value, const Property& property, const Cursor& cursor) {
@@ -775,17 +812,52 @@ void readIndexList(Reader& reader, const Property& list, bool allowRestart,
   }
 }
 
+// Reads a face's texture coordinates into out.faceUvs: two numbers a corner.
+template <typename Reader>
+void readTexcoordList(Reader& reader, const Property& list, PlyMeshInProgress& out) {
+  const uint64_t length = reader.listLength(list);
+  if (length % 2 != 0) {
+    reader.failValue("'" + list.name + "' has " + std::to_string(length) +
+                     " values, not a u and a v for each corner");
+  }
+  out.faceUvs.clear();
+  for (uint64_t i = 0; i < length; i += 2) {
+    const float u = finiteFloat(reader.real(list), list, reader);
+    const float v = finiteFloat(reader.real(list), list, reader);
+    out.faceUvs.emplace_back(u, v);
+  }
+}
+
 void addTriangle(PlyMeshInProgress& out, uint32_t a, uint32_t b, uint32_t c, const Cursor& cursor) {
   if (out.mesh.faces.size() >= kMaxTriangles) {
     cursor.failValue("more than " + std::to_string(kMaxTriangles) + " triangles");
   }
   out.mesh.faces.emplace_back(a, b, c);
+  if (out.perCornerUvs) out.cornerUvs.resize(out.cornerUvs.size() + 3);
 }
 
-// Polygons become a fan around their first corner.
-void addPolygon(PlyMeshInProgress& out, const Cursor& cursor) {
+// Polygons become a fan around their first corner; its corners' texture
+// coordinates follow them.
+void addPolygon(PlyMeshInProgress& out, bool withUvs, const Cursor& cursor) {
   const std::vector<uint32_t>& c = out.corners;
-  for (size_t i = 1; i + 1 < c.size(); ++i) addTriangle(out, c[0], c[i], c[i + 1], cursor);
+  if (withUvs && out.faceUvs.empty()) out.faceUvs.assign(c.size(), glm::vec2(0.0f));  // untextured
+  if (withUvs && out.faceUvs.size() != c.size()) {
+    cursor.failValue("the face has " + std::to_string(c.size()) +
+                     " corners but texture coordinates for " + std::to_string(out.faceUvs.size()));
+  }
+  if (withUvs && !out.perCornerUvs) {  // the faces before this one had none
+    out.perCornerUvs = true;
+    out.cornerUvs.assign(3 * out.mesh.faces.size(), glm::vec2(0.0f));
+  }
+  for (size_t i = 1; i + 1 < c.size(); ++i) {
+    addTriangle(out, c[0], c[i], c[i + 1], cursor);
+    if (withUvs) {
+      glm::vec2* uvs = &out.cornerUvs[out.cornerUvs.size() - 3];
+      uvs[0] = out.faceUvs[0];
+      uvs[1] = out.faceUvs[i];
+      uvs[2] = out.faceUvs[i + 1];
+    }
+  }
 }
 
 // Strip triangles alternate their winding; the repeated-index triangles that
@@ -811,21 +883,24 @@ void readIndexElement(Reader& reader, const ElementPlan& plan, PlyMeshInProgress
   const Element& element = *plan.element;
   const bool strips = plan.role == Role::Strips;
   if (!strips) out.mesh.faces.reserve(out.mesh.faces.size() + element.count);
+  const bool withUvs = plan.hasTexcoords();
   for (uint64_t record = 0; record < element.count; ++record) {
     reader.startRecord(element, record);
     for (size_t i = 0; i < element.properties.size(); ++i) {
-      if (plan.slots[i] == kUnused) {
-        reader.skip(element.properties[i]);
-        continue;
-      }
-      readIndexList(reader, element.properties[i], strips, out);
-      if (strips) {
-        addStrip(out, reader);
+      if (plan.slots[i] == kIndexList) {
+        readIndexList(reader, element.properties[i], strips, out);
+      } else if (plan.slots[i] == kTexcoordList) {
+        readTexcoordList(reader, element.properties[i], out);
       } else {
-        addPolygon(out, reader);
+        reader.skip(element.properties[i]);
       }
     }
     reader.endRecord();
+    if (strips) {
+      addStrip(out, reader);
+    } else {
+      addPolygon(out, withUvs, reader);
+    }
   }
 }
 
@@ -859,7 +934,40 @@ uint64_t vertexCountOf(const std::vector<ElementPlan>& plans) {
   return 0;
 }
 
-TriangleMesh parseMesh(std::string_view bytes, std::string_view name) {
+// Per-face texture coordinates made per-vertex: one vertex for each distinct
+// (vertex, coordinates) pair among the faces' corners, which splits vertices
+// only along the texture's seams. Vertices no face uses are dropped.
+void splitAtUvSeams(PlyMeshInProgress& out) {
+  const TriangleMesh& mesh = out.mesh;
+  struct Corner {
+    uint32_t vertex;
+    glm::vec2 uv;
+    size_t index;  // face * 3 + corner
+  };
+  std::vector<Corner> corners(out.cornerUvs.size());
+  for (size_t c = 0; c < corners.size(); ++c) {
+    corners[c] = {mesh.faces[c / 3][static_cast<int>(c % 3)], out.cornerUvs[c], c};
+  }
+  auto key = [](const Corner& c) { return std::tuple(c.vertex, c.uv.x, c.uv.y); };
+  std::sort(corners.begin(), corners.end(),
+            [&](const Corner& a, const Corner& b) { return key(a) < key(b); });
+  TriangleMesh split;
+  split.faces.resize(mesh.faces.size());
+  for (size_t c = 0; c < corners.size(); ++c) {
+    const Corner& corner = corners[c];
+    if (c == 0 || key(corner) != key(corners[c - 1])) {
+      split.positions.push_back(mesh.positions[corner.vertex]);
+      if (!mesh.normals.empty()) split.normals.push_back(mesh.normals[corner.vertex]);
+      if (!mesh.colors.empty()) split.colors.push_back(mesh.colors[corner.vertex]);
+      split.uvs.push_back(corner.uv);
+    }
+    split.faces[corner.index / 3][static_cast<int>(corner.index % 3)] =
+        static_cast<uint32_t>(split.positions.size() - 1);
+  }
+  out.mesh = std::move(split);
+}
+
+PlyModel parseModel(std::string_view bytes, std::string_view name) {
   const Diagnostics diagnostics{std::string(name)};
   const Header header = readHeader(bytes, diagnostics);
   const std::vector<ElementPlan> plans = planElements(header, diagnostics);
@@ -876,26 +984,68 @@ TriangleMesh parseMesh(std::string_view bytes, std::string_view name) {
   }
   if (out.mesh.faces.empty())
     diagnostics.failAtByte(bytes.size(), "no faces: every tristrip is degenerate");
-  completeVertexNormals(out.mesh);
+  completeVertexNormals(out.mesh);  // before the seams split: smooth across them
+  if (out.perCornerUvs) splitAtUvSeams(out);
   dropWhiteColors(out.mesh);
-  return std::move(out.mesh);
+  return {std::move(out.mesh), header.textureFiles};
+}
+
+// The PLY's own texture (`comment TextureFile`) on its material, when it is
+// rendered on its own. Its texture coordinates run up the image, as MeshLab
+// and OBJ have them; the renderer's rows run down.
+void applyTextureFile(Scene& scene, const PlyModel& model, const fs::path& file) {
+  if (model.textureFiles.empty()) return;
+  TriangleMesh& mesh = scene.meshes[0];
+  const std::string& written = model.textureFiles[0];
+  const std::string where = file.string() + ": TextureFile " + written;
+  if (mesh.uvs.empty()) {
+    scene.warnings.push_back(where + ": ignored, the mesh has no texture coordinates");
+    return;
+  }
+  if (model.textureFiles.size() > 1) {
+    scene.warnings.push_back(file.string() + ": " + std::to_string(model.textureFiles.size()) +
+                             " TextureFile comments; only the first is used");
+  }
+  for (glm::vec2& uv : mesh.uvs) uv.y = 1.0f - uv.y;
+  if (!mesh.colors.empty()) {
+    scene.warnings.push_back(where + ": the vertex colours are ignored, the texture is drawn");
+    mesh.colors.clear();
+  }
+  Material& material = scene.materials[0];
+  const fs::path found = (file.parent_path() / portablePath(written)).lexically_normal();
+  material.texture = found;
+  std::error_code ignored;
+  if (!fs::is_regular_file(found, ignored)) {
+    scene.warnings.push_back(where + ": file not found; drawn with the missing-texture squares");
+    material.diffuseTexture = addMissingTexture(scene);
+    return;
+  }
+  try {
+    material.diffuseTexture = addTextureFile(scene, found);
+  } catch (const Error& error) {
+    throw Error(where + ": cannot use texture: " + error.what());
+  }
 }
 
 }  // namespace
 
 TriangleMesh parsePly(std::string_view bytes, std::string_view name) {
-  return withPrintableErrors([&] { return parseMesh(bytes, name); });
+  return withPrintableErrors([&] { return parseModel(bytes, name).mesh; });
 }
 
-TriangleMesh loadPly(const fs::path& file) {
-  return withPrintableErrors([&] { return parseMesh(readFileOrThrow(file), file.string()); });
+PlyModel loadPlyModel(const fs::path& file) {
+  return withPrintableErrors([&] { return parseModel(readFileOrThrow(file), file.string()); });
 }
+
+TriangleMesh loadPly(const fs::path& file) { return loadPlyModel(file).mesh; }
 
 Scene loadPlyScene(const fs::path& file) {
   Scene scene;
   scene.sourcePath = file;
-  scene.meshes.push_back(loadPly(file));
+  PlyModel model = loadPlyModel(file);
+  scene.meshes.push_back(std::move(model.mesh));
   scene.materials.push_back(Material{});
+  withPrintableErrors([&] { applyTextureFile(scene, model, file); });
   Shape shape;
   shape.geometry = MeshInstance{0, WorldTransform(1.0)};
   shape.label = file.filename().string();
