@@ -109,7 +109,7 @@ vec4 itemRow(uint index, uint row) {
 RT_UINT_ROWS(RT_BINDING_MATERIALS, materialTexels)
 RT_FLOAT_ROWS(RT_BINDING_POINT_LIGHTS, pointLightTexels)
 
-// Texel `row` (0..4) of material `index` (see GpuMaterial).
+// Texel `row` (0..5) of material `index` (see GpuMaterial).
 uvec4 materialRow(uint index, uint row) {
   return RT_ROW(materialTexels, index * RT_TEXELS_PER_MATERIAL + row);
 }
@@ -120,10 +120,17 @@ GpuMaterial loadMaterial(uint index) {
   vec4 emission = uintBitsToFloat(materialRow(index, 2u));
   uvec4 optics = materialRow(index, 3u);
   uvec4 profile = materialRow(index, 4u);
+#if defined(RT_FEATURE_METAL_ROUGH_TEXTURES) || defined(RT_FEATURE_TINTED_MIRRORS)
+  uvec4 metalRough = materialRow(index, 5u);
+#else
+  // Not read where no material needs it: one fetch less a hit.
+  uvec4 metalRough = uvec4(uint(-1), floatBitsToUint(0.0), floatBitsToUint(1.0), 0u);
+#endif
   return GpuMaterial(diffuse.xyz, diffuse.w, specular.xyz, specular.w, emission.xyz, emission.w,
                      uintBitsToFloat(optics.x), uintBitsToFloat(optics.y),
                      uintBitsToFloat(optics.z), int(optics.w), profile.x, int(profile.y),
-                     uintBitsToFloat(profile.z), int(profile.w));
+                     uintBitsToFloat(profile.z), int(profile.w), int(metalRough.x),
+                     uintBitsToFloat(metalRough.y), uintBitsToFloat(metalRough.z), metalRough.w);
 }
 
 // Texel `row` (0..2) of point light `index` (see GpuPointLight).

@@ -227,12 +227,26 @@ struct GpuMaterial {
   int normalTexture;     // tangent-space normal map (glTF normalTexture), -1: none
   float normalScale;     // its x and y scale (glTF normalTexture.scale)
   int emissionTexture;   // a glow's texture (glTF emissiveTexture), -1: none
+  // A glTF metallic-roughness texture (data: blue metallic, green roughness),
+  // -1: none; where there is one, each texel times these factors gives kd,
+  // ks, the exponent and the reflectivity at a point (metal_rough.h; the
+  // fields above hold those of the texture's mean). Without one, the
+  // material's metallic and roughness. Read with tintedMirror.
+  int metalRoughTexture;
+  float metallic;
+  float roughness;
+  // 1: mirror reflections are tinted by specularColor (glTF: a metal's
+  // Fresnel reflectance at normal incidence is its base colour); 0: they are
+  // not (the coursework files, whose specular colour tints highlights only).
+  uint tintedMirror;
 };
-RT_ASSERT_STD430_SIZE(GpuMaterial, 80);
+RT_ASSERT_STD430_SIZE(GpuMaterial, 96);
 // Read as RGBA32UI texels (bindings.glsl loadMaterial): rows diffuse/kd,
 // specular/ks, emission/exponent, reflectivity/transmission/ior/texture,
-// profile/normal map/emission texture.
-#define RT_TEXELS_PER_MATERIAL 5u
+// profile/normal map/emission texture, metallic-roughness texture/factors/
+// mirror tint (read only where RT_FEATURE_METAL_ROUGH_TEXTURES or
+// RT_FEATURE_TINTED_MIRRORS is built).
+#define RT_TEXELS_PER_MATERIAL 6u
 RT_ASSERT_TEXELS(GpuMaterial, RT_TEXELS_PER_MATERIAL);
 
 // How an area light's surface emits (GpuMaterial::emissionProfile,

@@ -169,6 +169,9 @@ void addSpecularContinuations(inout Continuations next, PendingRay parent, Surfa
   vec3 facing = surface.shadingNormal;
 #ifdef RT_FEATURE_REFLECTION
   vec3 mirrorWeight = parent.weight * material.reflectivity;
+#ifdef RT_FEATURE_TINTED_MIRRORS
+  if (material.tintedMirror != 0u) mirrorWeight *= material.specularColor;
+#endif
 #else
   vec3 mirrorWeight = vec3(0.0);
 #endif
@@ -266,6 +269,10 @@ bool shadeHit(inout RayStack stack, inout vec3 radiance, inout PendingRay job, S
               uvec2 pixelSample, DepthLimits limits) {
   GpuMaterial material = loadMaterial(hitMaterial(hit));
   SurfacePoint surface = surfaceAt(job.ray, hit, material);
+  vec3 baseColor = diffuseColorOf(material, surface);
+#if defined(RT_FEATURE_METAL_ROUGH_TEXTURES) || defined(RT_FEATURE_TINTED_MIRRORS)
+  applyMetalRough(material, surface.uv, baseColor);
+#endif
   bool entering = dot(job.ray.direction, surface.geometricNormal) < 0.0;
   faceViewer(surface, -job.ray.direction);
 #if defined(RT_FEATURE_AREA_LIGHTS) || defined(RT_FEATURE_GLOW)
@@ -274,8 +281,7 @@ bool shadeHit(inout RayStack stack, inout vec3 radiance, inout PendingRay job, S
     radiance += clampedContribution(job.weight * emitted, job);
   }
 #endif
-  ShadingContext context = ShadingContext(surface, -job.ray.direction, material,
-                                          diffuseColorOf(material, surface),
+  ShadingContext context = ShadingContext(surface, -job.ray.direction, material, baseColor,
                                           sceneInfo.shadingModel == RT_SHADING_COURSEWORK);
   uint vertex = job.depth;
   // With sampled diffuse bounces, light through glass arrives along them

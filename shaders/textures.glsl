@@ -5,6 +5,7 @@
 
 #include "gpu_types.h"
 #include "bindings.glsl"
+#include "metal_rough.h"
 #include "tone_mapping.h"
 
 #ifdef RT_FEATURE_TEXTURES
@@ -39,8 +40,8 @@ vec3 fetchTexel(GpuTextureInfo info, int x, int y) {
   uint tx = wrapTexel(x, int(info.width));
   uint ty = wrapTexel(y, int(info.height));
   vec3 texel = unpackUnorm4x8(textureTexel(info.firstTexel + ty * info.width + tx)).rgb;
-#ifdef RT_FEATURE_NORMAL_MAPS
-  if (info.linear != 0u) return texel;
+#if defined(RT_FEATURE_NORMAL_MAPS) || defined(RT_FEATURE_METAL_ROUGH_TEXTURES)
+  if (info.linear != 0u) return texel;  // data, not colours
 #endif
   return srgbToLinear(texel);
 }
@@ -57,6 +58,30 @@ vec3 sampleTexture(int index, vec2 uv) {
   vec3 top = mix(fetchTexel(info, x, y), fetchTexel(info, x + 1, y), f.x);
   vec3 bottom = mix(fetchTexel(info, x, y + 1), fetchTexel(info, x + 1, y + 1), f.x);
   return mix(top, bottom, f.y);
+}
+#endif
+
+#if defined(RT_FEATURE_METAL_ROUGH_TEXTURES) || defined(RT_FEATURE_TINTED_MIRRORS)
+// A glTF material at a surface point whose base colour (texture, factor and
+// vertex colour) is `baseColor`: with a metallic-roughness texture, its
+// texel (blue metallic, green roughness) times the factors as Blinn-Phong
+// terms (metal_rough.h, the glTF loader's conversion); with a tinted mirror,
+// the specular colour that tints highlights and reflections, mix(white,
+// baseColor, metallic) (the host has only the base colour factor).
+void applyMetalRough(inout GpuMaterial material, vec2 uv, vec3 baseColor) {
+  float m = material.metallic;
+#ifdef RT_FEATURE_METAL_ROUGH_TEXTURES
+  if (material.metalRoughTexture >= 0) {
+    vec3 texel = sampleTexture(material.metalRoughTexture, uv);
+    m = clamp(m * texel.b, 0.0, 1.0);
+    float r = clamp(material.roughness * texel.g, 0.0, 1.0);
+    material.kd = metalRoughKd(m, material.transmission);
+    material.specularExponent = metalRoughExponent(r);
+    material.ks = metalRoughKs(m, material.specularExponent);
+    material.reflectivity = metalRoughReflectivity(m, r);
+  }
+#endif
+  if (material.tintedMirror != 0u) material.specularColor = mix(vec3(1.0), baseColor, m);
 }
 #endif
 

@@ -84,6 +84,10 @@ std::string materialText(const rt::Scene& scene, const rt::Material& m) {
     text += fmt::format(", glow {} times {}", vec(m.glow),
                         scene.textures.at(size_t(m.glowTexture)).source);
   }
+  if (m.metalRoughTexture >= 0) {
+    text += fmt::format(", metallic {:g} roughness {:g} times {}", m.metallic, m.roughness,
+                        scene.textures.at(size_t(m.metalRoughTexture)).source);
+  }
   return text;
 }
 

@@ -80,7 +80,11 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
   bool shaded = scene.settings.mode != RenderMode::Binary && scene.settings.maxBounces > 0;
   for (const Shape& shape : scene.shapes) {
     const Material& material = scene.materials.at(shape.material);
-    features.reflection |= shaded && material.reflectivity > 0.0f;
+    // A metal's texels may be smoother than their mean.
+    bool texturedMetal = material.metalRoughTexture >= 0 && material.metallic > 0.0f;
+    bool mirror = material.reflectivity > 0.0f || texturedMetal;
+    features.reflection |= shaded && mirror;
+    features.tintedMirrors |= shaded && mirror && material.tintedMirror;
     features.refraction |= shaded && material.transmission > 0.0f;
   }
   features.vertices = !flat.vertices.empty();
@@ -88,6 +92,7 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
   for (const gpu::GpuMaterial& material : flat.materials) {
     features.normalMaps |= shaded && material.normalTexture >= 0;
     features.glow |= shaded && material.emissionTexture >= 0;
+    features.metalRoughTextures |= shaded && material.metalRoughTexture >= 0;
     features.textures |= shaded && samplesTextures(material);
   }
   features.thinLens =
@@ -150,6 +155,8 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(textures, "RT_FEATURE_TEXTURES");
   flag(normalMaps, "RT_FEATURE_NORMAL_MAPS");
   flag(glow, "RT_FEATURE_GLOW");
+  flag(metalRoughTextures, "RT_FEATURE_METAL_ROUGH_TEXTURES");
+  flag(tintedMirrors, "RT_FEATURE_TINTED_MIRRORS");
   flag(areaLights, "RT_FEATURE_AREA_LIGHTS");
   flag(diffuseBounces, "RT_FEATURE_DIFFUSE_BOUNCES");
   flag(pathTracer, "RT_FEATURE_PATH_TRACER");

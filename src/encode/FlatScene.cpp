@@ -396,6 +396,10 @@ gpu::GpuMaterial toGpu(const Material& m) {
   out.emission = glm::vec3(0.0f);
   out.emissionProfile = RT_EMISSION_ISOTROPIC;
   out.emissionTexture = m.glowTexture;
+  out.metalRoughTexture = m.metalRoughTexture;
+  out.metallic = m.metallic;
+  out.roughness = m.roughness;
+  out.tintedMirror = m.tintedMirror ? 1u : 0u;
   if (m.glowTexture >= 0) {
     out.emission = m.glow;
     out.emissionProfile = RT_EMISSION_GLOW;
@@ -453,7 +457,7 @@ uint32_t dominantAxis(const glm::vec3& v) {
 
 bool samplesTextures(const gpu::GpuMaterial& material) {
   return material.diffuseTexture >= 0 || material.normalTexture >= 0 ||
-         material.emissionTexture >= 0;
+         material.emissionTexture >= 0 || material.metalRoughTexture >= 0;
 }
 
 Aabb primitiveBounds(const gpu::GpuPrimitive& prim) {

@@ -48,6 +48,18 @@ struct Material {
   // emissive textures, whose detail cannot be one light). -1: none.
   glm::vec3 glow{0.0f};
   int32_t glowTexture = -1;
+  // glTF metallic and roughness: with a metallic-roughness texture (index
+  // into Scene::textures, data: blue metallic, green roughness; -1: none) the
+  // factors its texels are multiplied by, and the kernels convert each
+  // point's values (shaders/metal_rough.h; kd, ks, the exponent and
+  // reflectivity above are those of the texture's mean); without, the values
+  // themselves.
+  int32_t metalRoughTexture = -1;
+  float metallic = 0.0f;
+  float roughness = 1.0f;
+  // Mirror reflections tinted by specularColor (glTF materials, whose metals
+  // reflect their base colour); the coursework files' mirrors are untinted.
+  bool tintedMirror = false;
 };
 
 // A decoded texture image: sRGB-encoded colours as in the file, or data

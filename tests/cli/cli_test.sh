@@ -449,12 +449,14 @@ if [[ -d "$SHARED/scene-format/official" ]]; then
   else
     fail "glb render: $(cat "$SCRATCH/stderr")"
   fi
-  # DamagedHelmet: its normal map and emissive texture are read, and built into the kernels.
+  # DamagedHelmet: its normal map, emissive and metallic-roughness textures are read, and
+  # built into the kernels.
   helmet=$(find "$SHARED/assets/gltf" -name DamagedHelmet.glb | head -1)
   if "$RAYTRACER" check "$helmet" >"$SCRATCH/check.txt" &&
     grep -q 'normal map .*images\[4\], glow (1, 1, 1) times .*images\[2\]' "$SCRATCH/check.txt" &&
-    grep -q 'kernel features: .*normal_maps glow' "$SCRATCH/check.txt" &&
-    ! grep -q 'normal maps ignored\|emissive textures' "$SCRATCH/check.txt"; then
+    grep -q 'metallic 1 roughness 1 times .*images\[1\]' "$SCRATCH/check.txt" &&
+    grep -q 'kernel features: .*normal_maps glow metal_rough_textures tinted_mirrors' "$SCRATCH/check.txt" &&
+    ! grep -q 'normal maps ignored\|emissive textures\|metallic-roughness' "$SCRATCH/check.txt"; then
     pass
   else
     fail "DamagedHelmet check: $(grep -E 'material:|features|ignored' "$SCRATCH/check.txt")"

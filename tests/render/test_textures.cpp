@@ -229,4 +229,41 @@ TEST_SUITE("render textures") {
     checkColor(renderedAt(image, 0.5f, 0.3f), {0.5f, 0, 0.5f});
     checkColor(renderedAt(image, 0.95f, 0.7f), {0.05f, 0, 0.95f});
   }
+
+  TEST_CASE("metallic-roughness textures: each texel's terms, mirrors tinted by the base colour") {
+    // A mesh quad of a glTF-like material over a white background, unlit: a
+    // texel of smooth metal (left) mirrors the background tinted by the
+    // red base colour; one of rough dielectric (right) reflects nothing and,
+    // unlit, stays black. The texture's mean would make both halves alike.
+    Scene scene = flatLitScene();
+    scene.pointLights.clear();
+    scene.backgroundColor = glm::vec3(1.0f);
+    // Two texels of each, so that bilinear filtering has whole texels to show.
+    scene.textures = {{"metal rough",
+                       {4, 1, {0, 0, 255, 255, 0, 0, 255, 255, 0, 255, 0, 255, 0, 255, 0, 255}},
+                       true}};
+    Material& material = scene.materials[0];
+    material.diffuseTexture = -1;
+    material.diffuseColor = {1, 0, 0};
+    material.metalRoughTexture = 0;
+    material.metallic = 1.0f;
+    material.roughness = 1.0f;
+    material.reflectivity = 0.125f;  // the mean's: m (1 - r)^2 at m = r = 0.5
+    material.tintedMirror = true;
+    scene.settings.maxBounces = 1;
+    TriangleMesh mesh;
+    mesh.positions = {{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
+    mesh.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    mesh.faces = {{0, 2, 1}, {0, 3, 2}};
+    scene.meshes.push_back(mesh);
+    Shape shape;
+    shape.geometry = MeshInstance{0, WorldTransform(1.0)};
+    scene.shapes.push_back(shape);
+    ImageF image = render(scene);
+    checkColor(renderedAt(image, 0.25f, 0.5f), {1, 0, 0});
+    checkColor(renderedAt(image, 0.75f, 0.5f), {0, 0, 0});
+    // Untinted (the coursework files' mirrors): the background as it is.
+    material.tintedMirror = false;
+    checkColor(renderedAt(render(scene), 0.25f, 0.5f), {1, 1, 1});
+  }
 }

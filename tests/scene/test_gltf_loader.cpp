@@ -835,6 +835,42 @@ TEST_SUITE("scene gltf") {
     CHECK(glm::length(turnedUvs[2] - glm::vec2(1, -1)) < 1e-6f);
   }
 
+  TEST_CASE("metallic-roughness textures: data, their factors, the mean's terms; tinted mirrors") {
+    writeTexture("tex.png");  // 2 x 2: red, green, blue, white
+    GltfBuilder b;
+    int pos = b.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    int uv0 = b.floats({1, 0, 0, 1, 1, 1}, "VEC2", 2);
+    b.doc["images"] = {{{"uri", "tex.png"}}};
+    b.doc["textures"] = {{{"source", 0}}};
+    b.doc["materials"] = {{{"pbrMetallicRoughness",
+                            {{"baseColorTexture", {{"index", 0}}},
+                             {"metallicRoughnessTexture", {{"index", 0}}},
+                             {"metallicFactor", 0.5},
+                             {"roughnessFactor", 0.8}}}},
+                          {{"pbrMetallicRoughness",
+                            {{"baseColorTexture", {{"index", 0}}},
+                             {"metallicRoughnessTexture", {{"index", 0}, {"texCoord", 1}}}}}}};
+    Json attributes = {{"POSITION", pos}, {"TEXCOORD_0", uv0}, {"TEXCOORD_1", uv0}};
+    for (int material = 0; material < 2; ++material) {
+      b.node({{"mesh", b.mesh({{"attributes", attributes}, {"material", material}})}});
+    }
+    rt::Scene scene = loadDoc("metal-rough.gltf", b.embedded());
+    const rt::Material& textured = scene.materials[scene.shapes[0].material];
+    REQUIRE(textured.metalRoughTexture >= 0);
+    CHECK(scene.textures.at(size_t(textured.metalRoughTexture)).linear);
+    CHECK(textured.metallic == 0.5f);
+    CHECK(textured.roughness == 0.8f);
+    CHECK(textured.tintedMirror);
+    // Its own terms are the mean's: blue (metallic) and green (roughness) average 1/2.
+    CHECK(textured.kd == doctest::Approx(1.0 - 0.25));
+    CHECK(textured.reflectivity == doctest::Approx(0.25 * 0.6 * 0.6));
+    const rt::Material& other = scene.materials[scene.shapes[1].material];
+    CHECK(other.metalRoughTexture == -1);
+    CHECK(hasWarning(scene,
+                     "materials[1].pbrMetallicRoughness.metallicRoughnessTexture: reads other "
+                     "texture coordinates than the base colour texture; ignored"));
+  }
+
   TEST_CASE("normal maps: decoded as data beside the same image as colour, scale, one uv set") {
     writeTexture("tex.png");
     GltfBuilder b;

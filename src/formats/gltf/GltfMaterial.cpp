@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <glm/gtc/constants.hpp>
 
 #include "formats/common/FileBytes.hpp"
 #include "formats/gltf/GltfDocument.hpp"
+#include "metal_rough.h"
 #include "util/Error.hpp"
 
 namespace rt::gltf {
@@ -17,9 +17,6 @@ namespace fs = std::filesystem;
 // also limited to 2^26 pixels by io/Image): a few kilobytes of PNG can
 // inflate to hundreds of megabytes, and one file may name it many times.
 constexpr uint64_t kMaxTextureBytes = uint64_t(1) << 30;
-
-// Blinn-Phong exponents beyond this are a mirror in all but name.
-constexpr float kMaxExponent = 10000.0f;
 
 // Emissive strengths beyond this are taken as this (far brighter than any
 // lamp), so that a light's intensity, radiance times area, stays finite.
@@ -74,9 +71,6 @@ bool hasExtension(const tinygltf::ExtensionMap& extensions, const std::string& n
 
 void noteIgnoredFeatures(Context& context, const tinygltf::Material& gltf,
                          const std::string& where) {
-  if (gltf.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0) {
-    context.ignored("metallic-roughness texture detail (the mean is used)", where);
-  }
   if (gltf.occlusionTexture.index >= 0) context.ignored("occlusion maps", where);
   if (gltf.alphaMode != "OPAQUE") context.ignored("alpha modes BLEND and MASK", where);
   if (hasExtension(gltf.extensions, "KHR_materials_transmission", "transmissionTexture")) {
@@ -84,22 +78,15 @@ void noteIgnoredFeatures(Context& context, const tinygltf::Material& gltf,
   }
 }
 
-// glTF metallic-roughness onto the Blinn-Phong rt::Material, with
+// glTF metallic-roughness onto the Blinn-Phong rt::Material (shaders/
+// metal_rough.h, which the kernels share for textures' texels), with
 // m = metallic, r = roughness (factor times the mean of the
-// metallic-roughness texture, if any: per-texel values cannot be
-// represented), t = transmission:
+// metallic-roughness texture, if any: the kernels take each texel where the
+// texture reads the base colour's coordinates), t = transmission:
 //   diffuseColor     = baseColor.rgb
-//   kd               = (1 - m) (1 - t)            metals and glass have no diffuse term
-//   specularColor    = mix(white, baseColor, m)    metals tint their highlights
-//   specularExponent = clamp(2 / r^4 - 2, 1, 10000)   the Blinn-Phong lobe as wide as the
-//                      microfacet lobe of roughness r (alpha = r^2; Walter et al. 2007)
-//   ks               = min(1, F0 (p + 8) / (8 pi)),  F0 = mix(0.04, 1, m): the peak of the
-//                      energy-normalised Blinn-Phong lobe with the Fresnel reflectance at
-//                      normal incidence, capped at 1 (images are clamped anyway)
-//   reflectivity     = m (1 - r)^2                 mirror reflection of smooth metals
-//                      (untinted: rt::Material's mirror weight is a scalar)
 //   transmission     = KHR_materials_transmission.transmissionFactor (default 0)
 //   ior              = KHR_materials_ior.ior (default 1.5; below 1 is taken as 1.5)
+//   tintedMirror     : mirror reflections times specularColor, the metal's base colour
 Material convertMaterial(Context& context, const tinygltf::Material& gltf, const std::string& where,
                          glm::vec2 textureMetallicRoughness) {
   const tinygltf::PbrMetallicRoughness& pbr = gltf.pbrMetallicRoughness;
@@ -121,14 +108,14 @@ Material convertMaterial(Context& context, const tinygltf::Material& gltf, const
 
   Material out;
   out.diffuseColor = base;
-  out.kd = (1.0f - m) * (1.0f - t);
+  out.kd = gpu::metalRoughKd(m, t);
   out.specularColor = glm::mix(glm::vec3(1.0f), base, m);
-  float r4 = r * r * r * r;
-  out.specularExponent =
-      r4 > 2.0f / kMaxExponent ? std::clamp(2.0f / r4 - 2.0f, 1.0f, kMaxExponent) : kMaxExponent;
-  float f0 = glm::mix(0.04f, 1.0f, m);
-  out.ks = std::min(1.0f, f0 * (out.specularExponent + 8.0f) / (8.0f * glm::pi<float>()));
-  out.reflectivity = m * (1.0f - r) * (1.0f - r);
+  out.specularExponent = gpu::metalRoughExponent(r);
+  out.ks = gpu::metalRoughKs(m, out.specularExponent);
+  out.reflectivity = gpu::metalRoughReflectivity(m, r);
+  out.tintedMirror = true;
+  out.metallic = m;  // the kernels' specular colour mixes in the textured base colour
+  out.roughness = r;
   out.transmission = t;
   out.ior = static_cast<float>(ior);
   noteIgnoredFeatures(context, gltf, where);
@@ -227,6 +214,7 @@ uint32_t MaterialTable::material(int index, const std::string& where) {
       }
     }
     addNormalMap(index, converted);
+    addMetalRoughTexture(index, converted);
   }
   scene_.materials.push_back(std::move(converted));
   uint32_t added = static_cast<uint32_t>(scene_.materials.size() - 1);
@@ -286,6 +274,21 @@ void MaterialTable::addNormalMap(int index, Material& converted) {
   double scale = finiteNumber(context_, info.scale, where + ".scale");
   converted.normalTexture = texture(info.index, Encoding::Linear, where);
   converted.normalScale = static_cast<float>(std::clamp(scale, -1e3, 1e3));
+}
+
+// The metallic-roughness texture of glTF material `index`, for the kernels
+// to read texel by texel (the material's terms stay those of its mean).
+void MaterialTable::addMetalRoughTexture(int index, Material& converted) {
+  const tinygltf::PbrMetallicRoughness& pbr =
+      context_.model().materials[size_t(index)].pbrMetallicRoughness;
+  const tinygltf::TextureInfo& info = pbr.metallicRoughnessTexture;
+  if (info.index < 0) return;
+  std::string where = item("materials", index) + ".pbrMetallicRoughness.metallicRoughnessTexture";
+  if (!readsSharedUvs(index, info.texCoord, info.extensions, where)) return;
+  converted.metalRoughTexture = texture(info.index, Encoding::Linear, where);
+  // The factors as convertMaterial read them (validated there).
+  converted.metallic = static_cast<float>(std::clamp(pbr.metallicFactor, 0.0, 1.0));
+  converted.roughness = static_cast<float>(std::clamp(pbr.roughnessFactor, 0.0, 1.0));
 }
 
 int MaterialTable::imageOf(int textureIndex, const std::string& where) {

@@ -1,4 +1,4 @@
-// glTF materials, base colour textures and normal maps onto rt::Material
+// glTF materials, base colour, normal and metallic-roughness textures onto rt::Material
 // (Blinn-Phong with mirror and refraction weights) and Scene::textures.
 #pragma once
 
@@ -41,6 +41,7 @@ class MaterialTable {
                       const std::string& where);
   void addNormalMap(int index, Material& converted);
   void addGlow(int index, glm::vec3 emissive, Material& converted);
+  void addMetalRoughTexture(int index, Material& converted);
   glm::vec2 metallicRoughnessAverage(const tinygltf::TextureInfo& info, const std::string& where);
   // The image of glTF texture `textureIndex`, or -1 when it has none we can read.
   int imageOf(int textureIndex, const std::string& where);
