@@ -4,13 +4,13 @@
 
 #include <vulkan/vulkan.h>
 
-// clang-format off: the includes must stay between the two.
+// The includes must stay between the two (clang-format would sort them).
+// clang-format off
 #include "util/ThirdPartyBegin.hpp"
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
 #include <imgui.h>
-
 #include "util/ThirdPartyEnd.hpp"
 // clang-format on

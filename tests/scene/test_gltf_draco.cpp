@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
-// clang-format off: Draco's headers are third-party code.
+// The includes must stay between the two (clang-format would sort them).
+// clang-format off
+#include "util/ThirdPartyBegin.hpp"
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
-
-#include "util/ThirdPartyBegin.hpp"
 #include "util/ThirdPartyEnd.hpp"
 // clang-format on
 

@@ -6,10 +6,10 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-// clang-format off: Draco's headers are third-party code.
-#include <draco/compression/decode.h>
-
+// The include must stay between the two (clang-format would sort them).
+// clang-format off
 #include "util/ThirdPartyBegin.hpp"
+#include <draco/compression/decode.h>
 #include "util/ThirdPartyEnd.hpp"
 // clang-format on
 

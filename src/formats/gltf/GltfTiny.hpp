@@ -14,9 +14,9 @@
 #define TINYGLTF_NO_EXTERNAL_IMAGE
 #endif
 
-// clang-format off: the includes must stay between the two.
-#include <tiny_gltf.h>
-
+// The includes must stay between the two (clang-format would sort them).
+// clang-format off
 #include "util/ThirdPartyBegin.hpp"
+#include <tiny_gltf.h>
 #include "util/ThirdPartyEnd.hpp"
 // clang-format on

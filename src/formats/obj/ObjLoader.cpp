@@ -21,10 +21,10 @@
 #include "util/Error.hpp"
 #include "util/Text.hpp"
 
-// clang-format off: the includes must stay between the two.
-#include <tiny_obj_loader.h>
-
+// The includes must stay between the two (clang-format would sort them).
+// clang-format off
 #include "util/ThirdPartyBegin.hpp"
+#include <tiny_obj_loader.h>
 #include "util/ThirdPartyEnd.hpp"
 // clang-format on
 
