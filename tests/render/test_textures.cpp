@@ -58,6 +58,27 @@ void checkColor(glm::vec3 actual, glm::vec3 expected) {
   CHECK(glm::all(glm::lessThan(glm::abs(actual - expected), glm::vec3(0.02f))));
 }
 
+// The square [-1, 1]^2 in z = 0 as a mesh with texture coordinates `uvs`
+// at its corners (top left, top right, bottom right, bottom left as the
+// camera sees them); the default faces turn clockwise as the camera sees
+// them (the back: triangles are two-sided), {{0, 2, 1}, {0, 3, 2}} the other way.
+TriangleMesh squareMesh(std::vector<glm::vec2> uvs,
+                        std::vector<glm::uvec3> faces = {{0, 1, 2}, {0, 2, 3}}) {
+  TriangleMesh mesh;
+  mesh.positions = {{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
+  mesh.uvs = std::move(uvs);
+  mesh.faces = std::move(faces);
+  return mesh;
+}
+
+// `mesh` placed once, in world space.
+void addMesh(Scene& scene, TriangleMesh mesh) {
+  scene.meshes.push_back(std::move(mesh));
+  Shape shape;
+  shape.geometry = MeshInstance{uint32_t(scene.meshes.size() - 1), WorldTransform(1.0)};
+  scene.shapes.push_back(shape);
+}
+
 constexpr float kGreyLinear = 0.21586f;  // sRGB 128 decoded
 
 // A white quad facing the camera (+z) with uvs as the quads' (u along +x, v
@@ -76,13 +97,9 @@ float normalMappedBrightness(glm::vec3 mapped, glm::vec3 direction, float scale 
   scene.materials[0].normalTexture = 0;
   scene.materials[0].normalScale = scale;
   scene.pointLights[0].position = glm::dvec3(glm::normalize(direction)) * 1e6;
-  TriangleMesh mesh;
-  mesh.positions = {{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
-  mesh.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   // Counter-clockwise from the camera: its front. (Seen from the back, the
   // whole bent normal turns over, as glTF's double-sided materials do.)
-  mesh.faces = {{0, 2, 1}, {0, 3, 2}};
-  scene.meshes.push_back(mesh);
+  scene.meshes.push_back(squareMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{0, 2, 1}, {0, 3, 2}}));
   for (int copy = 0; copy < copies; ++copy) {
     Shape shape;
     shape.geometry = MeshInstance{
@@ -113,14 +130,7 @@ TEST_SUITE("render textures") {
 
   TEST_CASE("mesh UVs beyond [0,1] repeat the texture") {
     Scene scene = flatLitScene();
-    TriangleMesh mesh;
-    mesh.positions = {{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
-    mesh.uvs = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
-    mesh.faces = {{0, 1, 2}, {0, 2, 3}};
-    scene.meshes.push_back(mesh);
-    Shape shape;
-    shape.geometry = MeshInstance{0, WorldTransform(1.0)};
-    scene.shapes.push_back(shape);
+    addMesh(scene, squareMesh({{0, 0}, {2, 0}, {2, 2}, {0, 2}}));
     ImageF image = render(scene);
     // Two repeats across: red at 1/8 and at 5/8 of the width.
     checkColor(renderedAt(image, 0.125f, 0.125f), {1, 0, 0});
@@ -205,15 +215,9 @@ TEST_SUITE("render textures") {
     Scene scene = flatLitScene();
     scene.materials[0].diffuseColor = {0.5f, 0.5f, 0.5f};
     scene.materials[0].textureTintedByColor = true;
-    TriangleMesh mesh;
-    mesh.positions = {{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
-    mesh.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    mesh.faces = {{0, 1, 2}, {0, 2, 3}};
+    TriangleMesh mesh = squareMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
     mesh.colors = {{1, 1, 0}, {1, 1, 0}, {1, 1, 0}, {1, 1, 0}};  // yellow
-    scene.meshes.push_back(mesh);
-    Shape shape;
-    shape.geometry = MeshInstance{0, WorldTransform(1.0)};
-    scene.shapes.push_back(shape);
+    addMesh(scene, mesh);
     ImageF image = render(scene);
     checkColor(renderedAt(image, 0.25f, 0.25f), {0.5f, 0, 0});  // red texel
     checkColor(renderedAt(image, 0.75f, 0.25f), {0, 0.5f, 0});  // green
@@ -251,14 +255,7 @@ TEST_SUITE("render textures") {
     material.reflectivity = 0.125f;  // the mean's: m (1 - r)^2 at m = r = 0.5
     material.tintedMirror = true;
     scene.settings.maxBounces = 1;
-    TriangleMesh mesh;
-    mesh.positions = {{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
-    mesh.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    mesh.faces = {{0, 2, 1}, {0, 3, 2}};
-    scene.meshes.push_back(mesh);
-    Shape shape;
-    shape.geometry = MeshInstance{0, WorldTransform(1.0)};
-    scene.shapes.push_back(shape);
+    addMesh(scene, squareMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{0, 2, 1}, {0, 3, 2}}));
     ImageF image = render(scene);
     checkColor(renderedAt(image, 0.25f, 0.5f), {1, 0, 0});
     checkColor(renderedAt(image, 0.75f, 0.5f), {0, 0, 0});
