@@ -24,6 +24,7 @@
 // clang-format on
 
 #include "formats/gltf/GltfLoader.hpp"
+#include "support/Glb.hpp"
 #include "util/Error.hpp"
 
 namespace {
@@ -132,28 +133,10 @@ fs::path writeGltf(const std::string& name, Json doc, const std::vector<uint8_t>
   return file;
 }
 
-void appendU32(std::string& out, uint32_t value) {
-  for (int shift = 0; shift < 32; shift += 8) out += char((value >> shift) & 0xFF);
-}
-
 // NAME.glb: the document and the stream in one file.
-fs::path writeGlb(const std::string& name, Json doc, const std::vector<uint8_t>& bin) {
-  doc["buffers"] = {{{"byteLength", bin.size()}}};
-  std::string json = doc.dump();
-  while (json.size() % 4) json += ' ';
-  std::string chunk(bin.begin(), bin.end());
-  while (chunk.size() % 4) chunk += '\0';
-  std::string out = "glTF";
-  appendU32(out, 2);
-  appendU32(out, uint32_t(12 + 8 + json.size() + 8 + chunk.size()));
-  appendU32(out, uint32_t(json.size()));
-  appendU32(out, 0x4E4F534Au);
-  out += json;
-  appendU32(out, uint32_t(chunk.size()));
-  appendU32(out, 0x004E4942u);
-  out += chunk;
+fs::path writeGlb(const std::string& name, const Json& doc, const std::vector<uint8_t>& bin) {
   fs::path file = scratchDir() / (name + ".glb");
-  std::ofstream(file, std::ios::binary) << out;
+  std::ofstream(file, std::ios::binary) << rt::test::glbBytes(doc, bin);
   return file;
 }
 

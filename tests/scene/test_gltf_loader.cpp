@@ -29,6 +29,7 @@
 
 #include "formats/gltf/GltfLoader.hpp"
 #include "render/Renderer.hpp"
+#include "support/Glb.hpp"
 #include "support/JsonMutations.hpp"
 #include "support/TestSupport.hpp"
 #include "util/Clock.hpp"
@@ -270,28 +271,8 @@ fs::path writeGltf(const std::string& name, const Json& doc) {
   return writeBytes(name, doc.dump());
 }
 
-void appendU32(std::string& out, uint32_t value) {
-  for (int shift = 0; shift < 32; shift += 8) out += char((value >> shift) & 0xFF);
-}
-
 // A GLB of the builder's document, its buffer in the BIN chunk.
-std::string glbBytes(const GltfBuilder& b) {
-  Json doc = b.doc;
-  doc["buffers"] = {{{"byteLength", b.bin.size()}}};
-  std::string json = doc.dump();
-  while (json.size() % 4) json += ' ';
-  std::string bin(b.bin.begin(), b.bin.end());
-  while (bin.size() % 4) bin += '\0';
-  std::string out = "glTF";
-  appendU32(out, 2);
-  appendU32(out, uint32_t(12 + 8 + json.size() + 8 + bin.size()));
-  appendU32(out, uint32_t(json.size()));
-  appendU32(out, 0x4E4F534Au);
-  out += json;
-  appendU32(out, uint32_t(bin.size()));
-  appendU32(out, 0x004E4942u);
-  return out + bin;
-}
+std::string glbBytes(const GltfBuilder& b) { return rt::test::glbBytes(b.doc, b.bin); }
 
 // A unit right triangle in the z = 0 plane, counter-clockwise seen from +z.
 GltfBuilder triangleModel() {
