@@ -1,8 +1,8 @@
 // glTF's metallic-roughness onto the renderer's Blinn-Phong terms: one
 // definition for the glTF loader (a material's factors, src/formats/gltf)
 // and the kernels (each texel of a metallic-roughness texture,
-// shading.glsl's metalRoughAt), so that a texture of one value renders as
-// its factors would. m = metallic, r = roughness, t = transmission:
+// textures.glsl's applyMetalRough), so that a texture of one value renders
+// as its factors would. m = metallic, r = roughness, t = transmission:
 //   kd               = (1 - m) (1 - t)           metals and glass have no diffuse term
 //   specularColor    = mix(white, baseColor, m)   metals tint their highlights
 //   specularExponent = clamp(2 / r^4 - 2, 1, 10000): the Blinn-Phong lobe as wide as the

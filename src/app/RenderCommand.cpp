@@ -420,8 +420,9 @@ int runRenderCommand(int argc, char** argv) {
                "Print how many frames --camera-path lasts and exit")
       ->needs(cameraPath);
   app.add_option("--time", cli.timeBudget,
-                 "Stop after this many seconds (every sample done is kept; passes of one sample, "
-                 "so that every pixel has as many as the others, or one more). Without --spp the "
+                 "Stop after this many seconds, the setup included (every sample done is kept; "
+                 "passes of one sample, so that every pixel has as many as the others, or one "
+                 "more; never fewer than one sample a pixel). Without --spp the "
                  "time alone decides: as many samples as fit (adaptive: the scene's budget, "
                  "doubled each time it is spent)")
       ->check(rt::cli::positiveFiniteNumber());

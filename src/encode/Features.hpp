@@ -42,7 +42,9 @@ struct ShaderFeatures {
   bool normalMaps = false;  // some shaded material has a normal map (needs textures)
   bool glow = false;        // some shaded material glows through a texture (RT_EMISSION_GLOW)
   bool metalRoughTextures = false;  // some shaded material has a metallic-roughness texture
-  bool tintedMirrors = false;       // some shaded mirror reflects its specular colour (glTF)
+  // Some shaded glTF metal: its highlights and mirror reflections take the
+  // base colour at the point (GpuMaterial::tintedMirror).
+  bool tintedMirrors = false;
   bool areaLights = false;
   bool diffuseBounces = false;        // sampled diffuse bounces (distributed bounces, path tracer)
   bool pathTracer = false;            // one continuation per hit

@@ -115,7 +115,14 @@ class SampleLoop {
         planner_(job.region().width, job.region().height, options.secondsPerDispatch,
                  options.secondsPerPass, options.maxPassSamples) {}
 
-  bool stopRequested() const { return options_.shouldStop && options_.shouldStop(); }
+  // A stop counts once every pixel has a sample (the first pass or round):
+  // a render stopped while it is set up or in its first pass (a --time
+  // budget spent on compiling kernels) still writes an image, never an
+  // empty one. shouldStop is asked all the same.
+  bool stopRequested() const {
+    bool asked = options_.shouldStop && options_.shouldStop();
+    return asked && everyPixelSampled_;
+  }
 
   void report(double done, uint32_t total, std::optional<double> estimate) const {
     if (!onProgress_) return;
@@ -141,6 +148,7 @@ class SampleLoop {
   RenderStats& stats_;
   DispatchPlanner planner_;
   const Clock::time_point start_ = Clock::now();
+  bool everyPixelSampled_ = false;  // set by the loops after their first pass or round
 };
 
 // One render's sample loop: passes of a few samples over every row of the
@@ -162,6 +170,7 @@ class RenderLoop : SampleLoop {
         break;
       }
       job_.finishPass(samples);
+      everyPixelSampled_ = true;
       if (estimating_ && isCheckpoint(samplesDone()) && updateEstimate()) break;
     }
     if (estimating_ && estimatedAt_ != samplesDone()) updateEstimate();
@@ -235,6 +244,7 @@ class AdaptiveLoop : SampleLoop {
         return;
       }
       job_.finishAdaptiveRound(rounds_, mapping_);
+      everyPixelSampled_ = true;
       stats_.rmseEstimate = rounds_.rmseEstimate();
       stats_.reachedTarget = rounds_.reachedTarget();
       report(rounds_.meanSamples(), options_.samplesPerPixel, stats_.rmseEstimate);

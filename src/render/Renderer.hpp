@@ -58,7 +58,8 @@ struct RenderOptions : ImageSampling {
   // sample of the others whenever shouldStop ends the render (--time).
   uint32_t maxPassSamples = 16;
   // Polled between dispatches; returning true ends the render early with
-  // the samples accumulated so far (SIGINT, time budgets).
+  // the samples accumulated so far (SIGINT, time budgets), once every pixel
+  // has a sample: a stopped render's image is never empty.
   std::function<bool()> shouldStop;
 };
 

@@ -404,6 +404,22 @@ TEST_SUITE("render") {
     CHECK(stats.maxSamples > stats.samplesDone);  // the stop did come inside a pass
   }
 
+  TEST_CASE("a stop asked for before the first pass ends leaves every pixel one sample") {
+    Scene scene = baseScene(40, 30);
+    test::addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}));
+    RenderOptions options;
+    options.samplesPerPixel = 50;
+    options.secondsPerDispatch = options.secondsPerPass = 1e-9;  // bands of rows
+    options.shouldStop = [] { return true; };  // a --time budget spent while setting up
+    RenderStats stats;
+    ImageF image = Renderer(test::gpu(), test::shaderCompiler()).render(scene, options, {}, &stats);
+    CHECK(stats.stoppedEarly);
+    CHECK(stats.samplesDone == 1);
+    CHECK(stats.maxSamples == 1);
+    for (size_t i = 3; i < image.rgba.size(); i += 4) REQUIRE(image.rgba[i] == 1.0f);
+    CHECK(allFinite(image));
+  }
+
   TEST_CASE("a render stopped with passes of one sample keeps pixels within one sample") {
     Scene scene = baseScene(40, 30);
     test::addSphere(scene, test::diffuse({0.9f, 0.5f, 0.2f}));
