@@ -84,9 +84,9 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
     bool texturedMetal = material.metalRoughTexture >= 0 && material.metallic > 0.0f;
     bool mirror = material.reflectivity > 0.0f || texturedMetal;
     features.reflection |= shaded && mirror;
-    // glTF metals: highlights and mirrors take the base colour at the point.
-    features.tintedMirrors |=
-        shaded && material.tintedMirror && (mirror || material.metallic > 0.0f);
+    // glTF metals: highlights and mirrors take the base colour at the point
+    // (a tint of mix(white, base, metallic), so only metals need it).
+    features.tintedMirrors |= shaded && material.tintedMirror && material.metallic > 0.0f;
     features.refraction |= shaded && material.transmission > 0.0f;
   }
   features.vertices = !flat.vertices.empty();

@@ -76,8 +76,9 @@ struct FlattenOptions {
 
 FlatScene flattenScene(const Scene& scene, const FlattenOptions& options = {});
 
-// Whether a material samples a texture (colour, normals, glow): its
-// triangles then need texture coordinates, and the kernels the texture code.
+// Whether a material samples a texture (colour, normals, glow, metallic-
+// roughness): its triangles then need texture coordinates, and the kernels
+// the texture code.
 bool samplesTextures(const gpu::GpuMaterial& material);
 
 // Bounds of a top-level primitive that is not a mesh instance (its BVH box).

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <string>
+#include <system_error>
+
+#include "util/Error.hpp"
 
 namespace rt {
 namespace {
@@ -49,6 +52,22 @@ int32_t addTextureFile(Scene& scene, const std::filesystem::path& file) {
   if (const std::optional<int32_t> found = findTexture(scene, file.string())) return *found;
   scene.textures.push_back({file.string(), readImageRgba8(file)});
   return static_cast<int32_t>(scene.textures.size() - 1);
+}
+
+bool useDiffuseTextureFile(Scene& scene, Material& material,
+                           const std::optional<std::filesystem::path>& file) {
+  std::error_code ignored;
+  if (!file || !std::filesystem::is_regular_file(*file, ignored)) {
+    material.diffuseTexture = addMissingTexture(scene);
+    return false;
+  }
+  material.texture = *file;
+  try {
+    material.diffuseTexture = addTextureFile(scene, *file);
+  } catch (const Error& error) {
+    throw Error(std::string("cannot use texture: ") + error.what());
+  }
+  return true;
 }
 
 int32_t addMissingTexture(Scene& scene) {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 
 #include "scene/Scene.hpp"
 
@@ -18,6 +19,14 @@ int32_t addTextureFile(Scene& scene, const std::filesystem::path& file);
 // squares, 8 x 8 over the unit square, that no real texture looks like (README
 // "Student scenes").
 int32_t addMissingTexture(Scene& scene);
+
+// Puts the image `file` on `material` as its diffuse texture and returns true.
+// Where there is no such file (or none was found), it puts the missing-texture
+// squares there and returns false: the caller warns in its own words and names
+// the texture as written. Throws rt::Error "cannot use texture: <reason>" when
+// the file does not decode.
+bool useDiffuseTextureFile(Scene& scene, Material& material,
+                           const std::optional<std::filesystem::path>& file);
 
 // TsFreddie's procedural "checkerboard": 8 x 8 light and dark grey squares.
 int32_t addCheckerboard(Scene& scene);

@@ -103,19 +103,16 @@ std::string notFoundMessage(const JsonNode& node, const fs::path& sceneDir, std:
 }
 
 void readTextureFile(const JsonNode& node, const fs::path& sceneDir, Material& out, Scene& scene) {
-  if (const std::optional<fs::path> file = findReferencedFile(node, sceneDir)) {
-    out.texture = *file;
-    try {
-      out.diffuseTexture = addTextureFile(scene, *file);
-    } catch (const Error& error) {
-      node.fail(std::string("cannot use texture: ") + error.what());
-    }
-    return;
+  bool found = false;
+  try {
+    found = useDiffuseTextureFile(scene, out, findReferencedFile(node, sceneDir));
+  } catch (const Error& error) {
+    node.fail(error.what());
   }
+  if (found) return;
   node.warn(notFoundMessage(node, sceneDir, "texture") +
             "; drawn with the missing-texture squares");
   out.texture = node.string();
-  out.diffuseTexture = addMissingTexture(scene);
 }
 
 }  // namespace rt

@@ -205,24 +205,16 @@ class ObjImporter {
 
   void addDiffuseTexture(const tinyobj::material_t& source, Material& out) {
     const fs::path written = portablePath(source.diffuse_texname);
-    const fs::path found = (folder_ / written).lexically_normal();
-    std::error_code ignored;
     out.textureTintedByColor = true;
-    if (!fs::is_regular_file(found, ignored)) {
-      diagnostics_.warn("material '" + source.name + "'",
-                        "texture file not found: " + written.string() +
-                            "; drawn with the missing-texture squares");
-      out.texture = written;
-      out.diffuseTexture = addMissingTexture(scene_);
-      return;
-    }
-    out.texture = found;
+    const std::string where = "material '" + source.name + "'";
     try {
-      out.diffuseTexture = addTextureFile(scene_, found);
+      if (useDiffuseTextureFile(scene_, out, (folder_ / written).lexically_normal())) return;
     } catch (const Error& error) {
-      diagnostics_.fail("material '" + source.name + "'",
-                        std::string("cannot use texture: ") + error.what());
+      diagnostics_.fail(where, error.what());
     }
+    diagnostics_.warn(where, "texture file not found: " + written.string() +
+                                 "; drawn with the missing-texture squares");
+    out.texture = written;
   }
 
   // `norm`, else `map_Bump` (where Blender's exporter writes a normal map,

@@ -1013,18 +1013,13 @@ void applyTextureFile(Scene& scene, const PlyModel& model, const fs::path& file)
   }
   Material& material = scene.materials[0];
   const fs::path found = (file.parent_path() / portablePath(written)).lexically_normal();
-  material.texture = found;
-  std::error_code ignored;
-  if (!fs::is_regular_file(found, ignored)) {
-    scene.warnings.push_back(where + ": file not found; drawn with the missing-texture squares");
-    material.diffuseTexture = addMissingTexture(scene);
-    return;
-  }
   try {
-    material.diffuseTexture = addTextureFile(scene, found);
+    if (useDiffuseTextureFile(scene, material, found)) return;
   } catch (const Error& error) {
-    throw Error(where + ": cannot use texture: " + error.what());
+    throw Error(where + ": " + error.what());
   }
+  scene.warnings.push_back(where + ": file not found; drawn with the missing-texture squares");
+  material.texture = found;
 }
 
 }  // namespace
