@@ -109,9 +109,23 @@ vec4 itemRow(uint index, uint row) {
 RT_UINT_ROWS(RT_BINDING_MATERIALS, materialTexels)
 RT_FLOAT_ROWS(RT_BINDING_POINT_LIGHTS, pointLightTexels)
 
-// Texel `row` (0..5) of material `index` (see GpuMaterial).
+// Texel `row` (0..6) of material `index` (see GpuMaterial).
 uvec4 materialRow(uint index, uint row) {
   return RT_ROW(materialTexels, index * RT_TEXELS_PER_MATERIAL + row);
+}
+
+// GpuMaterial's alpha fields, its row RT_MATERIAL_ALPHA_ROW: the walk reads
+// them on their own (alpha.glsl).
+struct MaterialAlpha {
+  int texture;
+  uint mode;
+  float factor;
+  float cutoff;
+};
+
+MaterialAlpha loadMaterialAlpha(uint index) {
+  uvec4 row = materialRow(index, RT_MATERIAL_ALPHA_ROW);
+  return MaterialAlpha(int(row.x), row.y, uintBitsToFloat(row.z), uintBitsToFloat(row.w));
 }
 
 GpuMaterial loadMaterial(uint index) {
@@ -126,11 +140,17 @@ GpuMaterial loadMaterial(uint index) {
   // Not read where no material needs it: one fetch less a hit.
   uvec4 metalRough = uvec4(uint(-1), floatBitsToUint(0.0), floatBitsToUint(1.0), 0u);
 #endif
+#ifdef RT_FEATURE_ALPHA_CUTOUTS
+  MaterialAlpha alpha = loadMaterialAlpha(index);
+#else
+  MaterialAlpha alpha = MaterialAlpha(-1, RT_ALPHA_OPAQUE, 1.0, 0.0);
+#endif
   return GpuMaterial(diffuse.xyz, diffuse.w, specular.xyz, specular.w, emission.xyz, emission.w,
                      uintBitsToFloat(optics.x), uintBitsToFloat(optics.y),
                      uintBitsToFloat(optics.z), int(optics.w), profile.x, int(profile.y),
                      uintBitsToFloat(profile.z), int(profile.w), int(metalRough.x),
-                     uintBitsToFloat(metalRough.y), uintBitsToFloat(metalRough.z), metalRough.w);
+                     uintBitsToFloat(metalRough.y), uintBitsToFloat(metalRough.z), metalRough.w,
+                     alpha.texture, alpha.mode, alpha.factor, alpha.cutoff);
 }
 
 // Texel `row` (0..2) of point light `index` (see GpuPointLight).

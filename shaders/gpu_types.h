@@ -99,6 +99,9 @@ using uint = uint32_t;
 // GpuPrimitive::flags
 #define RT_PRIM_HAS_VERTICES 1u  // triangle: a.w, b.w, c.w hold GpuVertex indices (bits)
 #define RT_PRIM_SMOOTH 2u        // triangle: interpolate the vertices' normals
+// Mesh instance: its material's alpha cuts holes (GpuMaterial::alphaMode),
+// so the walk asks the material about each hit (shaders/alpha.glsl).
+#define RT_PRIM_ALPHA_CUTOUT 4u
 
 // GpuSceneInfo::renderMode
 #define RT_MODE_BINARY 0u
@@ -239,15 +242,33 @@ struct GpuMaterial {
   // Fresnel reflectance at normal incidence is its base colour); 0: they are
   // not (the coursework files, whose specular colour tints highlights only).
   uint tintedMirror;
+  // Where the surface is there at all (glTF alphaMode; RT_ALPHA_*): alpha is
+  // alphaFactor times the alpha channel of texture alphaTexture (-1: none)
+  // at the point. Read by the walk (shaders/alpha.glsl), not by shading.
+  int alphaTexture;
+  uint alphaMode;
+  float alphaFactor;
+  float alphaCutoff;  // RT_ALPHA_MASK: there where alpha >= alphaCutoff
 };
-RT_ASSERT_STD430_SIZE(GpuMaterial, 96);
+RT_ASSERT_STD430_SIZE(GpuMaterial, 112);
 // Read as RGBA32UI texels (bindings.glsl loadMaterial): rows diffuse/kd,
 // specular/ks, emission/exponent, reflectivity/transmission/ior/texture,
 // profile/normal map/emission texture, metallic-roughness texture/factors/
 // mirror tint (read only where RT_FEATURE_METAL_ROUGH_TEXTURES or
-// RT_FEATURE_TINTED_MIRRORS is built).
-#define RT_TEXELS_PER_MATERIAL 6u
+// RT_FEATURE_TINTED_MIRRORS is built), alpha (read by the walk only, where
+// RT_FEATURE_ALPHA_CUTOUTS is built).
+#define RT_TEXELS_PER_MATERIAL 7u
+#define RT_MATERIAL_ALPHA_ROW 6u
 RT_ASSERT_TEXELS(GpuMaterial, RT_TEXELS_PER_MATERIAL);
+
+// GpuMaterial::alphaMode (glTF alphaMode)
+#define RT_ALPHA_OPAQUE 0u  // there everywhere
+#define RT_ALPHA_MASK 1u    // there where alpha >= alphaCutoff, a hole elsewhere
+// There for a share alpha of the rays, which pass through it elsewhere: a
+// hash of the ray and the triangle decides (stochastic transparency, as in
+// pbrt-v4), so samples average to alpha blending, and a ray always gets the
+// same answer (renders stay a function of the samples).
+#define RT_ALPHA_BLEND 2u
 
 // How an area light's surface emits (GpuMaterial::emissionProfile,
 // GpuAreaLight::profile). Spheres are always lamps (Lambertian).

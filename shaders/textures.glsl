@@ -1,5 +1,6 @@
 // Diffuse colour of a material at a surface point: its texture, bilinearly
-// filtered with repeat wrapping and decoded from sRGB, or its plain colour.
+// filtered with repeat wrapping and decoded from sRGB, or its plain colour;
+// a texture's alpha (coverage) for alpha cutouts.
 #ifndef RT_TEXTURES_GLSL
 #define RT_TEXTURES_GLSL
 
@@ -46,18 +47,46 @@ vec3 fetchTexel(GpuTextureInfo info, int x, int y) {
   return srgbToLinear(texel);
 }
 
-vec3 sampleTexture(int index, vec2 uv) {
-  GpuTextureInfo info = loadTextureInfo(index);
+// Alpha is coverage, stored linearly in sRGB images too.
+float fetchTexelAlpha(GpuTextureInfo info, int x, int y) {
+  uint tx = wrapTexel(x, int(info.width));
+  uint ty = wrapTexel(y, int(info.height));
+  return unpackUnorm4x8(textureTexel(info.firstTexel + ty * info.width + tx)).a;
+}
+
+// Bilinear filtering at `uv`: the texel (x, y) at the top left of the four
+// around it, and the weights f of its right and lower neighbours.
+struct BilinearTaps {
+  int x;
+  int y;
+  vec2 f;
+};
+
+BilinearTaps bilinearTaps(GpuTextureInfo info, vec2 uv) {
   // Keep coordinates small before scaling so float precision holds far from 0.
   vec2 wrapped = uv - floor(uv);
   vec2 pixel = wrapped * vec2(info.width, info.height) - 0.5;
   vec2 base = floor(pixel);
-  vec2 f = pixel - base;
-  int x = int(base.x);
-  int y = int(base.y);
-  vec3 top = mix(fetchTexel(info, x, y), fetchTexel(info, x + 1, y), f.x);
-  vec3 bottom = mix(fetchTexel(info, x, y + 1), fetchTexel(info, x + 1, y + 1), f.x);
-  return mix(top, bottom, f.y);
+  return BilinearTaps(int(base.x), int(base.y), pixel - base);
+}
+
+vec3 sampleTexture(int index, vec2 uv) {
+  GpuTextureInfo info = loadTextureInfo(index);
+  BilinearTaps at = bilinearTaps(info, uv);
+  vec3 top = mix(fetchTexel(info, at.x, at.y), fetchTexel(info, at.x + 1, at.y), at.f.x);
+  vec3 bottom =
+      mix(fetchTexel(info, at.x, at.y + 1), fetchTexel(info, at.x + 1, at.y + 1), at.f.x);
+  return mix(top, bottom, at.f.y);
+}
+
+float sampleTextureAlpha(int index, vec2 uv) {
+  GpuTextureInfo info = loadTextureInfo(index);
+  BilinearTaps at = bilinearTaps(info, uv);
+  float top =
+      mix(fetchTexelAlpha(info, at.x, at.y), fetchTexelAlpha(info, at.x + 1, at.y), at.f.x);
+  float bottom = mix(fetchTexelAlpha(info, at.x, at.y + 1),
+                     fetchTexelAlpha(info, at.x + 1, at.y + 1), at.f.x);
+  return mix(top, bottom, at.f.y);
 }
 #endif
 

@@ -21,6 +21,9 @@
 #define RT_TRAVERSE_BVH_GLSL
 
 #include "hits.glsl"
+#ifdef RT_FEATURE_ALPHA_CUTOUTS
+#include "alpha.glsl"
+#endif
 
 #ifdef RT_LANE_VOTES
 #extension GL_KHR_shader_subgroup_vote : require
@@ -105,15 +108,20 @@ vec2 childEntries(ChildBoxes boxes, WalkRay ray, float tMin, float tMax) {
 #ifdef RT_FEATURE_MESHES
 // A mesh triangle of `instance` against `ray`; on a hit shrinks tMax and
 // records it in `hit`. Normals are found once, after the walk: the leaf
-// loop runs for every lane, so it carries as little as it can.
-bool testMeshTriangle(uint item, vec3 v0, vec3 v1, vec3 v2, WalkRay ray, float tMin,
-                      inout float tMax, uint instance, inout SurfaceHit hit) {
+// loop runs for every lane, so it carries as little as it can. With alpha
+// cutouts a hit in a hole is no hit (`worldRay` decides BLEND's coin).
+bool testMeshTriangle(uint item, vec3 v0, vec3 v1, vec3 v2, WalkRay ray, Ray worldRay,
+                      float tMin, inout float tMax, uint instance, inout SurfaceHit hit) {
   vec2 barycentric;
-  if (!intersectTriangleSheared(v0, v1, v2, ray.ray.origin, ray.frame, tMin, tMax,
-                                barycentric)) {
+  float t = tMax;
+  if (!intersectTriangleSheared(v0, v1, v2, ray.ray.origin, ray.frame, tMin, t, barycentric)) {
     return false;
   }
-  hit.t = tMax;
+#ifdef RT_FEATURE_ALPHA_CUTOUTS
+  if (!alphaCovers(instance, item, barycentric, worldRay)) return false;
+#endif
+  tMax = t;
+  hit.t = t;
   hit.primitiveIndex = instance;
   hit.triangleIndex = item;
   hit.barycentric = barycentric;
@@ -273,7 +281,7 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
     uint count = meshLeaf ? field : 0u;
     for (uint item = first; item < first + count; ++item) {
       if (testMeshTriangle(item, itemRow(item, 0u).xyz, itemRow(item, 1u).xyz,
-                           itemRow(item, 2u).xyz, ray, tMin, tMax, instance, hit)) {
+                           itemRow(item, 2u).xyz, ray, worldRay, tMin, tMax, instance, hit)) {
         hitKind = RT_PRIM_TRIANGLE;
         if (anyHit) return true;
       }
@@ -357,11 +365,13 @@ void traversePair(Ray rayA, Ray rayB, bvec2 walking, vec2 tMax, bool anyHit,
     uint count = meshLeaf ? field : 0u;
     for (uint item = first; item < first + count; ++item) {
       vec3 v0 = itemRow(item, 0u).xyz, v1 = itemRow(item, 1u).xyz, v2 = itemRow(item, 2u).xyz;
-      if (testMeshTriangle(item, v0, v1, v2, a, tMin, tMax.x, instance, hitA)) {
+      if (testMeshTriangle(item, v0, v1, v2, a, rayA, tMin, tMax.x, instance,
+                           hitA)) {
         kindA = RT_PRIM_TRIANGLE;
         if (anyHit) tMax.x = retired;
       }
-      if (testMeshTriangle(item, v0, v1, v2, b, tMin, tMax.y, instance, hitB)) {
+      if (testMeshTriangle(item, v0, v1, v2, b, rayB, tMin, tMax.y, instance,
+                           hitB)) {
         kindB = RT_PRIM_TRIANGLE;
         if (anyHit) tMax.y = retired;
       }

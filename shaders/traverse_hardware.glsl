@@ -2,7 +2,8 @@
 // hardware, src/render/HardwareScene): GPUs with ray tracing units walk them
 // in hardware. Included by traverse.glsl in place of the BVH walk, with the
 // same interface and the same hits: mesh triangles are opaque hardware
-// triangles; spheres, cylinders and loose triangles are boxes whose
+// triangles (those with alpha cutouts candidates that alpha.glsl decides);
+// spheres, cylinders and loose triangles are boxes whose
 // candidates the renderer's own intersection code decides
 // (testTopLevelItem), so every shape is hit exactly as the BVH path hits it.
 // Instance encoding (HardwareScene.cpp): a mesh instance's custom index is
@@ -15,6 +16,9 @@
 #extension GL_EXT_ray_query : require
 
 #include "hits.glsl"
+#ifdef RT_FEATURE_ALPHA_CUTOUTS
+#include "alpha.glsl"
+#endif
 
 layout(set = 0, binding = RT_BINDING_TLAS) uniform accelerationStructureEXT sceneTopLevel;
 
@@ -24,7 +28,13 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
   ++raysTraced;
 #endif
   if (sceneInfo.primitiveCount == 0u) return false;
+#ifdef RT_FEATURE_ALPHA_CUTOUTS
+  // Instances with cutouts are built non-opaque (HardwareScene.cpp): their
+  // triangles come to the loop below as candidates.
+  uint flags = anyHit ? gl_RayFlagsTerminateOnFirstHitEXT : 0u;
+#else
   uint flags = gl_RayFlagsOpaqueEXT | (anyHit ? gl_RayFlagsTerminateOnFirstHitEXT : 0u);
+#endif
   rayQueryEXT query;
   rayQueryInitializeEXT(query, sceneTopLevel, flags, 0xffu, worldRay.origin, tMin,
                         worldRay.direction, tMax);
@@ -33,8 +43,22 @@ bool traverse(Ray worldRay, float tMin, inout float tMax, bool anyHit, out Surfa
   ShearedRay frame = shearRay(worldRay.direction);
 #endif
   while (rayQueryProceedEXT(query)) {
+#ifdef RT_FEATURE_ALPHA_CUTOUTS
+    if (rayQueryGetIntersectionTypeEXT(query, false) ==
+        gl_RayQueryCandidateIntersectionTriangleEXT) {
+      uint instance = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(query, false));
+      uint item = rayQueryGetIntersectionInstanceShaderBindingTableRecordOffsetEXT(query, false) +
+                  uint(rayQueryGetIntersectionPrimitiveIndexEXT(query, false));
+      vec2 barycentric = rayQueryGetIntersectionBarycentricsEXT(query, false);
+      if (alphaCovers(instance, item, barycentric, worldRay)) {
+        rayQueryConfirmIntersectionEXT(query);
+        if (anyHit) rayQueryTerminateEXT(query);
+      }
+      continue;
+    }
+#endif
 #ifdef RT_TOP_LEVEL_SHAPES
-    // Only boxes come here (triangles are opaque). The nearest committed hit
+    // Only boxes come here (and triangles with cutouts, above). The nearest committed hit
     // so far bounds the candidate, as tMax does in the BVH walk.
     float limit = rayQueryGetIntersectionTypeEXT(query, true) ==
                           gl_RayQueryCommittedIntersectionNoneEXT

@@ -69,6 +69,21 @@ std::string geometryText(const rt::Geometry& geometry, const rt::Scene& scene) {
       geometry);
 }
 
+// ", alpha MASK at 0.5: 1 times the texture's alpha", ", alpha BLEND: 0.25";
+// nothing when opaque.
+std::string alphaText(const rt::Scene& scene, const rt::Material& m) {
+  if (m.alphaMode == rt::Material::Alpha::Opaque) return "";
+  std::string text = m.alphaMode == rt::Material::Alpha::Mask
+                         ? fmt::format(", alpha MASK at {:g}: {:g}", m.alphaCutoff, m.alphaFactor)
+                         : fmt::format(", alpha BLEND: {:g}", m.alphaFactor);
+  if (m.alphaTexture >= 0 && m.alphaTexture == m.diffuseTexture) {
+    text += " times the texture's alpha";
+  } else if (m.alphaTexture >= 0) {
+    text += " times the alpha of " + scene.textures.at(size_t(m.alphaTexture)).source;
+  }
+  return text;
+}
+
 std::string materialText(const rt::Scene& scene, const rt::Material& m) {
   std::string text =
       fmt::format("kd {:g} diffuse {}, ks {:g} specular {} exponent {:g}", m.kd,
@@ -88,7 +103,7 @@ std::string materialText(const rt::Scene& scene, const rt::Material& m) {
     text += fmt::format(", metallic {:g} roughness {:g} times {}", m.metallic, m.roughness,
                         scene.textures.at(size_t(m.metalRoughTexture)).source);
   }
-  return text;
+  return text + alphaText(scene, m);
 }
 
 void printCamera(const rt::Scene& scene) {

@@ -74,6 +74,7 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
   for (const gpu::GpuPrimitive& primitive : flat.primitives) {
     features.looseTriangles |= primitive.kind == RT_PRIM_TRIANGLE;
     features.instanceTransforms |= movesRayIntoObjectSpace(primitive);
+    features.alphaCutouts |= (primitive.flags & RT_PRIM_ALPHA_CUTOUT) != 0u;
   }
   features.binaryOnly = scene.settings.mode == RenderMode::Binary;
   features.hardwareAccel = flat.accel == AccelKind::Hardware;
@@ -96,6 +97,11 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
     features.glow |= shaded && material.emissionTexture >= 0;
     features.metalRoughTextures |= shaded && material.metalRoughTexture >= 0;
     features.textures |= shaded && samplesTextures(material);
+  }
+  // Cutouts read their alpha texture in every mode, binary's silhouettes too.
+  if (features.alphaCutouts) {
+    for (const gpu::GpuMaterial& material : flat.materials)
+      features.textures |= hasAlphaCutout(material) && material.alphaTexture >= 0;
   }
   features.thinLens =
       scene.camera.type == CameraType::ThinLens && scene.camera.apertureRadius > 0.0f;
@@ -159,6 +165,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(glow, "RT_FEATURE_GLOW");
   flag(metalRoughTextures, "RT_FEATURE_METAL_ROUGH_TEXTURES");
   flag(tintedMirrors, "RT_FEATURE_TINTED_MIRRORS");
+  flag(alphaCutouts, "RT_FEATURE_ALPHA_CUTOUTS");
   flag(areaLights, "RT_FEATURE_AREA_LIGHTS");
   flag(diffuseBounces, "RT_FEATURE_DIFFUSE_BOUNCES");
   flag(pathTracer, "RT_FEATURE_PATH_TRACER");

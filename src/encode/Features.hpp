@@ -45,6 +45,9 @@ struct ShaderFeatures {
   // Some shaded glTF metal: its highlights and mirror reflections take the
   // base colour at the point (GpuMaterial::tintedMirror).
   bool tintedMirrors = false;
+  // Some mesh instance's material cuts holes (RT_PRIM_ALPHA_CUTOUT): the
+  // walks ask about each hit on it (shaders/alpha.glsl).
+  bool alphaCutouts = false;
   bool areaLights = false;
   bool diffuseBounces = false;        // sampled diffuse bounces (distributed bounces, path tracer)
   bool pathTracer = false;            // one continuation per hit

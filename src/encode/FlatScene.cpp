@@ -300,7 +300,9 @@ std::vector<std::optional<MeshBlas>> addMeshes(const Scene& scene,
     // glm is column-major: row r of the matrix is (m[0][r], m[1][r], m[2][r], m[3][r]).
     glm::vec4* rows[3] = {&prim.a, &prim.b, &prim.c};
     for (int r = 0; r < 3; ++r) *rows[r] = glm::row(worldToObject, r);
-    prim.flags = blas->flags;
+    prim.flags =
+        blas->flags |
+        (hasAlphaCutout(flat.materials.at(prim.materialIndex)) ? RT_PRIM_ALPHA_CUTOUT : 0u);
   }
   return meshes;
 }
@@ -379,6 +381,15 @@ void addBvh(const std::vector<PendingInstance>& instances,
   flat.info.soleInstance = loneInstance ? instances[0].primitive : RT_NO_INSTANCE;
 }
 
+uint32_t alphaModeOf(const Material& m) {
+  switch (m.alphaMode) {
+    case Material::Alpha::Mask: return RT_ALPHA_MASK;
+    case Material::Alpha::Blend: return RT_ALPHA_BLEND;
+    case Material::Alpha::Opaque: break;
+  }
+  return RT_ALPHA_OPAQUE;
+}
+
 gpu::GpuMaterial toGpu(const Material& m) {
   gpu::GpuMaterial out{};
   bool replacedByTexture = m.diffuseTexture >= 0 && !m.textureTintedByColor;
@@ -400,6 +411,10 @@ gpu::GpuMaterial toGpu(const Material& m) {
   out.metallic = m.metallic;
   out.roughness = m.roughness;
   out.tintedMirror = m.tintedMirror ? 1u : 0u;
+  out.alphaTexture = m.alphaTexture;
+  out.alphaMode = alphaModeOf(m);
+  out.alphaFactor = m.alphaFactor;
+  out.alphaCutoff = m.alphaCutoff;
   if (m.glowTexture >= 0) {
     out.emission = m.glow;
     out.emissionProfile = RT_EMISSION_GLOW;
@@ -457,7 +472,12 @@ uint32_t dominantAxis(const glm::vec3& v) {
 
 bool samplesTextures(const gpu::GpuMaterial& material) {
   return material.diffuseTexture >= 0 || material.normalTexture >= 0 ||
-         material.emissionTexture >= 0 || material.metalRoughTexture >= 0;
+         material.emissionTexture >= 0 || material.metalRoughTexture >= 0 ||
+         (hasAlphaCutout(material) && material.alphaTexture >= 0);
+}
+
+bool hasAlphaCutout(const gpu::GpuMaterial& material) {
+  return material.alphaMode != RT_ALPHA_OPAQUE;
 }
 
 Aabb primitiveBounds(const gpu::GpuPrimitive& prim) {

@@ -81,6 +81,10 @@ FlatScene flattenScene(const Scene& scene, const FlattenOptions& options = {});
 // the texture code.
 bool samplesTextures(const gpu::GpuMaterial& material);
 
+// Whether a material's alpha cuts holes (MASK, BLEND): its mesh instances
+// are flagged RT_PRIM_ALPHA_CUTOUT, and the walks ask it about their hits.
+bool hasAlphaCutout(const gpu::GpuMaterial& material);
+
 // Bounds of a top-level primitive that is not a mesh instance (its BVH box).
 Aabb primitiveBounds(const gpu::GpuPrimitive& primitive);
 

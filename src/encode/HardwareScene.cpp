@@ -28,9 +28,11 @@ VkTransformMatrixKHR rowsOf(const glm::mat4& transform) {
   return rows;
 }
 
+// `cutout`: the instance's triangles are candidates that the shader decides
+// (alpha cutouts, shaders/alpha.glsl); the rest are opaque.
 VkAccelerationStructureInstanceKHR instanceOf(const AccelerationStructure& bottom,
                                               const glm::mat4& transform, uint32_t customIndex,
-                                              uint32_t tableOffset) {
+                                              uint32_t tableOffset, bool cutout = false) {
   VkAccelerationStructureInstanceKHR instance{};
   instance.transform = rowsOf(transform);
   instance.instanceCustomIndex = customIndex & kMaxInstanceField;  // checked by instanceField
@@ -38,7 +40,8 @@ VkAccelerationStructureInstanceKHR instanceOf(const AccelerationStructure& botto
   instance.instanceShaderBindingTableRecordOffset = tableOffset & kMaxInstanceField;
   // Surfaces are two-sided, as in the BVH path.
   instance.flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR |
-                   VK_GEOMETRY_INSTANCE_FORCE_OPAQUE_BIT_KHR;
+                   (cutout ? VK_GEOMETRY_INSTANCE_FORCE_NO_OPAQUE_BIT_KHR
+                           : VK_GEOMETRY_INSTANCE_FORCE_OPAQUE_BIT_KHR);
   instance.accelerationStructureReference = bottom.deviceAddress();
   return instance;
 }
@@ -68,9 +71,10 @@ HardwareScene::HardwareScene(VulkanContext& context, const FlatScene& scene) {
     meshes_.push_back(AccelerationStructure::triangles(context, cornersOf(scene, mesh)));
   }
   for (const FlatInstance& instance : scene.instances) {
+    bool cutout = (scene.primitives.at(instance.primitive).flags & RT_PRIM_ALPHA_CUTOUT) != 0u;
     instances.push_back(instanceOf(meshes_.at(instance.mesh), instance.objectToWorld,
                                    instanceField(instance.primitive, "primitives"),
-                                   scene.meshes.at(instance.mesh).firstItem));
+                                   scene.meshes.at(instance.mesh).firstItem, cutout));
   }
   // Instances are the first primitives; the rest are loose, in one box list.
   const auto firstLoose = static_cast<uint32_t>(scene.instances.size());

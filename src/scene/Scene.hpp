@@ -60,6 +60,17 @@ struct Material {
   // Mirror reflections tinted by specularColor (glTF materials, whose metals
   // reflect their base colour); the coursework files' mirrors are untinted.
   bool tintedMirror = false;
+  // Where the surface is there at all (glTF alphaMode): alpha is
+  // `alphaFactor` times the alpha channel of `alphaTexture` (index into
+  // Scene::textures, -1: none) at the point. Mask: there where alpha >=
+  // `alphaCutoff`, a hole elsewhere. Blend: there for a share alpha of the
+  // rays (stochastic transparency: samples average to alpha blending).
+  // Mesh shapes only: a material with holes on other shapes draws them whole.
+  enum class Alpha { Opaque, Mask, Blend };
+  Alpha alphaMode = Alpha::Opaque;
+  float alphaFactor = 1.0f;
+  float alphaCutoff = 0.5f;
+  int32_t alphaTexture = -1;
 };
 
 // A decoded texture image: sRGB-encoded colours as in the file, or data

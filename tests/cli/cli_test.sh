@@ -462,6 +462,16 @@ if [[ -d "$SHARED/scene-format/official" ]]; then
   else
     fail "DamagedHelmet check: $(grep -E 'material:|features|ignored' "$SCRATCH/check.txt")"
   fi
+  # TransmissionTest: its MASK materials cut holes by their base colour texture's alpha.
+  spheres=$(find "$SHARED/assets/gltf" -path '*TransmissionTest/glTF/TransmissionTest.gltf' | head -1)
+  if "$RAYTRACER" check "$spheres" >"$SCRATCH/check.txt" 2>&1 &&
+    grep -q "texture214190.png, alpha MASK at 0.5: 1 times the texture's alpha" "$SCRATCH/check.txt" &&
+    grep -q 'kernel features: .* alpha_cutouts' "$SCRATCH/check.txt" &&
+    ! grep -q 'alpha modes' "$SCRATCH/check.txt"; then
+    pass
+  else
+    fail "TransmissionTest check: $(grep -E 'alpha|features' "$SCRATCH/check.txt")"
+  fi
   # A Draco-compressed glTF file (KHR_draco_mesh_compression) is decoded and rendered.
   duck=$(find "$SHARED/assets/gltf" -path '*glTF-Draco/Duck.gltf' | head -1)
   if "$RAYTRACER" check "$duck" >"$SCRATCH/check.txt" 2>&1 &&

@@ -58,6 +58,8 @@ TEST_SUITE("shader-compiler") {
     every.looseTriangles = every.instanceTransforms = every.reflection = true;
     every.refraction = every.thinLens = every.vertices = every.textures = true;
     every.areaLights = every.diffuseBounces = every.laneVotes = true;
+    every.vertexColors = every.normalMaps = every.glow = every.metalRoughTextures = true;
+    every.tintedMirrors = every.alphaCutouts = true;
     every.emitterKinds = 0xfu;
     every.whittedStackSize = 8;
     size_t files = 0;

@@ -109,6 +109,52 @@ float normalMappedBrightness(glm::vec3 mapped, glm::vec3 direction, float scale 
   return renderedAt(render(scene), 0.5f, 0.5f).x;
 }
 
+// Mean colour of the pixels in [u0, u1) x [v0, v1) of the image.
+glm::vec3 meanOver(const ImageF& image, float u0, float v0, float u1, float v1) {
+  glm::dvec3 sum(0.0);
+  size_t count = 0;
+  for (auto y = uint32_t(v0 * float(image.height)); y < uint32_t(v1 * float(image.height)); ++y) {
+    for (auto x = uint32_t(u0 * float(image.width)); x < uint32_t(u1 * float(image.width)); ++x) {
+      const float* p = image.pixel(x, y);
+      sum += glm::dvec3(p[0], p[1], p[2]);
+      ++count;
+    }
+  }
+  return glm::vec3(sum / double(count));
+}
+
+// Alpha cutouts: the flat-lit square (the light at the camera) in red, its
+// texture's left half opaque and its right half clear (alpha 0), a MASK
+// material, in front of a green square twice its size at z = -1. `copies`
+// places the front square more than once (object space, the other copies
+// far off to the side).
+Scene cutoutScene(int copies = 1) {
+  Scene scene = flatLitScene();
+  scene.textures = {
+      {"half clear", {4, 1, {255, 0, 0, 255, 255, 0, 0, 255, 255, 0, 0, 0, 255, 0, 0, 0}}}};
+  Material& front = scene.materials[0];
+  front.textureTintedByColor = true;
+  front.diffuseColor = glm::vec3(1.0f);
+  front.alphaMode = Material::Alpha::Mask;
+  front.alphaTexture = 0;
+  Material back;
+  back.diffuseColor = {0, 1, 0};
+  scene.materials.push_back(back);
+  scene.meshes.push_back(squareMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
+  for (int copy = 0; copy < copies; ++copy) {
+    Shape shape;
+    shape.geometry =
+        MeshInstance{0, glm::translate(WorldTransform(1.0), glm::dvec3(100.0 * copy, 0, 0))};
+    scene.shapes.push_back(shape);
+  }
+  addMesh(scene, squareMesh({}));
+  scene.shapes.back().material = 1;
+  scene.shapes.back().geometry = MeshInstance{
+      1,
+      glm::scale(glm::translate(WorldTransform(1.0), glm::dvec3(0, 0, -1)), glm::dvec3(2, 2, 1))};
+  return scene;
+}
+
 }  // namespace
 
 TEST_SUITE("render textures") {
@@ -262,5 +308,48 @@ TEST_SUITE("render textures") {
     // Untinted (the coursework files' mirrors): the background as it is.
     material.tintedMirror = false;
     checkColor(renderedAt(render(scene), 0.25f, 0.5f), {1, 1, 1});
+  }
+
+  TEST_CASE("alpha cutouts: MASK holes let camera and shadow rays through; BLEND a share") {
+    Scene scene = cutoutScene();
+    ImageF image = render(scene);
+    checkColor(renderedAt(image, 0.2f, 0.5f), {1, 0, 0});
+    // The green square behind, lit through the same hole.
+    checkColor(renderedAt(image, 0.8f, 0.5f), {0, 1, 0});
+    // Opaque everywhere: the red square whole.
+    scene.materials[0].alphaMode = Material::Alpha::Opaque;
+    checkColor(renderedAt(render(scene), 0.8f, 0.5f), {1, 0, 0});
+    // A cutoff above the texture's alpha: all hole. BLEND without a texture:
+    // a quarter of the camera rays meet the red square, and of the rest, the
+    // shadow rays of three quarters pass it to light the green one.
+    scene.materials[0].alphaMode = Material::Alpha::Mask;
+    scene.materials[0].alphaCutoff = 1.5f;
+    checkColor(renderedAt(render(scene), 0.2f, 0.5f), {0, 1, 0});
+    scene.materials[0].alphaMode = Material::Alpha::Blend;
+    scene.materials[0].alphaTexture = -1;
+    scene.materials[0].alphaFactor = 0.25f;
+    RenderOptions options;
+    options.samplesPerPixel = 64;
+    glm::vec3 blended = meanOver(test::render(scene, options), 0.25f, 0.25f, 0.75f, 0.75f);
+    CAPTURE(blended.x);
+    CAPTURE(blended.y);
+    CHECK(blended.x == doctest::Approx(0.25).epsilon(0.03));
+    CHECK(blended.y == doctest::Approx(0.75 * 0.75).epsilon(0.03));
+    CHECK(blended.z == 0.0f);
+  }
+
+  TEST_CASE("alpha cutouts: ray queries give the BVH's image" * test::needsRayQueries()) {
+    for (int copies : {1, 2}) {  // in world space, then in object space
+      CAPTURE(copies);
+      Scene scene = cutoutScene(copies);
+      RenderOptions options;
+      options.samplesPerPixel = 1;
+      ImageF bvh = test::render(scene, options);
+      options.accel = AccelKind::Hardware;
+      ImageF hardware = test::render(scene, options);
+      checkColor(renderedAt(hardware, 0.8f, 0.5f), {0, 1, 0});
+      glm::vec3 difference = meanOver(bvh, 0, 0, 1, 1) - meanOver(hardware, 0, 0, 1, 1);
+      CHECK(glm::all(glm::lessThan(glm::abs(difference), glm::vec3(1e-4f))));
+    }
   }
 }

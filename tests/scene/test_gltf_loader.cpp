@@ -852,6 +852,50 @@ TEST_SUITE("scene gltf") {
                      "texture coordinates than the base colour texture; ignored"));
   }
 
+  TEST_CASE("alpha modes: MASK's cutoff, BLEND, the base colour's alpha; unknown modes opaque") {
+    writeTexture("tex.png");
+    GltfBuilder b;
+    int pos = b.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    int uv0 = b.floats({1, 0, 0, 1, 1, 1}, "VEC2", 2);
+    b.doc["images"] = {{{"uri", "tex.png"}}};
+    b.doc["textures"] = {{{"source", 0}}};
+    Json textured = {{"baseColorTexture", {{"index", 0}}}, {"baseColorFactor", {1, 1, 1, 0.75}}};
+    b.doc["materials"] = {
+        {{"alphaMode", "MASK"}, {"alphaCutoff", 0.25}, {"pbrMetallicRoughness", textured}},
+        {{"alphaMode", "BLEND"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 0, 0, 0.5}}}}},
+        {{"alphaMode", "MASK"}},
+        {{"alphaMode", "OPAQUE"}, {"pbrMetallicRoughness", textured}},
+        {{"alphaMode", "CUTOUT"}},
+        {{"alphaMode", "MASK"}, {"alphaCutoff", -1}}};
+    Json attributes = {{"POSITION", pos}, {"TEXCOORD_0", uv0}};
+    for (int material = 0; material < 6; ++material) {
+      b.node({{"mesh", b.mesh({{"attributes", attributes}, {"material", material}})}});
+    }
+    rt::Scene scene = loadDoc("alpha.gltf", b.embedded());
+    auto materialOf = [&](size_t shape) { return scene.materials[scene.shapes[shape].material]; };
+    using Alpha = rt::Material::Alpha;
+    CHECK(materialOf(0).alphaMode == Alpha::Mask);
+    CHECK(materialOf(0).alphaCutoff == 0.25f);
+    CHECK(materialOf(0).alphaFactor == 0.75f);
+    CHECK(materialOf(0).alphaTexture == materialOf(0).diffuseTexture);
+    CHECK(materialOf(0).alphaTexture >= 0);
+    CHECK(materialOf(1).alphaMode == Alpha::Blend);
+    CHECK(materialOf(1).alphaFactor == 0.5f);
+    CHECK(materialOf(1).alphaTexture == -1);
+    CHECK(materialOf(2).alphaCutoff == 0.5f);  // glTF's default
+    CHECK(materialOf(2).alphaFactor == 1.0f);
+    // OPAQUE: alpha means nothing, the texture is only colour.
+    CHECK(materialOf(3).alphaMode == Alpha::Opaque);
+    CHECK(materialOf(3).alphaTexture == -1);
+    CHECK(materialOf(4).alphaMode == Alpha::Opaque);
+    CHECK(hasWarning(scene,
+                     "materials[4].alphaMode: unknown mode \"CUTOUT\" (OPAQUE, MASK or "
+                     "BLEND); drawn opaque"));
+    CHECK(materialOf(5).alphaCutoff == 0.0f);
+    CHECK(hasWarning(scene, "materials[5].alphaCutoff: negative; taken as 0"));
+    CHECK_FALSE(hasWarning(scene, "alpha modes"));
+  }
+
   TEST_CASE("normal maps: decoded as data beside the same image as colour, scale, one uv set") {
     writeTexture("tex.png");
     GltfBuilder b;

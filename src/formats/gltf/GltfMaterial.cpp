@@ -72,9 +72,33 @@ bool hasExtension(const tinygltf::ExtensionMap& extensions, const std::string& n
 void noteIgnoredFeatures(Context& context, const tinygltf::Material& gltf,
                          const std::string& where) {
   if (gltf.occlusionTexture.index >= 0) context.ignored("occlusion maps", where);
-  if (gltf.alphaMode != "OPAQUE") context.ignored("alpha modes BLEND and MASK", where);
   if (hasExtension(gltf.extensions, "KHR_materials_transmission", "transmissionTexture")) {
     context.ignored("transmission textures", where);
+  }
+}
+
+// alphaMode, alphaCutoff and the base colour factor's alpha (the base colour
+// texture's alpha joins them in MaterialTable::material). An unknown mode is
+// drawn opaque, with a warning.
+void convertAlpha(Context& context, const tinygltf::Material& gltf, const std::string& where,
+                  Material& out) {
+  if (gltf.alphaMode == "OPAQUE") return;
+  if (gltf.alphaMode == "MASK") {
+    out.alphaMode = Material::Alpha::Mask;
+    double cutoff = finiteNumber(context, gltf.alphaCutoff, where + ".alphaCutoff");
+    if (cutoff < 0.0) context.warn(where + ".alphaCutoff", "negative; taken as 0");
+    out.alphaCutoff = static_cast<float>(std::max(cutoff, 0.0));
+  } else if (gltf.alphaMode == "BLEND") {
+    out.alphaMode = Material::Alpha::Blend;
+  } else {
+    context.warn(where + ".alphaMode",
+                 "unknown mode \"" + gltf.alphaMode + "\" (OPAQUE, MASK or BLEND); drawn opaque");
+    return;
+  }
+  const std::vector<double>& base = gltf.pbrMetallicRoughness.baseColorFactor;
+  if (base.size() == 4) {
+    out.alphaFactor =
+        unitFactor(context, base[3], where + ".pbrMetallicRoughness.baseColorFactor[3]");
   }
 }
 
@@ -118,6 +142,7 @@ Material convertMaterial(Context& context, const tinygltf::Material& gltf, const
   out.roughness = r;
   out.transmission = t;
   out.ior = static_cast<float>(ior);
+  convertAlpha(context, gltf, where, out);
   noteIgnoredFeatures(context, gltf, where);
   return out;
 }
@@ -211,6 +236,9 @@ uint32_t MaterialTable::material(int index, const std::string& where) {
       if (converted.diffuseTexture >= 0) {
         converted.texture = scene_.textures[size_t(converted.diffuseTexture)].source;
         converted.textureTintedByColor = true;  // glTF: base colour = factor * texture
+        if (converted.alphaMode != Material::Alpha::Opaque) {
+          converted.alphaTexture = converted.diffuseTexture;  // its alpha is coverage
+        }
       }
     }
     addNormalMap(index, converted);
