@@ -234,6 +234,33 @@ TEST_SUITE("obj loader") {
     CHECK(scene.warnings[1].find("norm: texture file not found") != std::string::npos);
   }
 
+  TEST_CASE("map_d: a mask that cuts holes, its grey level as coverage; a missing one no holes") {
+    TempDir dir;
+    // White left, black right: the left half there, the right a hole.
+    rt::writeImage(dir.path() / "mask.png", rt::ImageF{2, 1, {1, 1, 1, 1, 0, 0, 0, 1}}, {});
+    dir.write("model.obj",
+              "mtllib model.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+              "usemtl leaves\nf 1/1 2/2 3/3\nusemtl twigs\nf 1/1 3/3 2/2\n"
+              "usemtl lost\nf 1/1 2/2 3/3\n");
+    dir.write("model.mtl",
+              "newmtl leaves\nmap_d mask.png\nnewmtl twigs\nmap_d mask.png\n"
+              "newmtl lost\nmap_d gone.png\n");
+    const rt::Scene scene = rt::loadObjPart(dir.path() / "model.obj", rt::WorldTransform(1.0));
+    const rt::Material& leaves = materialOf(scene, "'leaves'");
+    CHECK(leaves.alphaMode == rt::Material::Alpha::Mask);
+    CHECK(leaves.alphaCutoff == 0.5f);
+    REQUIRE(leaves.alphaTexture >= 0);
+    const rt::ImageRgba8& mask = scene.textures.at(size_t(leaves.alphaTexture)).image;
+    REQUIRE(mask.rgba.size() == 8);
+    CHECK(mask.rgba[3] == 255);
+    CHECK(mask.rgba[7] == 0);
+    CHECK(leaves.diffuseTexture == -1);  // the mask is not a colour
+    CHECK(materialOf(scene, "'twigs'").alphaTexture == leaves.alphaTexture);  // read once
+    CHECK(materialOf(scene, "'lost'").alphaMode == rt::Material::Alpha::Opaque);
+    REQUIRE(scene.warnings.size() == 1);
+    CHECK(scene.warnings[0].find("map_d: texture file not found") != std::string::npos);
+  }
+
   TEST_CASE("a missing material library or texture is a warning with a visible stand-in") {
     TempDir dir;
     dir.write("model.obj",

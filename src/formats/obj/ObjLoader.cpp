@@ -104,6 +104,15 @@ constexpr float kMaxEmission = 1e6f;
 float finiteOr(float value, float fallback) { return std::isfinite(value) ? value : fallback; }
 
 // Every texel has red = green = blue: a height map, not a normal map.
+// A `map_d` image as coverage in its alpha channel: the file's own alpha
+// where it has one, else its grey level (red), as masks are usually drawn.
+void coverageInAlpha(ImageRgba8& image) {
+  bool opaque = true;
+  for (size_t i = 3; i < image.rgba.size(); i += 4) opaque = opaque && image.rgba[i] == 255;
+  if (!opaque) return;
+  for (size_t i = 0; i + 3 < image.rgba.size(); i += 4) image.rgba[i + 3] = image.rgba[i];
+}
+
 bool isGrey(const ImageRgba8& image) {
   for (size_t i = 0; i + 2 < image.rgba.size(); i += 4) {
     if (image.rgba[i] != image.rgba[i + 1] || image.rgba[i] != image.rgba[i + 2]) return false;
@@ -175,6 +184,7 @@ class ObjImporter {
       applyIlluminationModel(source, out);
       if (!source.diffuse_texname.empty()) addDiffuseTexture(source, out);
       addNormalMap(source, out);
+      if (!source.alpha_texname.empty()) addAlphaMap(source, out);
       if (!source.emissive_texname.empty()) {
         diagnostics_.warn("material '" + source.name + "'",
                           "emission texture map_Ke ignored (Ke alone decides the glow)");
@@ -233,6 +243,39 @@ class ObjImporter {
     if (!named && out.normalTexture >= 0) {
       out.normalScale = std::clamp(finiteOr(source.bump_texopt.bump_multiplier, 1.0f), -1e3f, 1e3f);
     }
+  }
+
+  // `map_d`: an alpha mask that cuts holes where it is below one half (the
+  // leaves and chains of Sponza-like scenes); RT_FEATURE_ALPHA_CUTOUTS.
+  void addAlphaMap(const tinyobj::material_t& source, Material& out) {
+    const std::string where = "material '" + source.name + "'";
+    const fs::path found = (folder_ / portablePath(source.alpha_texname)).lexically_normal();
+    auto known = alphaMaps_.find(found);
+    if (known == alphaMaps_.end())
+      known = alphaMaps_.emplace(found, readAlphaMap(found, where)).first;
+    if (known->second < 0) return;
+    out.alphaMode = Material::Alpha::Mask;
+    out.alphaCutoff = 0.5f;
+    out.alphaTexture = known->second;
+  }
+
+  // Index in scene_.textures of the coverage of `file` (coverageInAlpha), or
+  // -1 after a warning.
+  int32_t readAlphaMap(const fs::path& file, const std::string& where) {
+    std::error_code ignored;
+    if (!fs::is_regular_file(file, ignored)) {
+      diagnostics_.warn(where, "map_d: texture file not found: " + file.string() + "; no holes");
+      return -1;
+    }
+    ImageRgba8 image;
+    try {
+      image = readImageRgba8(file);
+    } catch (const Error& error) {
+      diagnostics_.fail(where, std::string("map_d: cannot use texture: ") + error.what());
+    }
+    coverageInAlpha(image);
+    scene_.textures.push_back({file.string() + " (coverage)", std::move(image), true});
+    return static_cast<int32_t>(scene_.textures.size() - 1);
   }
 
   // Index in scene_.textures of the normal map `file`, or -1 after a warning.
@@ -394,6 +437,7 @@ class ObjImporter {
   std::vector<glm::vec3> materialEmission_;  // Ke of every material, the default's last
   std::map<uint32_t, PendingMesh> pending_;
   std::map<fs::path, int32_t> normalMaps_;  // each file read once; -1: not used
+  std::map<fs::path, int32_t> alphaMaps_;   // likewise
 };
 
 // The texts of the file's material libraries, one after the other; a
