@@ -229,7 +229,7 @@ struct GpuMaterial {
   uint emissionProfile;  // RT_EMISSION_*: how emission depends on the view
   int normalTexture;     // tangent-space normal map (glTF normalTexture), -1: none
   float normalScale;     // its x and y scale (glTF normalTexture.scale)
-  int emissionTexture;   // a glow's texture (glTF emissiveTexture), -1: none
+  int emissionTexture;   // a glow's texture (glTF emissiveTexture, unlit base colour), -1: none
   // A glTF metallic-roughness texture (data: blue metallic, green roughness),
   // -1: none; where there is one, each texel times these factors gives kd,
   // ks, the exponent and the reflectivity at a point (metal_rough.h; the

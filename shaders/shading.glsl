@@ -256,11 +256,17 @@ LightSample areaLightSample(ShadingContext context, GpuAreaLight light, uint lig
 // holds it head on): spheres and Lambertian lights the same from every
 // direction; isotropic ones are sheets of points shining in all directions,
 // brighter where seen edge on (by the cosine, bounded so that grazing views
-// stay finite). A glow shows its emission times its texture at `uv`.
+// stay finite). A glow shows its emission times its texture at `uv`, if it
+// has one.
 vec3 emittedRadiance(GpuMaterial material, SurfaceHit hit, vec3 direction, vec2 uv) {
 #ifdef RT_FEATURE_GLOW
   if (material.emissionProfile == RT_EMISSION_GLOW) {
-    return material.emission * sampleTexture(material.emissionTexture, uv);
+#ifdef RT_FEATURE_TEXTURES
+    if (material.emissionTexture >= 0) {
+      return material.emission * sampleTexture(material.emissionTexture, uv);
+    }
+#endif
+    return material.emission;
   }
 #endif
   if (material.emissionProfile == RT_EMISSION_LAMBERTIAN ||

@@ -415,7 +415,7 @@ gpu::GpuMaterial toGpu(const Material& m) {
   out.alphaMode = alphaModeOf(m);
   out.alphaFactor = m.alphaFactor;
   out.alphaCutoff = m.alphaCutoff;
-  if (m.glowTexture >= 0) {
+  if (m.glowTexture >= 0 || m.glow != glm::vec3(0.0f)) {
     out.emission = m.glow;
     out.emissionProfile = RT_EMISSION_GLOW;
   }

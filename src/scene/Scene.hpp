@@ -44,8 +44,9 @@ struct Material {
   int32_t normalTexture = -1;
   float normalScale = 1.0f;
   // A glow: light the surface shows, `glow` times the texture `glowTexture`
-  // (index into Scene::textures), and that lights nothing else (glTF
-  // emissive textures, whose detail cannot be one light). -1: none.
+  // (index into Scene::textures; -1: `glow` alone), and that lights nothing
+  // else (glTF emissive textures, whose detail cannot be one light; glTF
+  // unlit materials). A black glow without a texture is none.
   glm::vec3 glow{0.0f};
   int32_t glowTexture = -1;
   // glTF metallic and roughness: with a metallic-roughness texture (index

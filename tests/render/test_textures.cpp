@@ -255,6 +255,9 @@ TEST_SUITE("render textures") {
     checkColor(renderedAt(image, 0.75f, 0.75f), {0.21586f, 0.10793f, 0.21586f});  // grey x glow
     checkColor(renderedAt(image, 0.25f, 0.75f), {0, 0, 1});                       // blue
     checkColor(renderedAt(image, 0.75f, 0.25f), {0, 0, 0});  // the sphere: unlit
+    // Without a texture (glTF's unlit materials without one): the colour alone.
+    scene.materials[0].glowTexture = -1;
+    checkColor(renderedAt(render(scene), 0.25f, 0.75f), {1.0f, 0.5f, 1.0f});
   }
 
   TEST_CASE("vertex colours multiply the textured colour, interpolated across the faces") {

@@ -896,6 +896,41 @@ TEST_SUITE("scene gltf") {
     CHECK_FALSE(hasWarning(scene, "alpha modes"));
   }
 
+  TEST_CASE("KHR_materials_unlit: the base colour as a glow, factor times texture; no lights") {
+    writeTexture("tex.png");
+    GltfBuilder b;
+    int pos = b.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    int uv0 = b.floats({1, 0, 0, 1, 1, 1}, "VEC2", 2);
+    b.doc["images"] = {{{"uri", "tex.png"}}};
+    b.doc["textures"] = {{{"source", 0}}};
+    Json unlit = {{"KHR_materials_unlit", Json::object()}};
+    b.doc["extensionsUsed"] = {"KHR_materials_unlit"};
+    b.doc["materials"] = {
+        {{"extensions", unlit},
+         {"emissiveFactor", {1, 1, 1}},
+         {"pbrMetallicRoughness",
+          {{"baseColorTexture", {{"index", 0}}}, {"baseColorFactor", {0.5, 1, 1, 1}}}}},
+        {{"extensions", unlit}, {"pbrMetallicRoughness", {{"baseColorFactor", {0, 1, 0, 1}}}}}};
+    Json attributes = {{"POSITION", pos}, {"TEXCOORD_0", uv0}};
+    for (int material = 0; material < 2; ++material) {
+      b.node({{"mesh", b.mesh({{"attributes", attributes}, {"material", material}})}});
+    }
+    rt::Scene scene = loadDoc("unlit.gltf", b.embedded());
+    const rt::Material& textured = scene.materials[scene.shapes[0].material];
+    CHECK(textured.glow == glm::vec3(0.5f, 1, 1));
+    CHECK(textured.glowTexture == textured.diffuseTexture);
+    CHECK(textured.glowTexture >= 0);
+    CHECK(textured.kd == 0.0f);
+    CHECK(textured.ks == 0.0f);
+    CHECK(textured.reflectivity == 0.0f);
+    const rt::Material& plain = scene.materials[scene.shapes[1].material];
+    CHECK(plain.glow == glm::vec3(0, 1, 0));
+    CHECK(plain.glowTexture == -1);
+    // Its emissive factor is not read: no area light; no warning for the extension.
+    CHECK(scene.areaLights.empty());
+    CHECK_FALSE(hasWarning(scene, "KHR_materials_unlit"));
+  }
+
   TEST_CASE("normal maps: decoded as data beside the same image as colour, scale, one uv set") {
     writeTexture("tex.png");
     GltfBuilder b;

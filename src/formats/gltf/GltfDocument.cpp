@@ -40,6 +40,7 @@ constexpr std::array kSupportedExtensions = {
     "KHR_lights_punctual",
     "KHR_texture_transform",
     "KHR_materials_emissive_strength",
+    "KHR_materials_unlit",
     "KHR_mesh_quantization",
     "KHR_draco_mesh_compression",
     "EXT_mesh_gpu_instancing",

@@ -162,6 +162,18 @@ glm::vec3 emissiveColour(Context& context, const tinygltf::Material& gltf,
   return colour * static_cast<float>(std::min(strength, double(kMaxEmissiveStrength)));
 }
 
+// KHR_materials_unlit: the surface shows its base colour (factor times
+// texture) whatever the lights, as scans and baked scenes are made to be
+// seen: a glow of it (it lights nothing, and still casts shadows). Its
+// alpha stays; vertex colours do not reach a glow.
+void makeUnlit(Material& out) {
+  out.glow = out.diffuseColor;
+  out.glowTexture = out.diffuseTexture;
+  out.kd = out.ks = out.reflectivity = out.transmission = 0.0f;
+  out.metallic = 0.0f;
+  out.tintedMirror = false;
+}
+
 Material defaultMaterial() {
   Material out;
   out.diffuseColor = glm::vec3(0.8f);
@@ -222,7 +234,8 @@ uint32_t MaterialTable::material(int index, const std::string& where) {
         metallicRoughnessAverage(gltf.pbrMetallicRoughness.metallicRoughnessTexture,
                                  name + ".pbrMetallicRoughness.metallicRoughnessTexture");
     converted = convertMaterial(context_, gltf, name, average);
-    glm::vec3 emissive = emissiveColour(context_, gltf, name);
+    const bool unlit = gltf.extensions.count("KHR_materials_unlit") > 0;
+    glm::vec3 emissive = unlit ? glm::vec3(0.0f) : emissiveColour(context_, gltf, name);
     if (gltf.emissiveTexture.index < 0) {
       emissions_[index] = emissive;
     } else if (emissive != glm::vec3(0.0f)) {
@@ -241,8 +254,12 @@ uint32_t MaterialTable::material(int index, const std::string& where) {
         }
       }
     }
-    addNormalMap(index, converted);
-    addMetalRoughTexture(index, converted);
+    if (unlit) {
+      makeUnlit(converted);
+    } else {
+      addNormalMap(index, converted);
+      addMetalRoughTexture(index, converted);
+    }
   }
   scene_.materials.push_back(std::move(converted));
   uint32_t added = static_cast<uint32_t>(scene_.materials.size() - 1);
