@@ -65,6 +65,9 @@ make_image() {  # NAME
         --size 300x225 ;;
     gltf-helmet)
       render gltf-helmet "$khronos/DamagedHelmet/glTF-Binary/DamagedHelmet.glb" --size 400x300 ;;
+    gltf-alpha-mask)  # glass spheres; the "with opacity" columns cut by alpha masks
+      render gltf-alpha-mask "$khronos/TransmissionTest/glTF/TransmissionTest.gltf" \
+        --size 640x360 ;;
     cornell-pathtraced)
       render cornell-pathtraced "$root/scenes/cornell-pathtraced.json" --size 400x400 --spp 1024 ;;
     cornell-clamped)
@@ -92,7 +95,7 @@ make_image() {  # NAME
 }
 
 all=(default path-of-light-example rendering-mirror-image rendering-binary rendering-phong-scene
-  bunny gltf-duck gltf-vertex-colors gltf-helmet cornell-pathtraced cornell-clamped student-julie-o-demo
+  bunny gltf-duck gltf-vertex-colors gltf-helmet gltf-alpha-mask cornell-pathtraced cornell-clamped student-julie-o-demo
   student-julie-o-pitched student-softshadow student-dof study-arealight obj-crate obj-cornell-box
   viewer)
 for name in "${@:-${all[@]}}"; do
