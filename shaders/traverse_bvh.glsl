@@ -365,13 +365,11 @@ void traversePair(Ray rayA, Ray rayB, bvec2 walking, vec2 tMax, bool anyHit,
     uint count = meshLeaf ? field : 0u;
     for (uint item = first; item < first + count; ++item) {
       vec3 v0 = itemRow(item, 0u).xyz, v1 = itemRow(item, 1u).xyz, v2 = itemRow(item, 2u).xyz;
-      if (testMeshTriangle(item, v0, v1, v2, a, rayA, tMin, tMax.x, instance,
-                           hitA)) {
+      if (testMeshTriangle(item, v0, v1, v2, a, rayA, tMin, tMax.x, instance, hitA)) {
         kindA = RT_PRIM_TRIANGLE;
         if (anyHit) tMax.x = retired;
       }
-      if (testMeshTriangle(item, v0, v1, v2, b, rayB, tMin, tMax.y, instance,
-                           hitB)) {
+      if (testMeshTriangle(item, v0, v1, v2, b, rayB, tMin, tMax.y, instance, hitB)) {
         kindB = RT_PRIM_TRIANGLE;
         if (anyHit) tMax.y = retired;
       }

@@ -2,8 +2,8 @@
 // hardware, src/render/HardwareScene): GPUs with ray tracing units walk them
 // in hardware. Included by traverse.glsl in place of the BVH walk, with the
 // same interface and the same hits: mesh triangles are opaque hardware
-// triangles (those with alpha cutouts candidates that alpha.glsl decides);
-// spheres, cylinders and loose triangles are boxes whose
+// triangles (but for instances with alpha cutouts: candidates that
+// alpha.glsl decides); spheres, cylinders and loose triangles are boxes whose
 // candidates the renderer's own intersection code decides
 // (testTopLevelItem), so every shape is hit exactly as the BVH path hits it.
 // Instance encoding (HardwareScene.cpp): a mesh instance's custom index is
