@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Fuzzes the loaders of untrusted files (JSON scenes, PLY meshes, glTF
 # models) with libFuzzer under AddressSanitizer + UndefinedBehaviorSanitizer,
-# each target for SECONDS (default 60), seeded from ../shared. The corpus
+# each target for SECONDS (default 60), two targets at a time (one a core),
+# seeded from ../shared. The corpus
 # grows in build-asan/fuzz/corpus/<target> and is reused by the next run.
 # A crash, sanitizer report, leak, timeout (10 s for one input) or memory
 # blow-up (2 GiB) keeps its input in build-asan/fuzz/findings/<target>/ and
@@ -34,35 +35,33 @@ seed_files() {
   esac
 }
 
-summary=()
-failed=0
-for target in "${targets[@]}"; do
-  binary=$work/fuzz_$target
-  [[ -x $binary ]] || { echo "fuzz.sh: no fuzz target '$target'" >&2; exit 2; }
-  seeds=$work/seeds/$target
-  corpus=$work/corpus/$target
-  findings=$work/findings/$target
+# fuzz_target TARGET: one libFuzzer run; its summary line goes to
+# $work/TARGET.summary, and it fails when the run found something.
+fuzz_target() {
+  local target=$1
+  local binary=$work/fuzz_$target seeds=$work/seeds/$target corpus=$work/corpus/$target
+  local findings=$work/findings/$target log=$work/$target.log
   rm -rf "$seeds"
   mkdir -p "$seeds" "$corpus" "$findings"
   # Copied under their content hash: seed names repeat across folders.
   while IFS= read -r file; do
     cp "$file" "$seeds/$(sha1sum "$file" | cut -c1-16)$(basename "$file" | sed 's/.*\(\.[^.]*\)$/\1/')"
   done < <(seed_files "$target")
-  log=$work/$target.log
   echo "fuzz $target: ${seconds}s, $(ls "$seeds" | wc -l) seeds, $(ls "$corpus" | wc -l) corpus inputs"
-  dictionary=()
+  local dictionary=()
   [[ -f $root/tests/fuzz/$target.dict ]] && dictionary=(-dict="$root/tests/fuzz/$target.dict")
-  status=0
+  local status=0 started
   started=$(mktemp)
   ASAN_OPTIONS=abort_on_error=1:detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     "$binary" "$corpus" "$seeds" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
     -artifact_prefix="$findings/" -print_final_stats=1 -close_fd_mask=1 "${dictionary[@]}" >"$log" 2>&1 || status=$?
+  local runs rate cov
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log")
   cov=$(grep -Eo 'cov: [0-9]+' "$log" | tail -1 | cut -d' ' -f2)
-  summary+=("$(printf '%-11s %10s runs %8s exec/s  cov %6s  status %s' "$target" "${runs:-?}" "${rate:-?}" "${cov:-?}" "$status")")
+  printf '%-11s %10s runs %8s exec/s  cov %6s  status %s\n' "$target" "${runs:-?}" "${rate:-?}" \
+    "${cov:-?}" "$status" >"$work/$target.summary"
   if ((status != 0)); then
-    failed=1
     grep -E 'ERROR|SUMMARY|fuzz finding|runtime error|==[0-9]+==' "$log" | head -20 >&2 || true
     find "$findings" -type f -newer "$started" | while IFS= read -r input; do
       echo "reproduce: $binary $input" >&2
@@ -70,6 +69,25 @@ for target in "${targets[@]}"; do
     echo "fuzz $target FAILED (log: $log)" >&2
   fi
   rm -f "$started"
+  return "$status"
+}
+
+for target in "${targets[@]}"; do
+  [[ -x $work/fuzz_$target ]] || { echo "fuzz.sh: no fuzz target '$target'" >&2; exit 2; }
 done
+# Two targets at a time, one a core: each libFuzzer run is one process.
+failed=0
+pids=()
+for target in "${targets[@]}"; do
+  fuzz_target "$target" &
+  pids+=($!)
+  if ((${#pids[@]} == 2)); then
+    wait "${pids[0]}" || failed=1
+    pids=("${pids[1]}")
+  fi
+done
+for pid in "${pids[@]}"; do wait "$pid" || failed=1; done
+summary=()
+for target in "${targets[@]}"; do summary+=("$(cat "$work/$target.summary")"); done
 printf '%s\n' "target          executions   exec/s  coverage" "${summary[@]}"
 exit $failed
