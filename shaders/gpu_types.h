@@ -336,8 +336,17 @@ struct GpuTextureInfo {
   uint firstTexel;
   uint width;
   uint height;
-  uint linear;  // 1: the texels are data (a normal map), 0: sRGB-encoded colours
+  uint flags;  // RT_TEXTURE_*
 };
+// GpuTextureInfo::flags: data or colours, and the sampling (TextureSampling;
+// read only where RT_FEATURE_TEXTURE_SAMPLERS is built).
+#define RT_TEXTURE_LINEAR 1u        // the texels are data (a normal map), else sRGB-encoded colours
+#define RT_TEXTURE_NEAREST 2u       // the nearest texel, else bilinear filtering
+#define RT_TEXTURE_WRAP_U_SHIFT 2u  // RT_WRAP_* of u in bits 2-3
+#define RT_TEXTURE_WRAP_V_SHIFT 4u  // and of v in bits 4-5
+#define RT_WRAP_REPEAT 0u
+#define RT_WRAP_CLAMP 1u
+#define RT_WRAP_MIRROR 2u
 RT_ASSERT_STD430_SIZE(GpuTextureInfo, 16);
 #define RT_TEXELS_PER_TEXTURE_INFO 1u  // one RGBA32UI texel (textures.glsl)
 RT_ASSERT_TEXELS(GpuTextureInfo, RT_TEXELS_PER_TEXTURE_INFO);

@@ -26,36 +26,67 @@ vec3 srgbToLinear(vec3 c) {
   return vec3(linearFromSrgb(c.r), linearFromSrgb(c.g), linearFromSrgb(c.b));
 }
 
-// Repeat wrapping of a texel coordinate in [-size, 2 size): what
-// ((x % size) + size) % size gives, without integer division (CPU drivers
-// divide vectors one lane at a time). sampleTexture's coordinates are in
-// [-1, size]; anything else (NaN texture coordinates) stays inside the
-// texture.
-uint wrapTexel(int x, int size) {
-  x = x < 0 ? x + size : x;
-  x = x >= size ? x - size : x;
+// The wrap modes (RT_WRAP_*) of u and v: glTF samplers', where a scene has
+// one that does not repeat; else repeat, folded away by the compiler.
+uvec2 wrapModes(GpuTextureInfo info) {
+#ifdef RT_FEATURE_TEXTURE_SAMPLERS
+  return uvec2(info.flags >> RT_TEXTURE_WRAP_U_SHIFT, info.flags >> RT_TEXTURE_WRAP_V_SHIFT) &
+         3u;
+#else
+  return uvec2(RT_WRAP_REPEAT);
+#endif
+}
+
+// Texture coordinates in [0, 1] by the wrap modes: the fractional part
+// (repeat; it also keeps coordinates small before scaling, so float
+// precision holds far from 0), clamped, or mirrored every other period.
+vec2 wrapCoordinates(vec2 uv, uvec2 modes) {
+  vec2 wrapped = uv - floor(uv);
+#ifdef RT_FEATURE_TEXTURE_SAMPLERS
+  vec2 period2 = uv - 2.0 * floor(0.5 * uv);  // [0, 2)
+  vec2 mirrored = mix(period2, 2.0 - period2, greaterThan(period2, vec2(1.0)));
+  wrapped = mix(wrapped, clamp(uv, 0.0, 1.0), equal(modes, uvec2(RT_WRAP_CLAMP)));
+  wrapped = mix(wrapped, mirrored, equal(modes, uvec2(RT_WRAP_MIRROR)));
+#endif
+  return wrapped;
+}
+
+// A texel coordinate in [-1, size] (the filter's neighbours of a wrapped
+// coordinate) inside the texture: repeat wraps it without integer division
+// (CPU drivers divide vectors one lane at a time); clamp and mirror, whose
+// coordinates were folded into [0, 1], take the edge texel. Anything else
+// (NaN texture coordinates) stays inside the texture.
+uint wrapTexel(int x, int size, uint mode) {
+  if (mode == RT_WRAP_REPEAT) {
+    x = x < 0 ? x + size : x;
+    x = x >= size ? x - size : x;
+  }
   return uint(clamp(x, 0, size - 1));
 }
 
+uint texelWord(GpuTextureInfo info, int x, int y) {
+  uvec2 modes = wrapModes(info);
+  uint tx = wrapTexel(x, int(info.width), modes.x);
+  uint ty = wrapTexel(y, int(info.height), modes.y);
+  return textureTexel(info.firstTexel + ty * info.width + tx);
+}
+
 vec3 fetchTexel(GpuTextureInfo info, int x, int y) {
-  uint tx = wrapTexel(x, int(info.width));
-  uint ty = wrapTexel(y, int(info.height));
-  vec3 texel = unpackUnorm4x8(textureTexel(info.firstTexel + ty * info.width + tx)).rgb;
+  vec3 texel = unpackUnorm4x8(texelWord(info, x, y)).rgb;
 #if defined(RT_FEATURE_NORMAL_MAPS) || defined(RT_FEATURE_METAL_ROUGH_TEXTURES)
-  if (info.linear != 0u) return texel;  // data, not colours
+  if ((info.flags & RT_TEXTURE_LINEAR) != 0u) return texel;  // data, not colours
 #endif
   return srgbToLinear(texel);
 }
 
 // Alpha is coverage, stored linearly in sRGB images too.
 float fetchTexelAlpha(GpuTextureInfo info, int x, int y) {
-  uint tx = wrapTexel(x, int(info.width));
-  uint ty = wrapTexel(y, int(info.height));
-  return unpackUnorm4x8(textureTexel(info.firstTexel + ty * info.width + tx)).a;
+  return unpackUnorm4x8(texelWord(info, x, y)).a;
 }
 
 // Bilinear filtering at `uv`: the texel (x, y) at the top left of the four
-// around it, and the weights f of its right and lower neighbours.
+// around it, and the weights f of its right and lower neighbours. A
+// nearest-texel sampler gets its texel at (x, y) with weights 0.
 struct BilinearTaps {
   int x;
   int y;
@@ -63,9 +94,15 @@ struct BilinearTaps {
 };
 
 BilinearTaps bilinearTaps(GpuTextureInfo info, vec2 uv) {
-  // Keep coordinates small before scaling so float precision holds far from 0.
-  vec2 wrapped = uv - floor(uv);
-  vec2 pixel = wrapped * vec2(info.width, info.height) - 0.5;
+  vec2 size = vec2(info.width, info.height);
+  vec2 wrapped = wrapCoordinates(uv, wrapModes(info));
+#ifdef RT_FEATURE_TEXTURE_SAMPLERS
+  if ((info.flags & RT_TEXTURE_NEAREST) != 0u) {
+    vec2 texel = floor(wrapped * size);  // size itself at 1: clamped by wrapTexel
+    return BilinearTaps(int(texel.x), int(texel.y), vec2(0.0));
+  }
+#endif
+  vec2 pixel = wrapped * size - 0.5;
   vec2 base = floor(pixel);
   return BilinearTaps(int(base.x), int(base.y), pixel - base);
 }

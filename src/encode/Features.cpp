@@ -103,6 +103,9 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
     for (const gpu::GpuMaterial& material : flat.materials)
       features.textures |= hasAlphaCutout(material) && material.alphaTexture >= 0;
   }
+  features.textureSamplers =
+      features.textures && std::any_of(scene.textures.begin(), scene.textures.end(),
+                                       [](const Texture& t) { return !t.sampling.isDefault(); });
   features.thinLens =
       scene.camera.type == CameraType::ThinLens && scene.camera.apertureRadius > 0.0f;
   bool lit = scene.settings.mode != RenderMode::Binary;
@@ -166,6 +169,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(metalRoughTextures, "RT_FEATURE_METAL_ROUGH_TEXTURES");
   flag(tintedMirrors, "RT_FEATURE_TINTED_MIRRORS");
   flag(alphaCutouts, "RT_FEATURE_ALPHA_CUTOUTS");
+  flag(textureSamplers, "RT_FEATURE_TEXTURE_SAMPLERS");
   flag(areaLights, "RT_FEATURE_AREA_LIGHTS");
   flag(diffuseBounces, "RT_FEATURE_DIFFUSE_BOUNCES");
   flag(pathTracer, "RT_FEATURE_PATH_TRACER");

@@ -48,6 +48,9 @@ struct ShaderFeatures {
   // Some mesh instance's material cuts holes (RT_PRIM_ALPHA_CUTOUT): the
   // walks ask about each hit on it (shaders/alpha.glsl).
   bool alphaCutouts = false;
+  // Some texture is not read bilinearly with repeat wrapping (glTF samplers:
+  // clamp, mirror, nearest; TextureSampling).
+  bool textureSamplers = false;
   bool areaLights = false;
   bool diffuseBounces = false;        // sampled diffuse bounces (distributed bounces, path tracer)
   bool pathTracer = false;            // one continuation per hit

@@ -381,6 +381,22 @@ void addBvh(const std::vector<PendingInstance>& instances,
   flat.info.soleInstance = loneInstance ? instances[0].primitive : RT_NO_INSTANCE;
 }
 
+uint32_t wrapOf(TextureSampling::Wrap wrap) {
+  switch (wrap) {
+    case TextureSampling::Wrap::Clamp: return RT_WRAP_CLAMP;
+    case TextureSampling::Wrap::Mirror: return RT_WRAP_MIRROR;
+    case TextureSampling::Wrap::Repeat: break;
+  }
+  return RT_WRAP_REPEAT;
+}
+
+uint32_t textureFlags(const Texture& texture) {
+  return (texture.linear ? RT_TEXTURE_LINEAR : 0u) |
+         (texture.sampling.nearest ? RT_TEXTURE_NEAREST : 0u) |
+         wrapOf(texture.sampling.wrapU) << RT_TEXTURE_WRAP_U_SHIFT |
+         wrapOf(texture.sampling.wrapV) << RT_TEXTURE_WRAP_V_SHIFT;
+}
+
 uint32_t alphaModeOf(const Material& m) {
   switch (m.alphaMode) {
     case Material::Alpha::Mask: return RT_ALPHA_MASK;
@@ -453,7 +469,7 @@ void addTextures(const Scene& scene, FlatScene& flat) {
   for (const Texture& texture : scene.textures) {
     const ImageRgba8& image = texture.image;
     flat.textureInfos.push_back({static_cast<uint32_t>(flat.texels.size()), image.width,
-                                 image.height, texture.linear ? 1u : 0u});
+                                 image.height, textureFlags(texture)});
     for (size_t i = 0; i + 3 < image.rgba.size(); i += 4) {
       flat.texels.push_back(uint32_t(image.rgba[i]) | uint32_t(image.rgba[i + 1]) << 8 |
                             uint32_t(image.rgba[i + 2]) << 16 | uint32_t(image.rgba[i + 3]) << 24);

@@ -76,10 +76,23 @@ struct Material {
 
 // A decoded texture image: sRGB-encoded colours as in the file, or data
 // (`linear`: a normal map's directions).
+// How a texture is read between and beyond its texels (glTF samplers; every
+// other format repeats and filters bilinearly): per axis, repeat, clamp to
+// the edge or mirror; bilinear or nearest (pixel art, voxel models).
+struct TextureSampling {
+  enum class Wrap { Repeat, Clamp, Mirror };
+  Wrap wrapU = Wrap::Repeat;
+  Wrap wrapV = Wrap::Repeat;
+  bool nearest = false;
+  bool isDefault() const { return *this == TextureSampling{}; }
+  auto operator<=>(const TextureSampling&) const = default;
+};
+
 struct Texture {
   std::string source;  // file path or glTF image name
   ImageRgba8 image;
   bool linear = false;
+  TextureSampling sampling;
 };
 
 struct Sphere {

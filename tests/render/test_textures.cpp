@@ -355,4 +355,33 @@ TEST_SUITE("render textures") {
       CHECK(glm::all(glm::lessThan(glm::abs(difference), glm::vec3(1e-4f))));
     }
   }
+
+  TEST_CASE("texture samplers: repeat, clamp to the edge, mirror; nearest texel or bilinear") {
+    // Texels red, red, green, green over u from -0.5 (left edge) to 1.5
+    // (right edge): image x 0.1 reads u = -0.3, 0.9 reads u = 1.3.
+    Scene scene = flatLitScene();
+    scene.textures = {{"red red green green",
+                       {4, 1, {255, 0, 0, 255, 255, 0, 0, 255, 0, 255, 0, 255, 0, 255, 0, 255}}}};
+    addMesh(scene, squareMesh({{-0.5f, 0}, {1.5f, 0}, {1.5f, 1}, {-0.5f, 1}}));
+    using Wrap = TextureSampling::Wrap;
+    struct Expected {
+      Wrap wrap;
+      glm::vec3 left, right;
+    };
+    const glm::vec3 red(1, 0, 0), green(0, 1, 0);
+    for (const Expected& expected :
+         {Expected{Wrap::Repeat, green, red}, Expected{Wrap::Clamp, red, green},
+          Expected{Wrap::Mirror, red, green}}) {
+      CAPTURE(int(expected.wrap));
+      scene.textures[0].sampling.wrapU = expected.wrap;
+      ImageF image = render(scene);
+      checkColor(renderedAt(image, 0.1f, 0.5f), expected.left);
+      checkColor(renderedAt(image, 0.9f, 0.5f), expected.right);
+    }
+    // u = 0.45, between texels 1 and 2: mixed, or texel 1 alone.
+    scene.textures[0].sampling = {};
+    checkColor(renderedAt(render(scene), 0.475f, 0.5f), {0.7f, 0.3f, 0});
+    scene.textures[0].sampling.nearest = true;
+    checkColor(renderedAt(render(scene), 0.475f, 0.5f), red);
+  }
 }

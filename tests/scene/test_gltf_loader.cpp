@@ -931,6 +931,42 @@ TEST_SUITE("scene gltf") {
     CHECK_FALSE(hasWarning(scene, "KHR_materials_unlit"));
   }
 
+  TEST_CASE("samplers: wrap modes and the magnification filter; one image, two samplers") {
+    writeTexture("tex.png");
+    GltfBuilder b;
+    int pos = b.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    int uv0 = b.floats({1, 0, 0, 1, 1, 1}, "VEC2", 2);
+    b.doc["images"] = {{{"uri", "tex.png"}}};
+    b.doc["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}},
+                         {{"wrapS", 12345}}};
+    b.doc["textures"] = {
+        {{"source", 0}, {"sampler", 0}}, {{"source", 0}}, {{"source", 0}, {"sampler", 1}}};
+    b.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}},
+                          {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 1}}}}}},
+                          {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 2}}}}}}};
+    Json attributes = {{"POSITION", pos}, {"TEXCOORD_0", uv0}};
+    for (int material = 0; material < 3; ++material) {
+      b.node({{"mesh", b.mesh({{"attributes", attributes}, {"material", material}})}});
+    }
+    rt::Scene scene = loadDoc("samplers.gltf", b.embedded());
+    auto samplingOf = [&](size_t shape) {
+      const rt::Material& material = scene.materials[scene.shapes[shape].material];
+      return scene.textures.at(size_t(material.diffuseTexture)).sampling;
+    };
+    using Wrap = rt::TextureSampling::Wrap;
+    CHECK(samplingOf(0).wrapU == Wrap::Clamp);
+    CHECK(samplingOf(0).wrapV == Wrap::Mirror);
+    CHECK(samplingOf(0).nearest);
+    CHECK(samplingOf(1).isDefault());  // no sampler: repeat, bilinear
+    CHECK(samplingOf(2).isDefault());  // an unknown mode repeats
+    CHECK(hasWarning(scene, "samplers[1].wrapS: unknown wrap mode 12345; repeats"));
+    // The image once per sampling: the first two textures apart, the last two shared.
+    CHECK(scene.textures.size() == 2);
+    b.doc["textures"][0]["sampler"] = 5;
+    CHECK(contains(errorOfDoc("bad-sampler.gltf", b.embedded()),
+                   "sampler 5 does not exist (the file has 2)"));
+  }
+
   TEST_CASE("normal maps: decoded as data beside the same image as colour, scale, one uv set") {
     writeTexture("tex.png");
     GltfBuilder b;

@@ -174,6 +174,18 @@ void makeUnlit(Material& out) {
   out.tintedMirror = false;
 }
 
+// A sampler's wrapS or wrapT; an unknown mode repeats, with a warning.
+TextureSampling::Wrap wrapMode(Context& context, int mode, const std::string& where) {
+  switch (mode) {
+    case TINYGLTF_TEXTURE_WRAP_REPEAT: return TextureSampling::Wrap::Repeat;
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return TextureSampling::Wrap::Clamp;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return TextureSampling::Wrap::Mirror;
+    default:
+      context.warn(where, "unknown wrap mode " + std::to_string(mode) + "; repeats");
+      return TextureSampling::Wrap::Repeat;
+  }
+}
+
 Material defaultMaterial() {
   Material out;
   out.diffuseColor = glm::vec3(0.8f);
@@ -360,7 +372,7 @@ int MaterialTable::imageOf(int textureIndex, const std::string& where) {
 
 int32_t MaterialTable::texture(int textureIndex, Encoding encoding, const std::string& where) {
   int image = imageOf(textureIndex, where);
-  return image < 0 ? -1 : decodeImage(image, encoding, where);
+  return image < 0 ? -1 : decodeImage(image, encoding, samplingOf(textureIndex, where), where);
 }
 
 // Mean metallic (blue) and roughness (green) of a metallic-roughness texture,
@@ -385,12 +397,33 @@ glm::vec2 MaterialTable::metallicRoughnessAverage(const tinygltf::TextureInfo& i
   return mean;
 }
 
-int32_t MaterialTable::decodeImage(int index, Encoding encoding, const std::string& where) {
-  std::pair<int, Encoding> key{index, encoding};
+// glTF texture `textureIndex`'s sampler (none: repeat, bilinear). Mipmaps
+// are not made, so only the magnification filter counts.
+TextureSampling MaterialTable::samplingOf(int textureIndex, const std::string& where) {
+  int index = context_.model().textures[size_t(textureIndex)].sampler;
+  if (index < 0) return {};
+  const auto& samplers = context_.model().samplers;
+  if (size_t(index) >= samplers.size()) {
+    context_.fail(where, "sampler " + std::to_string(index) + " does not exist (the file has " +
+                             std::to_string(samplers.size()) + ")");
+  }
+  const tinygltf::Sampler& sampler = samplers[size_t(index)];
+  std::string name = item("samplers", index);
+  TextureSampling sampling;
+  sampling.wrapU = wrapMode(context_, sampler.wrapS, name + ".wrapS");
+  sampling.wrapV = wrapMode(context_, sampler.wrapT, name + ".wrapT");
+  sampling.nearest = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+  return sampling;
+}
+
+int32_t MaterialTable::decodeImage(int index, Encoding encoding, TextureSampling sampling,
+                                   const std::string& where) {
+  std::tuple<int, Encoding, TextureSampling> key{index, encoding, sampling};
   if (auto found = images_.find(key); found != images_.end()) return found->second;
   Texture texture;
   texture.image = readImage(index, where, texture.source);
   texture.linear = encoding == Encoding::Linear;
+  texture.sampling = sampling;
   scene_.textures.push_back(std::move(texture));
   int32_t added = static_cast<int32_t>(scene_.textures.size() - 1);
   images_.emplace(key, added);

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <map>
+#include <tuple>
 
 #include "formats/gltf/GltfContext.hpp"
 #include "formats/gltf/GltfMesh.hpp"
@@ -36,7 +37,9 @@ class MaterialTable {
   enum class Encoding { Srgb, Linear };
 
   int32_t texture(int textureIndex, Encoding encoding, const std::string& where);
-  int32_t decodeImage(int image, Encoding encoding, const std::string& where);
+  int32_t decodeImage(int image, Encoding encoding, TextureSampling sampling,
+                      const std::string& where);
+  TextureSampling samplingOf(int textureIndex, const std::string& where);
   bool readsSharedUvs(int index, int texCoord, const tinygltf::ExtensionMap& extensions,
                       const std::string& where);
   void addNormalMap(int index, Material& converted);
@@ -51,11 +54,12 @@ class MaterialTable {
   Context& context_;
   Scene& scene_;
   std::filesystem::path baseDir_;
-  std::map<int, uint32_t> materials_;                   // glTF material -> Scene::materials
-  std::map<int, glm::vec3> emissions_;                  // glTF material -> emitted radiance
-  std::map<std::pair<int, Encoding>, int32_t> images_;  // glTF image -> Scene::textures
-  std::map<int, glm::vec2> averages_;                   // glTF image -> mean (metallic, roughness)
-  uint64_t decodedBytes_ = 0;                           // all images decoded so far, bounded
+  std::map<int, uint32_t> materials_;   // glTF material -> Scene::materials
+  std::map<int, glm::vec3> emissions_;  // glTF material -> emitted radiance
+  // glTF image, as read -> Scene::textures
+  std::map<std::tuple<int, Encoding, TextureSampling>, int32_t> images_;
+  std::map<int, glm::vec2> averages_;  // glTF image -> mean (metallic, roughness)
+  uint64_t decodedBytes_ = 0;          // all images decoded so far, bounded
 };
 
 }  // namespace rt::gltf
