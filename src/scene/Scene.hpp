@@ -3,6 +3,7 @@
 // about the GPU; src/render flattens it into buffers.
 #pragma once
 
+#include <compare>
 #include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>

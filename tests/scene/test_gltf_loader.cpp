@@ -298,6 +298,23 @@ void writeTexture(const std::string& name) {
   rt::writeImage(scratchDir() / name, image, {});
 }
 
+// One triangle with texture coordinates for each of `materials`, whose
+// texture 0 is tex.png (writeTexture); tests add samplers and textures.
+GltfBuilder texturedTriangles(const Json& materials) {
+  writeTexture("tex.png");
+  GltfBuilder b;
+  int pos = b.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  int uv0 = b.floats({1, 0, 0, 1, 1, 1}, "VEC2", 2);
+  b.doc["images"] = {{{"uri", "tex.png"}}};
+  b.doc["textures"] = {{{"source", 0}}};
+  b.doc["materials"] = materials;
+  Json attributes = {{"POSITION", pos}, {"TEXCOORD_0", uv0}};
+  for (int material = 0; material < int(materials.size()); ++material) {
+    b.node({{"mesh", b.mesh({{"attributes", attributes}, {"material", material}})}});
+  }
+  return b;
+}
+
 // ---------------------------------------------------------------- shared data
 
 fs::path assetDir(const char* sub) { return rt::test::requireShared() / "assets" / sub; }
@@ -853,24 +870,14 @@ TEST_SUITE("scene gltf") {
   }
 
   TEST_CASE("alpha modes: MASK's cutoff, BLEND, the base colour's alpha; unknown modes opaque") {
-    writeTexture("tex.png");
-    GltfBuilder b;
-    int pos = b.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
-    int uv0 = b.floats({1, 0, 0, 1, 1, 1}, "VEC2", 2);
-    b.doc["images"] = {{{"uri", "tex.png"}}};
-    b.doc["textures"] = {{{"source", 0}}};
     Json textured = {{"baseColorTexture", {{"index", 0}}}, {"baseColorFactor", {1, 1, 1, 0.75}}};
-    b.doc["materials"] = {
-        {{"alphaMode", "MASK"}, {"alphaCutoff", 0.25}, {"pbrMetallicRoughness", textured}},
-        {{"alphaMode", "BLEND"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 0, 0, 0.5}}}}},
-        {{"alphaMode", "MASK"}},
-        {{"alphaMode", "OPAQUE"}, {"pbrMetallicRoughness", textured}},
-        {{"alphaMode", "CUTOUT"}},
-        {{"alphaMode", "MASK"}, {"alphaCutoff", -1}}};
-    Json attributes = {{"POSITION", pos}, {"TEXCOORD_0", uv0}};
-    for (int material = 0; material < 6; ++material) {
-      b.node({{"mesh", b.mesh({{"attributes", attributes}, {"material", material}})}});
-    }
+    GltfBuilder b = texturedTriangles(
+        {{{"alphaMode", "MASK"}, {"alphaCutoff", 0.25}, {"pbrMetallicRoughness", textured}},
+         {{"alphaMode", "BLEND"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 0, 0, 0.5}}}}},
+         {{"alphaMode", "MASK"}},
+         {{"alphaMode", "OPAQUE"}, {"pbrMetallicRoughness", textured}},
+         {{"alphaMode", "CUTOUT"}},
+         {{"alphaMode", "MASK"}, {"alphaCutoff", -1}}});
     rt::Scene scene = loadDoc("alpha.gltf", b.embedded());
     auto materialOf = [&](size_t shape) { return scene.materials[scene.shapes[shape].material]; };
     using Alpha = rt::Material::Alpha;
@@ -897,24 +904,14 @@ TEST_SUITE("scene gltf") {
   }
 
   TEST_CASE("KHR_materials_unlit: the base colour as a glow, factor times texture; no lights") {
-    writeTexture("tex.png");
-    GltfBuilder b;
-    int pos = b.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
-    int uv0 = b.floats({1, 0, 0, 1, 1, 1}, "VEC2", 2);
-    b.doc["images"] = {{{"uri", "tex.png"}}};
-    b.doc["textures"] = {{{"source", 0}}};
     Json unlit = {{"KHR_materials_unlit", Json::object()}};
+    GltfBuilder b = texturedTriangles(
+        {{{"extensions", unlit},
+          {"emissiveFactor", {1, 1, 1}},
+          {"pbrMetallicRoughness",
+           {{"baseColorTexture", {{"index", 0}}}, {"baseColorFactor", {0.5, 1, 1, 1}}}}},
+         {{"extensions", unlit}, {"pbrMetallicRoughness", {{"baseColorFactor", {0, 1, 0, 1}}}}}});
     b.doc["extensionsUsed"] = {"KHR_materials_unlit"};
-    b.doc["materials"] = {
-        {{"extensions", unlit},
-         {"emissiveFactor", {1, 1, 1}},
-         {"pbrMetallicRoughness",
-          {{"baseColorTexture", {{"index", 0}}}, {"baseColorFactor", {0.5, 1, 1, 1}}}}},
-        {{"extensions", unlit}, {"pbrMetallicRoughness", {{"baseColorFactor", {0, 1, 0, 1}}}}}};
-    Json attributes = {{"POSITION", pos}, {"TEXCOORD_0", uv0}};
-    for (int material = 0; material < 2; ++material) {
-      b.node({{"mesh", b.mesh({{"attributes", attributes}, {"material", material}})}});
-    }
     rt::Scene scene = loadDoc("unlit.gltf", b.embedded());
     const rt::Material& textured = scene.materials[scene.shapes[0].material];
     CHECK(textured.glow == glm::vec3(0.5f, 1, 1));
@@ -932,22 +929,14 @@ TEST_SUITE("scene gltf") {
   }
 
   TEST_CASE("samplers: wrap modes and the magnification filter; one image, two samplers") {
-    writeTexture("tex.png");
-    GltfBuilder b;
-    int pos = b.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
-    int uv0 = b.floats({1, 0, 0, 1, 1, 1}, "VEC2", 2);
-    b.doc["images"] = {{{"uri", "tex.png"}}};
+    GltfBuilder b =
+        texturedTriangles({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}},
+                           {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 1}}}}}},
+                           {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 2}}}}}}});
     b.doc["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}},
                          {{"wrapS", 12345}}};
     b.doc["textures"] = {
         {{"source", 0}, {"sampler", 0}}, {{"source", 0}}, {{"source", 0}, {"sampler", 1}}};
-    b.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}},
-                          {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 1}}}}}},
-                          {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 2}}}}}}};
-    Json attributes = {{"POSITION", pos}, {"TEXCOORD_0", uv0}};
-    for (int material = 0; material < 3; ++material) {
-      b.node({{"mesh", b.mesh({{"attributes", attributes}, {"material", material}})}});
-    }
     rt::Scene scene = loadDoc("samplers.gltf", b.embedded());
     auto samplingOf = [&](size_t shape) {
       const rt::Material& material = scene.materials[scene.shapes[shape].material];
