@@ -36,6 +36,10 @@ class ShaderCompiler {
   std::vector<uint32_t> compile(const std::string& entryFile, const ShaderDefines& defines,
                                 const ShaderCompileOptions& options = {}) const;
 
+  // The one string glslang is given: includes inlined, the defines after
+  // #version. It is also the cache key.
+  std::string expandedSource(const std::string& entryFile, const ShaderDefines& defines) const;
+
   const std::filesystem::path& shaderDir() const { return shaderDir_; }
 
   // The default shader folder: $RT_SHADER_DIR, else the source tree's shaders/.

@@ -147,6 +147,47 @@ TEST_SUITE("shader-compiler") {
     }
   }
 
+  TEST_CASE("a guarded file is inlined once, but again after a first inclusion under #if") {
+    // A guarded file is inlined again only where an #if might have skipped
+    // the copies before it, so every kernel's expanded source is smaller than
+    // twice the shader folder. Before, the files that most others include were
+    // inlined at every #include: 12 MB for the trace kernel, 73 times.
+    ShaderCompiler compiler(RT_SOURCE_SHADER_DIR, "");
+    size_t allFiles = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(RT_SOURCE_SHADER_DIR)) {
+      allFiles += std::filesystem::file_size(entry.path());
+    }
+    for (const char* kernel : {"trace.comp", "intersect_batch.comp", "spawn_batch.comp",
+                               "tile_noise.comp", "display.comp"}) {
+      CAPTURE(kernel);
+      CHECK(compiler.expandedSource(kernel, allFeatures()).size() < 2 * allFiles);
+    }
+
+    // A guarded file first included where an #if skips it must be inlined
+    // again where it is included unconditionally.
+    auto dir = std::filesystem::path(RT_TEST_OUTPUT_DIR) / "shaders" / "guarded";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "helper.glsl") << "#ifndef HELPER_GLSL\n#define HELPER_GLSL\n"
+                                          "float helper() { return 1.0; }\n#endif\n";
+    std::ofstream(dir / "maybe.glsl") << "#ifndef MAYBE_GLSL\n#define MAYBE_GLSL\n"
+                                         "#ifdef NEVER_DEFINED\n#include \"helper.glsl\"\n#endif\n"
+                                         "#endif\n";
+    std::ofstream(dir / "main.comp")
+        << "#version 460\nlayout(local_size_x = 1) in;\n#include \"maybe.glsl\"\n"
+           "#include \"helper.glsl\"\n#include \"helper.glsl\"\n"
+           "layout(std430, binding = 0) buffer Out { float value; };\n"
+           "void main() { value = helper(); }\n";
+    ShaderCompiler scratch(dir, "");
+    std::string source = scratch.expandedSource("main.comp", {});
+    size_t first = source.find("float helper()");
+    REQUIRE(first != std::string::npos);
+    CHECK(source.find("float helper()", first + 1) != std::string::npos);  // under #if, and after
+    CHECK(source.find("float helper()", source.find("float helper()", first + 1) + 1) ==
+          std::string::npos);  // not a third time
+    CHECK_NOTHROW(scratch.compile("main.comp", {}));
+  }
+
   TEST_CASE("a shader reload rebuilds the noise kernel too, and a broken one keeps both") {
     // The viewer's hot reload (ProgressiveRenderer::reloadShaders) covers
     // tile_noise.comp: an edit that doubles each tile's variance sum shows in
