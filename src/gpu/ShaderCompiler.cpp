@@ -126,7 +126,7 @@ bool hasIncludeGuard(const std::vector<std::string_view>& lines) {
 // yet: an earlier copy is known to be compiled wherever it sat in the same
 // branches of the same #if blocks as this #include, or in fewer of them.
 // Without that, the files that most kernels include reach glslang hundreds of
-// times over (12 MB for the trace kernel instead of 140 kB).
+// times over (12 MB for the trace kernel instead of 217 kB).
 class IncludeExpander {
  public:
   explicit IncludeExpander(const std::filesystem::path& root) : root_(root.lexically_normal()) {}
