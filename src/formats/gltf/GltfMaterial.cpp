@@ -421,7 +421,19 @@ int32_t MaterialTable::decodeImage(int index, Encoding encoding, TextureSampling
   std::tuple<int, Encoding, TextureSampling> key{index, encoding, sampling};
   if (auto found = images_.find(key); found != images_.end()) return found->second;
   Texture texture;
-  texture.image = readImage(index, where, texture.source);
+  auto sameImage = std::find_if(images_.begin(), images_.end(), [&](const auto& entry) {
+    return std::get<0>(entry.first) == index;
+  });
+  if (sameImage != images_.end()) {
+    // The image read before with another encoding or sampler: a copy, not a
+    // second decode (the copy's memory counts against the budget all the same).
+    const Texture& decoded = scene_.textures[size_t(sameImage->second)];
+    texture.image = decoded.image;
+    texture.source = decoded.source;
+    countDecodedBytes(texture.image, index, where);
+  } else {
+    texture.image = readImage(index, where, texture.source);
+  }
   texture.linear = encoding == Encoding::Linear;
   texture.sampling = sampling;
   scene_.textures.push_back(std::move(texture));
@@ -457,12 +469,17 @@ ImageRgba8 MaterialTable::decodeImageData(int index, const std::string& where,
 // Every decode counts, kept or not: the budget bounds memory and time.
 ImageRgba8 MaterialTable::readImage(int index, const std::string& where, std::string& source) {
   ImageRgba8 image = decodeImageData(index, where, source);
+  countDecodedBytes(image, index, where);
+  return image;
+}
+
+void MaterialTable::countDecodedBytes(const ImageRgba8& image, int index,
+                                      const std::string& where) {
   decodedBytes_ += image.rgba.size();
   if (decodedBytes_ > kMaxTextureBytes) {
     context_.fail(where, item("images", index) + ": the decoded images exceed " +
                              std::to_string(kMaxTextureBytes >> 20) + " MiB");
   }
-  return image;
 }
 
 }  // namespace rt::gltf

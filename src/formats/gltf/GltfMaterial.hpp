@@ -49,6 +49,8 @@ class MaterialTable {
   // The image of glTF texture `textureIndex`, or -1 when it has none we can read.
   int imageOf(int textureIndex, const std::string& where);
   ImageRgba8 readImage(int image, const std::string& where, std::string& source);
+  // Adds a decoded image (or a copy of one) to the budget; fails past it.
+  void countDecodedBytes(const ImageRgba8& image, int index, const std::string& where);
   ImageRgba8 decodeImageData(int image, const std::string& where, std::string& source);
 
   Context& context_;
