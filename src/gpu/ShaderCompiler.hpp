@@ -37,7 +37,7 @@ class ShaderCompiler {
                                 const ShaderCompileOptions& options = {}) const;
 
   // The one string glslang is given: includes inlined, the defines after
-  // #version. It is also the cache key.
+  // #version. The cache key is made of it and glslang's version.
   std::string expandedSource(const std::string& entryFile, const ShaderDefines& defines) const;
 
   const std::filesystem::path& shaderDir() const { return shaderDir_; }
