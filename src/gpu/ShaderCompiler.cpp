@@ -99,11 +99,11 @@ bool opensBlock(const Directive& directive) {
 
 // Whether the whole file sits in an include guard: its first directives are
 // `#ifndef X` and `#define X`, and the block they open closes at its last one.
-bool hasIncludeGuard(const std::vector<std::string_view>& lines) {
+// `lineDirectives` holds one entry for each of the file's lines.
+bool hasIncludeGuard(const std::vector<Directive>& lineDirectives) {
   std::vector<Directive> directives;
-  for (std::string_view line : lines) {
-    if (Directive directive = directiveOf(line); !directive.name.empty())
-      directives.push_back(directive);
+  for (const Directive& directive : lineDirectives) {
+    if (!directive.name.empty()) directives.push_back(directive);
   }
   if (directives.size() < 3 || directives[0].name != "ifndef" || directives[1].name != "define" ||
       directives[1].argument.substr(0, directives[1].argument.find_first_of(" \t")) !=
@@ -150,12 +150,14 @@ class IncludeExpander {
     }
     const std::string text = readTextFile(file);
     const std::vector<std::string_view> lines = splitLines(text);
-    const bool guarded = hasIncludeGuard(lines);
+    std::vector<Directive> directives;
+    for (std::string_view line : lines) directives.push_back(directiveOf(line));
+    const bool guarded = hasIncludeGuard(directives);
     std::filesystem::path shown = file.lexically_relative(root_);
     const std::string shownName = shown.empty() ? file.string() : shown.string();
     int fileDepth = 0;  // the file's own #if nesting; a guard's block is not a branch
     for (size_t index = 0; index < lines.size(); ++index) {
-      Directive directive = directiveOf(lines[index]);
+      const Directive& directive = directives[index];
       if (std::string_view name = includedFile(directive); !name.empty()) {
         include(file.parent_path() / name, depth, out);
         continue;
@@ -236,6 +238,11 @@ ExpandedSource withDefines(ExpandedSource source, const ShaderDefines& defines) 
   source.origins.insert(source.origins.begin() + (source.origins.empty() ? 0 : 1), defines.size(),
                         LineOrigin{"<defines>", 0});
   return source;
+}
+
+ExpandedSource expandWithDefines(const std::filesystem::path& shaderDir,
+                                 const std::string& entryFile, const ShaderDefines& defines) {
+  return withDefines(IncludeExpander(shaderDir).expand(entryFile), defines);
 }
 
 // glslang reports "ERROR: NAME:LINE: message" with LINE counted in the
@@ -326,7 +333,7 @@ ShaderCompiler::ShaderCompiler(std::filesystem::path shaderDir, std::filesystem:
 std::vector<uint32_t> ShaderCompiler::compile(const std::string& entryFile,
                                               const ShaderDefines& defines,
                                               const ShaderCompileOptions& options) const {
-  ExpandedSource source = withDefines(IncludeExpander(shaderDir_).expand(entryFile), defines);
+  ExpandedSource source = expandWithDefines(shaderDir_, entryFile, defines);
 
   std::filesystem::path cacheFile;
   if (options.useCache && !cacheDir_.empty()) {
@@ -351,7 +358,7 @@ std::vector<uint32_t> ShaderCompiler::compile(const std::string& entryFile,
 
 std::string ShaderCompiler::expandedSource(const std::string& entryFile,
                                            const ShaderDefines& defines) const {
-  return withDefines(IncludeExpander(shaderDir_).expand(entryFile), defines).text;
+  return expandWithDefines(shaderDir_, entryFile, defines).text;
 }
 
 std::filesystem::path ShaderCompiler::defaultShaderDir() {
