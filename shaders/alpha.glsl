@@ -10,6 +10,7 @@
 #include "gpu_types.h"
 #include "bindings.glsl"
 #include "intersect.glsl"
+#include "math.glsl"
 #include "rng.glsl"
 #include "textures.glsl"
 #include "vertices.glsl"
@@ -19,12 +20,10 @@
 vec2 meshTriangleUv(uint item, vec2 barycentric, uint flags) {
 #ifdef RT_FEATURE_VERTICES
   if ((flags & RT_PRIM_HAS_VERTICES) != 0u) {
-    uvec3 corners = floatBitsToUint(
-        vec3(itemRow(item, 0u).w, itemRow(item, 1u).w, itemRow(item, 2u).w));
-    vec3 weights = vec3(1.0 - barycentric.x - barycentric.y, barycentric);
-    return weights.x * vec2(vertexRow(corners.x, 0u).w, vertexRow(corners.x, 1u).w) +
-           weights.y * vec2(vertexRow(corners.y, 0u).w, vertexRow(corners.y, 1u).w) +
-           weights.z * vec2(vertexRow(corners.z, 0u).w, vertexRow(corners.z, 1u).w);
+    uvec3 corners = triangleVertices(itemRow(item, 0u), itemRow(item, 1u), itemRow(item, 2u));
+    vec3 weights = cornerWeights(barycentric);
+    return weights.x * vertexUv(corners.x) + weights.y * vertexUv(corners.y) +
+           weights.z * vertexUv(corners.z);
   }
 #endif
   return vec2(0.0);

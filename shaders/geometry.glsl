@@ -39,7 +39,7 @@ vec4 hitPoint(Ray ray, SurfaceHit hit) {
   if (kind == RT_PRIM_TRIANGLE) {
     vec3 v1 = primitiveRow(hit.primitiveIndex, 1u).xyz;
     vec3 v2 = primitiveRow(hit.primitiveIndex, 2u).xyz;
-    vec3 weights = vec3(1.0 - hit.barycentric.x - hit.barycentric.y, hit.barycentric);
+    vec3 weights = cornerWeights(hit.barycentric);
     p = weights.x * a.xyz + weights.y * v1 + weights.z * v2;
     magnitude = maxComponent(max(abs(a.xyz), max(abs(v1), abs(v2))));
   }

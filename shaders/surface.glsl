@@ -6,6 +6,7 @@
 #include "bindings.glsl"
 #include "traverse.glsl"
 #include "geometry.glsl"
+#include "math.glsl"
 #include "textures.glsl"
 #include "vertices.glsl"
 
@@ -93,7 +94,7 @@ void interpolateVertices(VertexTriangle triangle, bool smoothNormals, GpuMateria
   GpuVertex v0 = loadVertex(triangle.vertices.x);
   GpuVertex v1 = loadVertex(triangle.vertices.y);
   GpuVertex v2 = loadVertex(triangle.vertices.z);
-  vec3 weights = vec3(1.0 - barycentric.x - barycentric.y, barycentric);
+  vec3 weights = cornerWeights(barycentric);
   surface.uv = weights.x * vec2(v0.u, v0.v) + weights.y * vec2(v1.u, v1.v) +
                weights.z * vec2(v2.u, v2.v);
 #ifdef RT_FEATURE_VERTEX_COLORS
@@ -146,7 +147,7 @@ SurfacePoint surfaceAt(Ray ray, SurfaceHit hit, GpuMaterial material) {
   bool smoothNormals = (prim.flags & RT_PRIM_SMOOTH) != 0u;
   if (prim.kind == RT_PRIM_TRIANGLE && (prim.flags & RT_PRIM_HAS_VERTICES) != 0u) {
     VertexTriangle triangle =
-        VertexTriangle(floatBitsToUint(vec3(prim.a.w, prim.b.w, prim.c.w)),
+        VertexTriangle(triangleVertices(prim.a, prim.b, prim.c),
                        mat3(prim.a.xyz, prim.b.xyz, prim.c.xyz), mat3(1.0));
     interpolateVertices(triangle, smoothNormals, material, hit.barycentric, surface);
   }
@@ -157,7 +158,7 @@ SurfacePoint surfaceAt(Ray ray, SurfaceHit hit, GpuMaterial material) {
     vec4 row2 = itemRow(hit.triangleIndex, 2u);
     // Columns a, b, c: the transpose of world-to-object, the normal matrix.
     mat3 normalMatrix = mat3(prim.a.xyz, prim.b.xyz, prim.c.xyz);
-    VertexTriangle triangle = VertexTriangle(floatBitsToUint(vec3(row0.w, row1.w, row2.w)),
+    VertexTriangle triangle = VertexTriangle(triangleVertices(row0, row1, row2),
                                              mat3(row0.xyz, row1.xyz, row2.xyz), normalMatrix);
     interpolateVertices(triangle, smoothNormals, material, hit.barycentric, surface);
   }

@@ -71,17 +71,14 @@ uint texelWord(GpuTextureInfo info, int x, int y) {
   return textureTexel(info.firstTexel + ty * info.width + tx);
 }
 
-vec3 fetchTexel(GpuTextureInfo info, int x, int y) {
-  vec3 texel = unpackUnorm4x8(texelWord(info, x, y)).rgb;
+// A texel's colour, decoded from sRGB unless the texture holds data, and its
+// alpha: coverage, stored linearly in sRGB images too.
+vec4 fetchTexel(GpuTextureInfo info, int x, int y) {
+  vec4 texel = unpackUnorm4x8(texelWord(info, x, y));
 #if defined(RT_FEATURE_NORMAL_MAPS) || defined(RT_FEATURE_METAL_ROUGH_TEXTURES)
   if ((info.flags & RT_TEXTURE_LINEAR) != 0u) return texel;  // data, not colours
 #endif
-  return srgbToLinear(texel);
-}
-
-// Alpha is coverage, stored linearly in sRGB images too.
-float fetchTexelAlpha(GpuTextureInfo info, int x, int y) {
-  return unpackUnorm4x8(texelWord(info, x, y)).a;
+  return vec4(srgbToLinear(texel.rgb), texel.a);
 }
 
 // Bilinear filtering at `uv`: the texel (x, y) at the top left of the four
@@ -107,24 +104,20 @@ BilinearTaps bilinearTaps(GpuTextureInfo info, vec2 uv) {
   return BilinearTaps(int(base.x), int(base.y), pixel - base);
 }
 
-vec3 sampleTexture(int index, vec2 uv) {
+// Texture `index` at `uv`, filtered (colour and alpha alike; the callers'
+// unused channels are compiled away).
+vec4 sampleTextureRgba(int index, vec2 uv) {
   GpuTextureInfo info = loadTextureInfo(index);
   BilinearTaps at = bilinearTaps(info, uv);
-  vec3 top = mix(fetchTexel(info, at.x, at.y), fetchTexel(info, at.x + 1, at.y), at.f.x);
-  vec3 bottom =
+  vec4 top = mix(fetchTexel(info, at.x, at.y), fetchTexel(info, at.x + 1, at.y), at.f.x);
+  vec4 bottom =
       mix(fetchTexel(info, at.x, at.y + 1), fetchTexel(info, at.x + 1, at.y + 1), at.f.x);
   return mix(top, bottom, at.f.y);
 }
 
-float sampleTextureAlpha(int index, vec2 uv) {
-  GpuTextureInfo info = loadTextureInfo(index);
-  BilinearTaps at = bilinearTaps(info, uv);
-  float top =
-      mix(fetchTexelAlpha(info, at.x, at.y), fetchTexelAlpha(info, at.x + 1, at.y), at.f.x);
-  float bottom = mix(fetchTexelAlpha(info, at.x, at.y + 1),
-                     fetchTexelAlpha(info, at.x + 1, at.y + 1), at.f.x);
-  return mix(top, bottom, at.f.y);
-}
+vec3 sampleTexture(int index, vec2 uv) { return sampleTextureRgba(index, uv).rgb; }
+
+float sampleTextureAlpha(int index, vec2 uv) { return sampleTextureRgba(index, uv).a; }
 #endif
 
 #if defined(RT_FEATURE_METAL_ROUGH_TEXTURES) || defined(RT_FEATURE_TINTED_MIRRORS)
