@@ -219,7 +219,7 @@ struct GpuMaterial {
   vec3 specularColor;
   float ks;
   // Area lights: radiance leaving the surface, times pi (README "Area lights");
-  // a glow (RT_EMISSION_GLOW): the radiance it shows, times its texture.
+  // a glow (RT_EMISSION_GLOW, _UNLIT): the radiance it shows, times its texture.
   vec3 emission;
   float specularExponent;
   float reflectivity;
@@ -278,6 +278,10 @@ RT_ASSERT_TEXELS(GpuMaterial, RT_TEXELS_PER_MATERIAL);
 // rays that count emission (camera, mirror, refraction), and lights nothing
 // (glTF emissive textures, whose detail cannot be one light).
 #define RT_EMISSION_GLOW 2u
+// A glow of the surface's base colour (glTF KHR_materials_unlit): as
+// RT_EMISSION_GLOW, and times the vertex colours too, as base colours are
+// (glTF multiplies a base colour by COLOR_0, never an emissive one).
+#define RT_EMISSION_UNLIT 3u
 
 // ---- Area lights (src/render/AreaLights.cpp, shaders/lights.glsl) ----
 // An area light is a list of emitter pieces (a sphere, a cylinder, or the

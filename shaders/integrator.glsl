@@ -277,7 +277,7 @@ bool shadeHit(inout RayStack stack, inout vec3 radiance, inout PendingRay job, S
   faceViewer(surface, -job.ray.direction);
 #if defined(RT_FEATURE_AREA_LIGHTS) || defined(RT_FEATURE_GLOW)
   if (job.countsEmission) {
-    vec3 emitted = emittedRadiance(material, hit, job.ray.direction, surface.uv);
+    vec3 emitted = emittedRadiance(material, hit, job.ray.direction, surface);
     radiance += clampedContribution(job.weight * emitted, job);
   }
 #endif

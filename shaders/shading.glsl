@@ -256,17 +256,20 @@ LightSample areaLightSample(ShadingContext context, GpuAreaLight light, uint lig
 // holds it head on): spheres and Lambertian lights the same from every
 // direction; isotropic ones are sheets of points shining in all directions,
 // brighter where seen edge on (by the cosine, bounded so that grazing views
-// stay finite). A glow shows its emission times its texture at `uv`, if it
-// has one.
-vec3 emittedRadiance(GpuMaterial material, SurfaceHit hit, vec3 direction, vec2 uv) {
+// stay finite). A glow shows its emission times its texture at the surface
+// point, if it has one; an unlit surface's, times its vertex colours too.
+vec3 emittedRadiance(GpuMaterial material, SurfaceHit hit, vec3 direction, SurfacePoint surface) {
 #ifdef RT_FEATURE_GLOW
-  if (material.emissionProfile == RT_EMISSION_GLOW) {
+  if (material.emissionProfile == RT_EMISSION_GLOW ||
+      material.emissionProfile == RT_EMISSION_UNLIT) {
+    vec3 glow = material.emission;
 #ifdef RT_FEATURE_TEXTURES
-    if (material.emissionTexture >= 0) {
-      return material.emission * sampleTexture(material.emissionTexture, uv);
-    }
+    if (material.emissionTexture >= 0) glow *= sampleTexture(material.emissionTexture, surface.uv);
 #endif
-    return material.emission;
+#ifdef RT_FEATURE_VERTEX_COLORS
+    if (material.emissionProfile == RT_EMISSION_UNLIT) glow *= surface.vertexColor;
+#endif
+    return glow;
   }
 #endif
   if (material.emissionProfile == RT_EMISSION_LAMBERTIAN ||

@@ -95,9 +95,10 @@ std::string materialText(const rt::Scene& scene, const rt::Material& m) {
     text += fmt::format(", normal map {}", scene.textures.at(size_t(m.normalTexture)).source);
     if (m.normalScale != 1.0f) text += fmt::format(" scale {:g}", m.normalScale);
   }
-  if (m.glowTexture >= 0) {
-    text += fmt::format(", glow {} times {}", vec(m.glow),
-                        scene.textures.at(size_t(m.glowTexture)).source);
+  if (m.glowTexture >= 0 || m.glow != glm::vec3(0.0f)) {
+    text += fmt::format(", glow {}", vec(m.glow));
+    if (m.glowTexture >= 0) text += " times " + scene.textures.at(size_t(m.glowTexture)).source;
+    if (m.glowTimesVertexColors) text += " times vertex colours";
   }
   if (m.metalRoughTexture >= 0) {
     text += fmt::format(", metallic {:g} roughness {:g} times {}", m.metallic, m.roughness,

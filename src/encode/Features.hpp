@@ -39,8 +39,8 @@ struct ShaderFeatures {
   bool vertices = false;      // per-vertex normals / UVs on triangles
   bool vertexColors = false;  // some shaded mesh has vertex colours
   bool textures = false;
-  bool normalMaps = false;  // some shaded material has a normal map (needs textures)
-  bool glow = false;        // some shaded material glows through a texture (RT_EMISSION_GLOW)
+  bool normalMaps = false;          // some shaded material has a normal map (needs textures)
+  bool glow = false;                // some shaded material glows (RT_EMISSION_GLOW, _UNLIT)
   bool metalRoughTextures = false;  // some shaded material has a metallic-roughness texture
   // Some shaded glTF metal: its highlights and mirror reflections take the
   // base colour at the point (GpuMaterial::tintedMirror).

@@ -433,7 +433,7 @@ gpu::GpuMaterial toGpu(const Material& m) {
   out.alphaCutoff = m.alphaCutoff;
   if (m.glowTexture >= 0 || m.glow != glm::vec3(0.0f)) {
     out.emission = m.glow;
-    out.emissionProfile = RT_EMISSION_GLOW;
+    out.emissionProfile = m.glowTimesVertexColors ? RT_EMISSION_UNLIT : RT_EMISSION_GLOW;
   }
   return out;
 }

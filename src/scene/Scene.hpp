@@ -50,6 +50,9 @@ struct Material {
   // unlit materials). A black glow without a texture is none.
   glm::vec3 glow{0.0f};
   int32_t glowTexture = -1;
+  // Whether the glow is also multiplied by the mesh's vertex colours: a glTF
+  // unlit material's base colour is, an emissive texture is not.
+  bool glowTimesVertexColors = false;
   // glTF metallic and roughness: with a metallic-roughness texture (index
   // into Scene::textures, data: blue metallic, green roughness; -1: none) the
   // factors its texels are multiplied by, and the kernels convert each

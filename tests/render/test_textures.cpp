@@ -283,6 +283,26 @@ TEST_SUITE("render textures") {
     checkColor(renderedAt(image, 0.95f, 0.7f), {0.05f, 0, 0.95f});
   }
 
+  TEST_CASE("an unlit glow is multiplied by the vertex colours, an emissive glow is not") {
+    Scene scene = flatLitScene();
+    scene.pointLights.clear();  // a glow shows its colour without lights
+    scene.textures.clear();
+    Material& material = scene.materials[0];
+    material.diffuseTexture = -1;
+    material.kd = 0.0f;
+    material.glow = {1.0f, 0.5f, 1.0f};
+    material.glowTimesVertexColors = true;  // glTF KHR_materials_unlit
+    TriangleMesh mesh = squareMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+    mesh.colors = {{1, 0, 0}, {0, 0, 1}, {0, 0, 1}, {1, 0, 0}};  // red left, blue right
+    addMesh(scene, mesh);
+    ImageF image = render(scene);
+    checkColor(renderedAt(image, 0.05f, 0.5f), {0.95f, 0, 0.05f});
+    checkColor(renderedAt(image, 0.5f, 0.3f), {0.5f, 0, 0.5f});
+    checkColor(renderedAt(image, 0.95f, 0.7f), {0.05f, 0, 0.95f});
+    material.glowTimesVertexColors = false;  // an emissive glow: its colour alone
+    checkColor(renderedAt(render(scene), 0.5f, 0.3f), {1.0f, 0.5f, 1.0f});
+  }
+
   TEST_CASE("metallic-roughness textures: each texel's terms, mirrors tinted by the base colour") {
     // A mesh quad of a glTF-like material over a white background, unlit: a
     // texel of smooth metal (left) mirrors the background tinted by the

@@ -779,6 +779,7 @@ TEST_SUITE("scene gltf") {
     // An emissive texture makes a glow, not a light: its detail cannot be one light.
     const rt::Material& glowing = scene.materials.at(scene.shapes[2].material);
     CHECK(glowing.glow == glm::vec3(1.0f));
+    CHECK_FALSE(glowing.glowTimesVertexColors);  // COLOR_0 multiplies base colours only
     REQUIRE(glowing.glowTexture >= 0);
     CHECK_FALSE(scene.textures.at(size_t(glowing.glowTexture)).linear);
     // Beside punctual lights (normalised to unit lights) a radiance has no
@@ -903,7 +904,9 @@ TEST_SUITE("scene gltf") {
     CHECK_FALSE(hasWarning(scene, "alpha modes"));
   }
 
-  TEST_CASE("KHR_materials_unlit: the base colour as a glow, factor times texture; no lights") {
+  TEST_CASE(
+      "KHR_materials_unlit: the base colour as a glow, factor times texture and vertex colours; no "
+      "lights") {
     Json unlit = {{"KHR_materials_unlit", Json::object()}};
     GltfBuilder b = texturedTriangles(
         {{{"extensions", unlit},
@@ -917,6 +920,7 @@ TEST_SUITE("scene gltf") {
     CHECK(textured.glow == glm::vec3(0.5f, 1, 1));
     CHECK(textured.glowTexture == textured.diffuseTexture);
     CHECK(textured.glowTexture >= 0);
+    CHECK(textured.glowTimesVertexColors);
     CHECK(textured.kd == 0.0f);
     CHECK(textured.ks == 0.0f);
     CHECK(textured.reflectivity == 0.0f);

@@ -164,11 +164,12 @@ glm::vec3 emissiveColour(Context& context, const tinygltf::Material& gltf,
 
 // KHR_materials_unlit: the surface shows its base colour (factor times
 // texture) whatever the lights, as scans and baked scenes are made to be
-// seen: a glow of it (it lights nothing, and still casts shadows). Its
-// alpha stays; vertex colours do not reach a glow.
+// seen: a glow of it, times the vertex colours as base colours are (it
+// lights nothing, and still casts shadows). Its alpha stays.
 void makeUnlit(Material& out) {
   out.glow = out.diffuseColor;
   out.glowTexture = out.diffuseTexture;
+  out.glowTimesVertexColors = true;
   out.kd = out.ks = out.reflectivity = out.transmission = 0.0f;
   out.metallic = 0.0f;
   out.tintedMirror = false;
