@@ -168,13 +168,14 @@ expect_failure nothing "merge into a missing folder" 'm\.exr: cannot write: no f
 "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/timed.png" --spp 1000000 --time 1 -q 2>"$SCRATCH/stderr" &&
   grep -q "time budget reached" "$SCRATCH/stderr" && [[ -s "$SCRATCH/timed.png" ]] && pass || fail "--time"
 # Without --spp the time alone decides: past the default 16 samples (a 32x24
-# image takes microseconds a sample), uniform and adaptive. Five seconds: the
-# budget includes the setup, 1.5-1.8 s in the sanitizer build on an idle
-# machine and more beside another test (a CI run got only its first adaptive
-# pass, 1.2 samples, in two seconds).
+# image takes microseconds a sample), uniform and adaptive. Three seconds: the
+# budget includes the setup, 0.12-0.14 s in the sanitizer build on an idle
+# machine (2026-12-07; 1.5-1.8 s before the shader includes were expanded
+# once, when a CI run beside other tests got only its first adaptive pass,
+# 1.2 samples, in two seconds) and about 10 000 samples in five seconds.
 for mode in uniform adaptive; do
   extra=(); [[ $mode == adaptive ]] && extra=(--adaptive)
-  "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/timed.png" --time 5 "${extra[@]}" 2>"$SCRATCH/stderr"
+  "$RAYTRACER" "$SCRATCH/good.json" "$SCRATCH/timed.png" --time 3 "${extra[@]}" 2>"$SCRATCH/stderr"
   samples=$(sed -n 's/^rendered [0-9x]* at \([0-9.]*\) spp.*/\1/p' "$SCRATCH/stderr")
   grep -q "time budget reached" "$SCRATCH/stderr" && awk -v n="$samples" 'BEGIN { exit !(n > 16) }' &&
     pass || fail "--time without --spp ($mode): $samples samples"
