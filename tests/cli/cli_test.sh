@@ -309,6 +309,25 @@ expect_error "glTF: noise" 'noise\.glb: ' "$SCRATCH/noise.glb" "$SCRATCH/out.png
 expect_error "glTF: truncated GLB" 'truncated\.glb: GLB: truncated' "$SCRATCH/truncated.glb" "$SCRATCH/out.png"
 expect_error "glTF: a folder" 'folder\.gltf: cannot open: Is a directory' "$SCRATCH/folder.gltf" "$SCRATCH/out.png"
 expect_error "glTF: missing" 'nope\.glb: cannot open' "$SCRATCH/nope.glb" "$SCRATCH/out.png"
+# An unlit material (KHR_materials_unlit): `check` lists it as a glow of its
+# base colour that vertex colours multiply (a glTF base colour's rule).
+write unlit.gltf '{"asset":{"version":"2.0"},"extensionsUsed":["KHR_materials_unlit"],
+  "buffers":[{"byteLength":36,
+    "uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+  "bufferViews":[{"buffer":0,"byteLength":36}],
+  "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",
+    "min":[0,0,0],"max":[1,1,0]}],
+  "materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0,1,0,1]},
+    "extensions":{"KHR_materials_unlit":{}}}],
+  "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],
+  "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0}'
+if "$RAYTRACER" check "$SCRATCH/unlit.gltf" >"$SCRATCH/check.txt" 2>&1 &&
+  grep -q 'glow (0, 1, 0) times vertex colours' "$SCRATCH/check.txt" &&
+  grep -q 'kernel features: .*glow' "$SCRATCH/check.txt"; then
+  pass
+else
+  fail "unlit glTF check: $(grep -E 'material|features|error' "$SCRATCH/check.txt")"
+fi
 if [[ -d "$SHARED/assets/gltf-invalid" ]]; then
   invalid=$SHARED/assets/gltf-invalid
   expect_error "glTF: node cycle" 'RecursiveNodes\.gltf: nodes\[0\]: .*cycle' "$invalid/assimp-testmodels-deb/glTF2/RecursiveNodes/RecursiveNodes.gltf" "$SCRATCH/out.png"
