@@ -283,6 +283,12 @@ RT_ASSERT_TEXELS(GpuMaterial, RT_TEXELS_PER_MATERIAL);
 // (glTF multiplies a base colour by COLOR_0, never an emissive one).
 #define RT_EMISSION_UNLIT 3u
 
+// Whether a material of emission profile `profile` is a glow (shows its
+// emission, lights nothing) rather than an area light or nothing.
+RT_SHARED_FUNCTION bool isGlowProfile(uint profile) {
+  return profile == RT_EMISSION_GLOW || profile == RT_EMISSION_UNLIT;
+}
+
 // ---- Area lights (src/render/AreaLights.cpp, shaders/lights.glsl) ----
 // An area light is a list of emitter pieces (a sphere, a cylinder, or the
 // triangles of a quad, triangle or mesh), its intensity shared evenly over

@@ -260,8 +260,7 @@ LightSample areaLightSample(ShadingContext context, GpuAreaLight light, uint lig
 // point, if it has one; an unlit surface's, times its vertex colours too.
 vec3 emittedRadiance(GpuMaterial material, SurfaceHit hit, vec3 direction, SurfacePoint surface) {
 #ifdef RT_FEATURE_GLOW
-  if (material.emissionProfile == RT_EMISSION_GLOW ||
-      material.emissionProfile == RT_EMISSION_UNLIT) {
+  if (isGlowProfile(material.emissionProfile)) {
     vec3 glow = material.emission;
 #ifdef RT_FEATURE_TEXTURES
     if (material.emissionTexture >= 0) glow *= sampleTexture(material.emissionTexture, surface.uv);

@@ -95,7 +95,7 @@ std::string materialText(const rt::Scene& scene, const rt::Material& m) {
     text += fmt::format(", normal map {}", scene.textures.at(size_t(m.normalTexture)).source);
     if (m.normalScale != 1.0f) text += fmt::format(" scale {:g}", m.normalScale);
   }
-  if (m.glowTexture >= 0 || m.glow != glm::vec3(0.0f)) {
+  if (m.glows()) {
     text += fmt::format(", glow {}", vec(m.glow));
     if (m.glowTexture >= 0) text += " times " + scene.textures.at(size_t(m.glowTexture)).source;
     if (m.glowTimesVertexColors) text += " times vertex colours";

@@ -94,8 +94,7 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
   features.vertexColors = shaded && usesVertexColors(scene);
   for (const gpu::GpuMaterial& material : flat.materials) {
     features.normalMaps |= shaded && material.normalTexture >= 0;
-    features.glow |= shaded && (material.emissionProfile == RT_EMISSION_GLOW ||
-                                material.emissionProfile == RT_EMISSION_UNLIT);
+    features.glow |= shaded && gpu::isGlowProfile(material.emissionProfile);
     features.metalRoughTextures |= shaded && material.metalRoughTexture >= 0;
     features.textures |= shaded && samplesTextures(material);
   }

@@ -431,7 +431,7 @@ gpu::GpuMaterial toGpu(const Material& m) {
   out.alphaMode = alphaModeOf(m);
   out.alphaFactor = m.alphaFactor;
   out.alphaCutoff = m.alphaCutoff;
-  if (m.glowTexture >= 0 || m.glow != glm::vec3(0.0f)) {
+  if (m.glows()) {
     out.emission = m.glow;
     out.emissionProfile = m.glowTimesVertexColors ? RT_EMISSION_UNLIT : RT_EMISSION_GLOW;
   }

@@ -53,6 +53,7 @@ struct Material {
   // Whether the glow is also multiplied by the mesh's vertex colours: a glTF
   // unlit material's base colour is, an emissive texture is not.
   bool glowTimesVertexColors = false;
+  bool glows() const { return glowTexture >= 0 || glow != glm::vec3(0.0f); }
   // glTF metallic and roughness: with a metallic-roughness texture (index
   // into Scene::textures, data: blue metallic, green roughness; -1: none) the
   // factors its texels are multiplied by, and the kernels convert each
