@@ -84,7 +84,15 @@ std::string alphaText(const rt::Scene& scene, const rt::Material& m) {
   return text;
 }
 
-std::string materialText(const rt::Scene& scene, const rt::Material& m) {
+// Whether `geometry` is a mesh with vertex colours (they count as white on
+// any other shape).
+bool hasVertexColors(const rt::Geometry& geometry, const rt::Scene& scene) {
+  const auto* mesh = std::get_if<rt::MeshInstance>(&geometry);
+  return mesh && !scene.meshes.at(mesh->mesh).colors.empty();
+}
+
+// `vertexColors`: whether the shape using `m` has vertex colours.
+std::string materialText(const rt::Scene& scene, const rt::Material& m, bool vertexColors) {
   std::string text =
       fmt::format("kd {:g} diffuse {}, ks {:g} specular {} exponent {:g}", m.kd,
                   vec(m.diffuseColor), m.ks, vec(m.specularColor), m.specularExponent);
@@ -98,7 +106,7 @@ std::string materialText(const rt::Scene& scene, const rt::Material& m) {
   if (m.glows()) {
     text += fmt::format(", glow {}", vec(m.glow));
     if (m.glowTexture >= 0) text += " times " + scene.textures.at(size_t(m.glowTexture)).source;
-    if (m.glowTimesVertexColors) text += " times vertex colours";
+    if (m.glowTimesVertexColors && vertexColors) text += " times vertex colours";
   }
   if (m.metalRoughTexture >= 0) {
     text += fmt::format(", metallic {:g} roughness {:g} times {}", m.metallic, m.roughness,
@@ -151,8 +159,9 @@ void printShapes(const rt::Scene& scene) {
     if (!shape.label.empty() && shape.label != from) from += " '" + shape.label + "'";
     std::printf("  %zu%s: %s\n", i, from.empty() ? "" : (" [" + from + "]").c_str(),
                 geometryText(shape.geometry, scene).c_str());
-    std::printf("     material: %s\n",
-                materialText(scene, scene.materials.at(shape.material)).c_str());
+    std::printf("     material: %s\n", materialText(scene, scene.materials.at(shape.material),
+                                                    hasVertexColors(shape.geometry, scene))
+                                           .c_str());
   }
 }
 

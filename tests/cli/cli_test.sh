@@ -310,23 +310,32 @@ expect_error "glTF: truncated GLB" 'truncated\.glb: GLB: truncated' "$SCRATCH/tr
 expect_error "glTF: a folder" 'folder\.gltf: cannot open: Is a directory' "$SCRATCH/folder.gltf" "$SCRATCH/out.png"
 expect_error "glTF: missing" 'nope\.glb: cannot open' "$SCRATCH/nope.glb" "$SCRATCH/out.png"
 # An unlit material (KHR_materials_unlit): `check` lists it as a glow of its
-# base colour that vertex colours multiply (a glTF base colour's rule).
-write unlit.gltf '{"asset":{"version":"2.0"},"extensionsUsed":["KHR_materials_unlit"],
-  "buffers":[{"byteLength":36,
-    "uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
-  "bufferViews":[{"buffer":0,"byteLength":36}],
+# base colour, which the mesh's vertex colours multiply where it has them (a
+# glTF base colour's rule): the same triangle without and with COLOR_0.
+unlit_gltf() {  # BYTE_LENGTH BASE64 EXTRA_ACCESSOR EXTRA_ATTRIBUTE
+  printf '%s' '{"asset":{"version":"2.0"},"extensionsUsed":["KHR_materials_unlit"],
+  "buffers":[{"byteLength":'"$1"',"uri":"data:application/octet-stream;base64,'"$2"'"}],
+  "bufferViews":[{"buffer":0,"byteLength":'"$1"'}],
   "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",
-    "min":[0,0,0],"max":[1,1,0]}],
+    "min":[0,0,0],"max":[1,1,0]}'"$3"'],
   "materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0,1,0,1]},
     "extensions":{"KHR_materials_unlit":{}}}],
-  "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],
+  "meshes":[{"primitives":[{"attributes":{"POSITION":0'"$4"'},"material":0}]}],
   "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0}'
+}
+write unlit.gltf "$(unlit_gltf 36 AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA '' '')"
+write unlit-colours.gltf "$(unlit_gltf 72 \
+  AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/ \
+  ',{"bufferView":0,"byteOffset":36,"componentType":5126,"count":3,"type":"VEC3"}' ',"COLOR_0":1')"
 if "$RAYTRACER" check "$SCRATCH/unlit.gltf" >"$SCRATCH/check.txt" 2>&1 &&
-  grep -q 'glow (0, 1, 0) times vertex colours' "$SCRATCH/check.txt" &&
-  grep -q 'kernel features: .*glow' "$SCRATCH/check.txt"; then
+  grep -q 'glow (0, 1, 0)$' "$SCRATCH/check.txt" &&
+  grep -q 'kernel features: .*glow' "$SCRATCH/check.txt" &&
+  "$RAYTRACER" check "$SCRATCH/unlit-colours.gltf" >"$SCRATCH/check-colours.txt" 2>&1 &&
+  grep -q 'vertex colours' "$SCRATCH/check-colours.txt" &&
+  grep -q 'glow (0, 1, 0) times vertex colours' "$SCRATCH/check-colours.txt"; then
   pass
 else
-  fail "unlit glTF check: $(grep -E 'material|features|error' "$SCRATCH/check.txt")"
+  fail "unlit glTF check: $(grep -E 'material|features|error' "$SCRATCH/check.txt" "$SCRATCH/check-colours.txt")"
 fi
 if [[ -d "$SHARED/assets/gltf-invalid" ]]; then
   invalid=$SHARED/assets/gltf-invalid
