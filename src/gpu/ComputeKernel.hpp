@@ -1,5 +1,5 @@
-// One compute pipeline with its descriptor set of storage buffers and a push
-// constant block: the unit every pass (render, test kernels) is built from.
+// One compute pipeline with its descriptor set and push constant block
+// (KernelLayout): the unit every pass (render, test kernels) is built from.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -7,19 +7,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "gpu/KernelLayout.hpp"
+
 namespace rt {
-
-class Buffer;
-class VulkanContext;
-
-// One binding of descriptor set 0.
-struct KernelBinding {
-  uint32_t binding = 0;
-  // or UNIFORM_BUFFER (bound with bind), UNIFORM_TEXEL_BUFFER or
-  // STORAGE_TEXEL_BUFFER (bound with bindTexels), ACCELERATION_STRUCTURE_KHR
-  // (bound with bindAccelerationStructure)
-  VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-};
 
 // A compute pipeline for SPIR-V whose entry point is `main`; the shader
 // module lives only while the pipeline is created. Throws on failure.
@@ -37,13 +27,14 @@ class ComputeKernel {
   ComputeKernel(const ComputeKernel&) = delete;
   ComputeKernel& operator=(const ComputeKernel&) = delete;
 
-  // Points a storage- or uniform-buffer binding at a buffer; only while no
-  // dispatch is in flight.
-  void bind(uint32_t binding, const Buffer& buffer);
-  // Points a uniform- or storage-texel-buffer binding at a buffer seen as `format` texels.
-  void bindTexels(uint32_t binding, const Buffer& buffer, VkFormat format);
-  // Points an ACCELERATION_STRUCTURE_KHR binding at a top level.
-  void bindAccelerationStructure(uint32_t binding, VkAccelerationStructureKHR structure);
+  // See KernelLayout: only while no dispatch is in flight.
+  void bind(uint32_t binding, const Buffer& buffer) { layout_.bind(binding, buffer); }
+  void bindTexels(uint32_t binding, const Buffer& buffer, VkFormat format) {
+    layout_.bindTexels(binding, buffer, format);
+  }
+  void bindAccelerationStructure(uint32_t binding, VkAccelerationStructureKHR structure) {
+    layout_.bindAccelerationStructure(binding, structure);
+  }
 
   // Records a dispatch followed by a barrier that makes its writes visible to
   // the next dispatch and to transfers.
@@ -58,20 +49,9 @@ class ComputeKernel {
   void compileNow(const void* idlePushConstants) const;
 
  private:
-  void destroy();
-  VkDescriptorType declaredType(uint32_t binding, VkDescriptorType fallback) const;
-  void writeDescriptor(uint32_t binding, VkDescriptorType type,
-                       const VkDescriptorBufferInfo* bufferInfo, const VkBufferView* texelView);
-
   VulkanContext& context_;
-  uint32_t pushConstantBytes_ = 0;
-  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
-  VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+  KernelLayout layout_;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
-  VkDescriptorPool pool_ = VK_NULL_HANDLE;
-  VkDescriptorSet set_ = VK_NULL_HANDLE;
-  std::vector<VkBufferView> views_;  // owned, one per bindTexels call
-  std::vector<KernelBinding> declared_;
 };
 
 }  // namespace rt

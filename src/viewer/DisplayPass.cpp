@@ -61,9 +61,13 @@ FitRect fitInto(glm::uvec2 image, VkExtent2D target) {
 }
 
 DisplayPass::DisplayPass(VulkanContext& context, const ShaderCompiler& compiler)
-    : context_(context), compiler_(compiler) {
+    : context_(context),
+      compiler_(compiler),
+      layout_(context,
+              {{RT_DISPLAY_BINDING_ACCUMULATION, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+               {RT_DISPLAY_BINDING_PIXELS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+              sizeof(gpu::GpuDisplayParams)) {
   checkFormatSupport();
-  createLayouts();
   pipeline_ = createPipeline();
 }
 
@@ -73,9 +77,6 @@ DisplayPass::~DisplayPass() {
   releaseRetired();
   destroyTargets();
   if (pipeline_) vkDestroyPipeline(device, pipeline_, nullptr);
-  if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
-  if (pipelineLayout_) vkDestroyPipelineLayout(device, pipelineLayout_, nullptr);
-  if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
 }
 
 void DisplayPass::checkFormatSupport() const {
@@ -89,44 +90,9 @@ void DisplayPass::checkFormatSupport() const {
   }
 }
 
-void DisplayPass::createLayouts() {
-  VkDevice device = context_.device();
-  VkDescriptorSetLayoutBinding bindings[] = {
-      {RT_DISPLAY_BINDING_ACCUMULATION, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {RT_DISPLAY_BINDING_PIXELS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
-       nullptr}};
-  VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  layoutInfo.bindingCount = 2;
-  layoutInfo.pBindings = bindings;
-  vkCheck(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout_),
-          "vkCreateDescriptorSetLayout");
-
-  VkPushConstantRange pushRange{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(gpu::GpuDisplayParams)};
-  VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pipelineLayoutInfo.setLayoutCount = 1;
-  pipelineLayoutInfo.pSetLayouts = &setLayout_;
-  pipelineLayoutInfo.pushConstantRangeCount = 1;
-  pipelineLayoutInfo.pPushConstantRanges = &pushRange;
-  vkCheck(vkCreatePipelineLayout(device, &pipelineLayoutInfo, nullptr, &pipelineLayout_),
-          "vkCreatePipelineLayout");
-
-  VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2};
-  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  poolInfo.maxSets = 1;
-  poolInfo.poolSizeCount = 1;
-  poolInfo.pPoolSizes = &poolSize;
-  vkCheck(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool_), "vkCreateDescriptorPool");
-  VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  setInfo.descriptorPool = pool_;
-  setInfo.descriptorSetCount = 1;
-  setInfo.pSetLayouts = &setLayout_;
-  vkCheck(vkAllocateDescriptorSets(device, &setInfo, &set_), "vkAllocateDescriptorSets");
-}
-
 VkPipeline DisplayPass::createPipeline() const {
   std::vector<uint32_t> spirv = compiler_.compile("display.comp", {});
-  return createComputePipeline(context_.device(), spirv, pipelineLayout_);
+  return createComputePipeline(context_.device(), spirv, layout_.pipelineLayout());
 }
 
 void DisplayPass::reloadShader() {
@@ -205,19 +171,8 @@ void DisplayPass::setSource(const Buffer& accumulation, uint32_t width, uint32_t
     destroyTargets();
     createTargets(width, height);
   }
-  VkDescriptorBufferInfo accumulationInfo{accumulation.handle(), 0, VK_WHOLE_SIZE};
-  VkDescriptorBufferInfo pixelsInfo{pixels_->handle(), 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet writes[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
-                                    {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
-  writes[0].dstSet = set_;
-  writes[0].dstBinding = RT_DISPLAY_BINDING_ACCUMULATION;
-  writes[0].descriptorCount = 1;
-  writes[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  writes[0].pBufferInfo = &accumulationInfo;
-  writes[1] = writes[0];
-  writes[1].dstBinding = RT_DISPLAY_BINDING_PIXELS;
-  writes[1].pBufferInfo = &pixelsInfo;
-  vkUpdateDescriptorSets(context_.device(), 2, writes, 0, nullptr);
+  layout_.bind(RT_DISPLAY_BINDING_ACCUMULATION, accumulation);
+  layout_.bind(RT_DISPLAY_BINDING_PIXELS, *pixels_);
 }
 
 void DisplayPass::recordToneMap(VkCommandBuffer commands, const ToneMapping& mapping,
@@ -242,11 +197,7 @@ void DisplayPass::recordToneMap(VkCommandBuffer commands, const ToneMapping& map
   params.truncate = mapping.quantization == Quantization::Truncate ? 1u : 0u;
   params.srgbEncode = mapping.srgbEncode ? 1u : 0u;
   params.toneCurve = static_cast<uint32_t>(mapping.curve);
-  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-  vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0,
-                          nullptr);
-  vkCmdPushConstants(commands, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(params),
-                     &params);
+  layout_.recordBind(commands, pipeline_, &params);
   vkCmdDispatch(commands, divideRoundUp(size_.x, RT_DISPLAY_WORKGROUP_SIZE),
                 divideRoundUp(rows, RT_DISPLAY_WORKGROUP_SIZE), 1);
 

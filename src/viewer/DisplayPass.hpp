@@ -13,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "gpu/KernelLayout.hpp"
 #include "io/Image.hpp"
 
 namespace rt {
@@ -63,7 +64,6 @@ class DisplayPass {
   void recordBlit(VkCommandBuffer commands, VkImage target, VkExtent2D targetExtent) const;
 
  private:
-  void createLayouts();
   VkPipeline createPipeline() const;
   void createTargets(uint32_t width, uint32_t height);
   void destroyTargets();
@@ -71,12 +71,9 @@ class DisplayPass {
 
   VulkanContext& context_;
   const ShaderCompiler& compiler_;
-  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
-  VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+  KernelLayout layout_;  // the accumulation and the pixels; GpuDisplayParams
   VkPipeline pipeline_ = VK_NULL_HANDLE;
   std::vector<VkPipeline> retired_;
-  VkDescriptorPool pool_ = VK_NULL_HANDLE;
-  VkDescriptorSet set_ = VK_NULL_HANDLE;
   std::unique_ptr<Buffer> pixels_;
   VkImage image_ = VK_NULL_HANDLE;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
