@@ -134,7 +134,8 @@ GpuMaterial loadMaterial(uint index) {
   vec4 emission = uintBitsToFloat(materialRow(index, 2u));
   uvec4 optics = materialRow(index, 3u);
   uvec4 profile = materialRow(index, 4u);
-#if defined(RT_FEATURE_METAL_ROUGH_TEXTURES) || defined(RT_FEATURE_TINTED_MIRRORS)
+#if defined(RT_FEATURE_METAL_ROUGH_TEXTURES) || defined(RT_FEATURE_TINTED_MIRRORS) || \
+    defined(RT_FEATURE_TINTED_TRANSMISSION)
   uvec4 metalRough = materialRow(index, 5u);
 #else
   // Not read where no material needs it: one fetch less a hit.

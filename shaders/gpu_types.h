@@ -238,10 +238,12 @@ struct GpuMaterial {
   int metalRoughTexture;
   float metallic;
   float roughness;
-  // 1: mirror reflections are tinted by specularColor (glTF: a metal's
-  // Fresnel reflectance at normal incidence is its base colour); 0: they are
-  // not (the coursework files, whose specular colour tints highlights only).
-  uint tintedMirror;
+  // RT_TINT_* flags. RT_TINT_MIRROR: mirror reflections are tinted by
+  // specularColor (glTF: a metal's Fresnel reflectance at normal incidence is
+  // its base colour). RT_TINT_TRANSMISSION: light through the surface is
+  // tinted by the base colour at the point (glTF's transmission). Neither in
+  // the coursework files, whose colours tint the local light only.
+  uint tints;
   // Where the surface is there at all (glTF alphaMode; RT_ALPHA_*): alpha is
   // alphaFactor times the alpha channel of texture alphaTexture (-1: none)
   // at the point. Read by the walk (shaders/alpha.glsl), not by shading.
@@ -251,6 +253,8 @@ struct GpuMaterial {
   float alphaCutoff;  // RT_ALPHA_MASK: there where alpha >= alphaCutoff
 };
 RT_ASSERT_STD430_SIZE(GpuMaterial, 112);
+#define RT_TINT_MIRROR 1u
+#define RT_TINT_TRANSMISSION 2u
 // Read as RGBA32UI texels (bindings.glsl loadMaterial): rows diffuse/kd,
 // specular/ks, emission/exponent, reflectivity/transmission/ior/texture,
 // profile/normal map/emission texture, metallic-roughness texture/factors/

@@ -162,15 +162,17 @@ PendingRay childRay(SurfacePoint surface, vec3 direction, vec3 weight, PendingRa
 // Mirror and refraction continuations of a hit. `surface` faces the
 // incoming ray; `entering` says whether that side is the outside (winding
 // normal) of the surface. `fresnelChoice` picks reflection or refraction
-// where the path tracer follows one of them.
+// where the path tracer follows one of them. `baseColor`: the diffuse colour
+// at the point, which tints transmitted light where the material says so.
 void addSpecularContinuations(inout Continuations next, PendingRay parent, SurfacePoint surface,
-                              bool entering, GpuMaterial material, float fresnelChoice) {
+                              bool entering, GpuMaterial material, vec3 baseColor,
+                              float fresnelChoice) {
   vec3 d = parent.ray.direction;
   vec3 facing = surface.shadingNormal;
 #ifdef RT_FEATURE_REFLECTION
   vec3 mirrorWeight = parent.weight * material.reflectivity;
 #ifdef RT_FEATURE_TINTED_MIRRORS
-  if (material.tintedMirror != 0u) mirrorWeight *= material.specularColor;
+  if ((material.tints & RT_TINT_MIRROR) != 0u) mirrorWeight *= material.specularColor;
 #endif
 #else
   vec3 mirrorWeight = vec3(0.0);
@@ -192,8 +194,12 @@ void addSpecularContinuations(inout Continuations next, PendingRay parent, Surfa
     mirrorWeight += transmitted * reflectance;
     if (refracts) {
       vec3 refractDir = normalize(eta * d + (eta * cosIncident - cosTransmitted) * facing);
-      addContinuation(next, childRay(surface, refractDir, transmitted * (1.0 - reflectance),
-                                     parent, false));
+      vec3 refracted = transmitted * (1.0 - reflectance);
+#ifdef RT_FEATURE_TINTED_TRANSMISSION
+      // The light that passes takes the colour; the Fresnel reflection does not.
+      if ((material.tints & RT_TINT_TRANSMISSION) != 0u) refracted *= baseColor;
+#endif
+      addContinuation(next, childRay(surface, refractDir, refracted, parent, false));
     }
   }
 #endif
@@ -301,7 +307,7 @@ bool shadeHit(inout RayStack stack, inout vec3 radiance, inout PendingRay job, S
   next.count = 0u;
 #if defined(RT_FEATURE_REFLECTION) || defined(RT_FEATURE_REFRACTION)
   if (job.depth - job.diffuseDepth < limits.specular) {
-    addSpecularContinuations(next, job, surface, entering, material, choice.y);
+    addSpecularContinuations(next, job, surface, entering, material, baseColor, choice.y);
   }
 #endif
 #ifdef RT_FEATURE_DIFFUSE_BOUNCES

@@ -28,23 +28,37 @@ const int RT_MAX_SHADOW_CROSSINGS = 8;
 const int RT_MAX_SHADOW_CROSSINGS = 1;
 #endif
 
+// The share of a light that a shadow ray lets through: per colour channel
+// where glass tints it (RT_TINT_TRANSMISSION), else one number.
+#ifdef RT_FEATURE_TINTED_TRANSMISSION
+#define Transmittance vec3
+#else
+#define Transmittance float
+#endif
+
 // A shadow ray on its way to a light: with `throughGlass`, transmissive
 // surfaces let the light through, losing the Fresnel reflectance and
-// (1 - transmission) at each crossing (shadow rays go straight: refraction
-// does not bend them, and caustics need sampled bounces); without it (where
-// sampled bounces carry that light) an any-hit query decides.
+// (1 - transmission) at each crossing, and taking the colour of glass that
+// tints (its base colour factor: the texture is not read here) (shadow rays
+// go straight: refraction does not bend them, and caustics need sampled
+// bounces); without it (where sampled bounces carry that light) an any-hit
+// query decides.
 struct ShadowPath {
-  Ray ray;              // from the last crossing on
-  float remaining;      // distance from ray.origin to the light
-  float transmittance;  // of the crossings so far
-  bool open;            // not settled yet
+  Ray ray;                      // from the last crossing on
+  float remaining;              // distance from ray.origin to the light
+  Transmittance transmittance;  // of the crossings so far
+  bool open;                    // not settled yet
 };
 
-ShadowPath shadowPath(Ray ray, float tMax) { return ShadowPath(ray, tMax, 1.0, true); }
+ShadowPath shadowPath(Ray ray, float tMax) {
+  return ShadowPath(ray, tMax, Transmittance(1.0), true);
+}
 
 // The path's light once the walks are done: a path still open after the
 // most crossings counts as blocked.
-float pathVisibility(ShadowPath path) { return path.open ? 0.0 : path.transmittance; }
+Transmittance pathVisibility(ShadowPath path) {
+  return path.open ? Transmittance(0.0) : path.transmittance;
+}
 
 // Moves an open path past what its last walk found: nothing (the light
 // arrives), an opaque surface (blocked), or a crossing through glass.
@@ -62,7 +76,12 @@ void crossSurface(inout ShadowPath path, bool found, SurfaceHit hit, bool throug
     float cosTransmitted;
     float reflectance = dielectricReflectance(abs(cosine), eta, cosTransmitted);
     path.transmittance *= blocker.transmission * (1.0 - reflectance);
+#ifdef RT_FEATURE_TINTED_TRANSMISSION
+    if ((blocker.tints & RT_TINT_TRANSMISSION) != 0u) path.transmittance *= blocker.diffuseColor;
+    if (maxComponent(path.transmittance) >= RT_MIN_BRANCH_WEIGHT) {
+#else
     if (path.transmittance >= RT_MIN_BRANCH_WEIGHT) {
+#endif
       vec4 point = hitPoint(path.ray, hit);
       Ray next = spawnRay(point.xyz, point.w, hit.normal, path.ray.direction);
       path.remaining -= dot(next.origin - path.ray.origin, path.ray.direction);
@@ -71,7 +90,7 @@ void crossSurface(inout ShadowPath path, bool found, SurfaceHit hit, bool throug
     }
   }
 #endif
-  path.transmittance = 0.0;
+  path.transmittance = Transmittance(0.0);
   path.open = false;
 }
 
@@ -88,7 +107,8 @@ bool shadowWalkIsAnyHit(bool throughGlass) {
 // ray (length tMax; a negative tMax: not traced, 0), the two rays walked
 // together (traversePair). One walk call site for all of it: the walk is
 // most of a kernel's code, and every call site is a copy.
-vec2 lightVisibilityPair(Ray rayA, float tMaxA, Ray rayB, float tMaxB, bool throughGlass) {
+void lightVisibilityPair(Ray rayA, float tMaxA, Ray rayB, float tMaxB, bool throughGlass,
+                         out Transmittance visibilityA, out Transmittance visibilityB) {
   ShadowPath a = shadowPath(rayA, tMaxA);
   ShadowPath b = shadowPath(rayB, tMaxB);
   a.open = tMaxA >= 0.0;
@@ -102,13 +122,14 @@ vec2 lightVisibilityPair(Ray rayA, float tMaxA, Ray rayB, float tMaxB, bool thro
     crossSurface(a, hitA.t >= 0.0, hitA, throughGlass);
     crossSurface(b, hitB.t >= 0.0, hitB, throughGlass);
   }
-  return vec2(pathVisibility(a), pathVisibility(b));
+  visibilityA = pathVisibility(a);
+  visibilityB = pathVisibility(b);
 }
 #else
 // Share of a light that reaches the end of `ray` at distance tMax. One walk
 // call site for all of it: the walk is most of a kernel's code, and every
 // call site is a copy.
-float lightVisibility(Ray ray, float tMax, bool throughGlass) {
+Transmittance lightVisibility(Ray ray, float tMax, bool throughGlass) {
   ShadowPath path = shadowPath(ray, tMax);
   bool anyHit = shadowWalkIsAnyHit(throughGlass);
   for (int crossing = 0; crossing < RT_MAX_SHADOW_CROSSINGS && path.open; ++crossing) {
@@ -346,7 +367,7 @@ bool shadowRayTraced(LightSample lit, float negligible) {
 
 // What a sample adds, given the share of its light that its shadow ray
 // found (read only where the ray was traced).
-vec3 sampleContribution(LightSample lit, float negligible, float visibility) {
+vec3 sampleContribution(LightSample lit, float negligible, Transmittance visibility) {
   float worth = maxComponent(lit.reflected);
   if (!(worth > 0.0)) return vec3(0.0);
   if (worth < negligible) return 0.5 * lit.reflected;
@@ -440,18 +461,22 @@ vec3 hitLocalLight(ShadingContext context, uvec2 pixelSample, uint vertexDepth, 
     second.reflected = vec3(0.0);
     bool hasSecond = k + 1u < samples;
     if (hasSecond) second = nextLightSample(cursor, context, pixelSample, vertexDepth);
-    vec2 visibility = lightVisibilityPair(
-        first.shadowRay, shadowRayTraced(first, negligible) ? first.tMax : -1.0,
-        second.shadowRay, shadowRayTraced(second, negligible) ? second.tMax : -1.0, throughGlass);
-    addLightSample(sums, context, k, sampleContribution(first, negligible, visibility.x));
+    Transmittance firstVisibility;
+    Transmittance secondVisibility;
+    lightVisibilityPair(first.shadowRay, shadowRayTraced(first, negligible) ? first.tMax : -1.0,
+                        second.shadowRay,
+                        shadowRayTraced(second, negligible) ? second.tMax : -1.0, throughGlass,
+                        firstVisibility, secondVisibility);
+    addLightSample(sums, context, k, sampleContribution(first, negligible, firstVisibility));
     if (hasSecond) {
-      addLightSample(sums, context, k + 1u, sampleContribution(second, negligible, visibility.y));
+      addLightSample(sums, context, k + 1u,
+                     sampleContribution(second, negligible, secondVisibility));
     }
   }
 #else
   for (uint k = 0u; k < samples; ++k) {
     LightSample lit = nextLightSample(cursor, context, pixelSample, vertexDepth);
-    float visibility = 0.0;
+    Transmittance visibility = Transmittance(0.0);
     if (shadowRayTraced(lit, negligible)) {
       visibility = lightVisibility(lit.shadowRay, lit.tMax, throughGlass);
     }

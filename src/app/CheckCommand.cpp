@@ -97,7 +97,10 @@ std::string materialText(const rt::Scene& scene, const rt::Material& m, bool ver
       fmt::format("kd {:g} diffuse {}, ks {:g} specular {} exponent {:g}", m.kd,
                   vec(m.diffuseColor), m.ks, vec(m.specularColor), m.specularExponent);
   if (m.reflectivity > 0.0f) text += fmt::format(", mirror {:g}", m.reflectivity);
-  if (m.transmission > 0.0f) text += fmt::format(", glass {:g} ior {:g}", m.transmission, m.ior);
+  if (m.transmission > 0.0f) {
+    text += fmt::format(", glass {:g} ior {:g}", m.transmission, m.ior);
+    if (m.tintedTransmission) text += " tinted by the diffuse colour";
+  }
   if (!m.texture.empty()) text += ", texture " + m.texture.string();
   if (m.normalTexture >= 0) {
     text += fmt::format(", normal map {}", scene.textures.at(size_t(m.normalTexture)).source);

@@ -89,6 +89,8 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
     // (a tint of mix(white, base, metallic), so only metals need it).
     features.tintedMirrors |= shaded && material.tintedMirror && material.metallic > 0.0f;
     features.refraction |= shaded && material.transmission > 0.0f;
+    features.tintedTransmission |=
+        shaded && material.transmission > 0.0f && material.tintedTransmission;
   }
   features.vertices = !flat.vertices.empty();
   features.vertexColors = shaded && usesVertexColors(scene);
@@ -168,6 +170,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(glow, "RT_FEATURE_GLOW");
   flag(metalRoughTextures, "RT_FEATURE_METAL_ROUGH_TEXTURES");
   flag(tintedMirrors, "RT_FEATURE_TINTED_MIRRORS");
+  flag(tintedTransmission, "RT_FEATURE_TINTED_TRANSMISSION");
   flag(alphaCutouts, "RT_FEATURE_ALPHA_CUTOUTS");
   flag(textureSamplers, "RT_FEATURE_TEXTURE_SAMPLERS");
   flag(areaLights, "RT_FEATURE_AREA_LIGHTS");

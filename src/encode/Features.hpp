@@ -43,8 +43,11 @@ struct ShaderFeatures {
   bool glow = false;                // some shaded material glows (RT_EMISSION_GLOW, _UNLIT)
   bool metalRoughTextures = false;  // some shaded material has a metallic-roughness texture
   // Some shaded glTF metal: its highlights and mirror reflections take the
-  // base colour at the point (GpuMaterial::tintedMirror).
+  // base colour at the point (GpuMaterial::tints).
   bool tintedMirrors = false;
+  // Some shaded glTF glass: light through it, shadow rays' included, takes
+  // its base colour (GpuMaterial::tints).
+  bool tintedTransmission = false;
   // Some mesh instance's material cuts holes (RT_PRIM_ALPHA_CUTOUT): the
   // walks ask about each hit on it (shaders/alpha.glsl).
   bool alphaCutouts = false;

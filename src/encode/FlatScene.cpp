@@ -426,7 +426,8 @@ gpu::GpuMaterial toGpu(const Material& m) {
   out.metalRoughTexture = m.metalRoughTexture;
   out.metallic = m.metallic;
   out.roughness = m.roughness;
-  out.tintedMirror = m.tintedMirror ? 1u : 0u;
+  out.tints =
+      (m.tintedMirror ? RT_TINT_MIRROR : 0u) | (m.tintedTransmission ? RT_TINT_TRANSMISSION : 0u);
   out.alphaTexture = m.alphaTexture;
   out.alphaMode = alphaModeOf(m);
   out.alphaFactor = m.alphaFactor;

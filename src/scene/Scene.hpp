@@ -66,6 +66,10 @@ struct Material {
   // Mirror reflections tinted by specularColor (glTF materials, whose metals
   // reflect their base colour); the coursework files' mirrors are untinted.
   bool tintedMirror = false;
+  // Light through the surface (transmission) tinted by the diffuse colour at
+  // the point, texture and vertex colours included (glTF, whose transmitted
+  // light takes the base colour); the coursework files' glass is untinted.
+  bool tintedTransmission = false;
   // Where the surface is there at all (glTF alphaMode): alpha is
   // `alphaFactor` times the alpha channel of `alphaTexture` (index into
   // Scene::textures, -1: none) at the point. Mask: there where alpha >=

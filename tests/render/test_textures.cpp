@@ -333,6 +333,50 @@ TEST_SUITE("render textures") {
     checkColor(renderedAt(render(scene), 0.25f, 0.5f), {1, 1, 1});
   }
 
+  TEST_CASE("glTF glass tints the light through it, shadow rays' too, but not its reflection") {
+    // A pane of index 1 (no Fresnel reflection, no bending) over the left
+    // half of a white lit square, the light behind the camera: seen through
+    // the pane, the square takes the pane's colour twice, once on the camera
+    // ray's way and once on the shadow ray's. The right half is as it is.
+    Scene scene = flatLitScene();
+    Material& glass = scene.materials[0];
+    glass.diffuseTexture = -1;
+    glass.kd = 0.0f;
+    glass.ks = 0.0f;
+    glass.transmission = 1.0f;
+    glass.ior = 1.0f;
+    glass.diffuseColor = {1.0f, 0.5f, 0.25f};
+    glass.tintedTransmission = true;
+    Material white;
+    white.diffuseColor = glm::vec3(1.0f);
+    scene.materials.push_back(white);
+    Shape pane;
+    pane.geometry = Quad{{-1.1, 1.1, 0}, {0, 1.1, 0}, {0, -1.1, 0}, {-1.1, -1.1, 0}};
+    scene.shapes.push_back(pane);
+    Shape square;
+    square.geometry = Quad{{-2, 2, -1}, {2, 2, -1}, {2, -2, -1}, {-2, -2, -1}};
+    square.material = 1;
+    scene.shapes.push_back(square);
+    ImageF image = render(scene);
+    checkColor(renderedAt(image, 0.25f, 0.5f), {1.0f, 0.25f, 0.0625f});
+    checkColor(renderedAt(image, 0.75f, 0.5f), {1, 1, 1});
+    // Coursework glass lets every colour through.
+    scene.materials[0].tintedTransmission = false;
+    checkColor(renderedAt(render(scene), 0.25f, 0.5f), {1, 1, 1});
+    // Of index 1.5 the pane reflects a share of the white background behind
+    // the camera untinted, which the camera ray sees beside the tinted light.
+    scene.materials[0].tintedTransmission = true;
+    scene.materials[0].ior = 1.5f;
+    scene.backgroundColor = glm::vec3(1.0f);
+    glm::vec3 seen = renderedAt(render(scene), 0.25f, 0.5f);
+    const float reflected = 0.04f;  // ((1.5 - 1) / (1.5 + 1))^2 at normal incidence
+    CAPTURE(seen.x);
+    CAPTURE(seen.z);
+    // Blue: reflection 0.04 plus 0.96^2 (two crossings of the light) times
+    // 0.0625 (the tint twice) times the lit square.
+    CHECK(seen.z == doctest::Approx(reflected + 0.96f * 0.96f * 0.0625f).epsilon(0.02));
+  }
+
   TEST_CASE("alpha cutouts: MASK holes let camera and shadow rays through; BLEND a share") {
     Scene scene = cutoutScene();
     ImageF image = render(scene);

@@ -745,6 +745,7 @@ TEST_SUITE("scene gltf") {
     CHECK(glass.transmission == 1.0f);
     CHECK(glass.ior == doctest::Approx(1.33));
     CHECK(glass.kd == 0.0f);
+    CHECK(glass.tintedTransmission);  // glTF's transmitted light takes the base colour
     const rt::Material& defaults = scene.materials[scene.shapes[4].material];  // metal, rough
     CHECK(defaults.kd == 0.0f);
     CHECK(defaults.specularExponent == 1.0f);

@@ -111,6 +111,7 @@ void convertAlpha(Context& context, const tinygltf::Material& gltf, const std::s
 //   transmission     = KHR_materials_transmission.transmissionFactor (default 0)
 //   ior              = KHR_materials_ior.ior (default 1.5; below 1 is taken as 1.5)
 //   tintedMirror     : mirror reflections times specularColor, the metal's base colour
+//   tintedTransmission: transmitted light times the base colour
 Material convertMaterial(Context& context, const tinygltf::Material& gltf, const std::string& where,
                          glm::vec2 textureMetallicRoughness) {
   const tinygltf::PbrMetallicRoughness& pbr = gltf.pbrMetallicRoughness;
@@ -138,6 +139,7 @@ Material convertMaterial(Context& context, const tinygltf::Material& gltf, const
   out.ks = gpu::metalRoughKs(m, out.specularExponent);
   out.reflectivity = gpu::metalRoughReflectivity(m, r);
   out.tintedMirror = true;
+  out.tintedTransmission = true;
   out.metallic = m;  // the kernels' specular colour mixes in the textured base colour
   out.roughness = r;
   out.transmission = t;
@@ -172,7 +174,7 @@ void makeUnlit(Material& out) {
   out.glowTimesVertexColors = true;
   out.kd = out.ks = out.reflectivity = out.transmission = 0.0f;
   out.metallic = 0.0f;
-  out.tintedMirror = false;
+  out.tintedMirror = out.tintedTransmission = false;
 }
 
 // A sampler's wrapS or wrapT; an unknown mode repeats, with a warning.
