@@ -135,7 +135,7 @@ GpuMaterial loadMaterial(uint index) {
   uvec4 optics = materialRow(index, 3u);
   uvec4 profile = materialRow(index, 4u);
 #if defined(RT_FEATURE_METAL_ROUGH_TEXTURES) || defined(RT_FEATURE_TINTED_MIRRORS) || \
-    defined(RT_FEATURE_TINTED_TRANSMISSION)
+    defined(RT_FEATURE_TINTED_TRANSMISSION) || defined(RT_FEATURE_THIN_WALLS)
   uvec4 metalRough = materialRow(index, 5u);
 #else
   // Not read where no material needs it: one fetch less a hit.

@@ -238,12 +238,14 @@ struct GpuMaterial {
   int metalRoughTexture;
   float metallic;
   float roughness;
-  // RT_TINT_* flags. RT_TINT_MIRROR: mirror reflections are tinted by
-  // specularColor (glTF: a metal's Fresnel reflectance at normal incidence is
-  // its base colour). RT_TINT_TRANSMISSION: light through the surface is
-  // tinted by the base colour at the point (glTF's transmission). Neither in
-  // the coursework files, whose colours tint the local light only.
-  uint tints;
+  // RT_MATERIAL_* flags, none in the coursework files. TINTED_MIRROR: mirror
+  // reflections are tinted by specularColor (glTF: a metal's Fresnel
+  // reflectance at normal incidence is its base colour). TINTED_TRANSMISSION:
+  // light through the surface takes the base colour at the point (glTF's
+  // transmission). THIN_WALLED: light passes through the surface without
+  // bending, a thin shell rather than the face of a solid (glTF's
+  // transmission without KHR_materials_volume's thickness).
+  uint flags;
   // Where the surface is there at all (glTF alphaMode; RT_ALPHA_*): alpha is
   // alphaFactor times the alpha channel of texture alphaTexture (-1: none)
   // at the point. Read by the walk (shaders/alpha.glsl), not by shading.
@@ -253,8 +255,9 @@ struct GpuMaterial {
   float alphaCutoff;  // RT_ALPHA_MASK: there where alpha >= alphaCutoff
 };
 RT_ASSERT_STD430_SIZE(GpuMaterial, 112);
-#define RT_TINT_MIRROR 1u
-#define RT_TINT_TRANSMISSION 2u
+#define RT_MATERIAL_TINTED_MIRROR 1u
+#define RT_MATERIAL_TINTED_TRANSMISSION 2u
+#define RT_MATERIAL_THIN_WALLED 4u
 // Read as RGBA32UI texels (bindings.glsl loadMaterial): rows diffuse/kd,
 // specular/ks, emission/exponent, reflectivity/transmission/ior/texture,
 // profile/normal map/emission texture, metallic-roughness texture/factors/

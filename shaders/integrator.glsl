@@ -172,7 +172,7 @@ void addSpecularContinuations(inout Continuations next, PendingRay parent, Surfa
 #ifdef RT_FEATURE_REFLECTION
   vec3 mirrorWeight = parent.weight * material.reflectivity;
 #ifdef RT_FEATURE_TINTED_MIRRORS
-  if ((material.tints & RT_TINT_MIRROR) != 0u) mirrorWeight *= material.specularColor;
+  if ((material.flags & RT_MATERIAL_TINTED_MIRROR) != 0u) mirrorWeight *= material.specularColor;
 #endif
 #else
   vec3 mirrorWeight = vec3(0.0);
@@ -180,6 +180,12 @@ void addSpecularContinuations(inout Continuations next, PendingRay parent, Surfa
   vec3 mirrorDir = reflect(d, facing);
 #ifdef RT_FEATURE_REFRACTION
   if (material.transmission > 0.0) {
+#ifdef RT_FEATURE_THIN_WALLS
+    // A thin wall is entered from either side as from the outside, and its
+    // light leaves it as it came.
+    bool thinWall = (material.flags & RT_MATERIAL_THIN_WALLED) != 0u;
+    entering = entering || thinWall;
+#endif
     float eta = entering ? 1.0 / material.ior : material.ior;
     float cosIncident = dot(-d, facing);
     float cosTransmitted;
@@ -194,10 +200,13 @@ void addSpecularContinuations(inout Continuations next, PendingRay parent, Surfa
     mirrorWeight += transmitted * reflectance;
     if (refracts) {
       vec3 refractDir = normalize(eta * d + (eta * cosIncident - cosTransmitted) * facing);
+#ifdef RT_FEATURE_THIN_WALLS
+      if (thinWall) refractDir = d;
+#endif
       vec3 refracted = transmitted * (1.0 - reflectance);
 #ifdef RT_FEATURE_TINTED_TRANSMISSION
       // The light that passes takes the colour; the Fresnel reflection does not.
-      if ((material.tints & RT_TINT_TRANSMISSION) != 0u) refracted *= baseColor;
+      if ((material.flags & RT_MATERIAL_TINTED_TRANSMISSION) != 0u) refracted *= baseColor;
 #endif
       addContinuation(next, childRay(surface, refractDir, refracted, parent, false));
     }

@@ -11,7 +11,7 @@
 //                      energy-normalised Blinn-Phong lobe with the Fresnel reflectance at
 //                      normal incidence, capped at 1 (images are clamped anyway)
 //   reflectivity     = m (1 - r)^2                mirror reflection of smooth metals,
-//                      tinted by specularColor (GpuMaterial::tints)
+//                      tinted by specularColor (GpuMaterial::flags)
 #ifndef RT_METAL_ROUGH_H
 #define RT_METAL_ROUGH_H
 

@@ -29,7 +29,7 @@ const int RT_MAX_SHADOW_CROSSINGS = 1;
 #endif
 
 // The share of a light that a shadow ray lets through: per colour channel
-// where glass tints it (RT_TINT_TRANSMISSION), else one number.
+// where glass tints it (RT_MATERIAL_TINTED_TRANSMISSION), else one number.
 #ifdef RT_FEATURE_TINTED_TRANSMISSION
 #define Transmittance vec3
 #else
@@ -72,12 +72,17 @@ void crossSurface(inout ShadowPath path, bool found, SurfaceHit hit, bool throug
   if (throughGlass) {
     GpuMaterial blocker = loadMaterial(hitMaterial(hit));
     float cosine = dot(path.ray.direction, hit.normal);
-    float eta = cosine < 0.0 ? 1.0 / blocker.ior : blocker.ior;
+    bool entering = cosine < 0.0;
+#ifdef RT_FEATURE_THIN_WALLS
+    // A thin wall is crossed from either side as from the outside.
+    entering = entering || (blocker.flags & RT_MATERIAL_THIN_WALLED) != 0u;
+#endif
+    float eta = entering ? 1.0 / blocker.ior : blocker.ior;
     float cosTransmitted;
     float reflectance = dielectricReflectance(abs(cosine), eta, cosTransmitted);
     path.transmittance *= blocker.transmission * (1.0 - reflectance);
 #ifdef RT_FEATURE_TINTED_TRANSMISSION
-    if ((blocker.tints & RT_TINT_TRANSMISSION) != 0u) path.transmittance *= blocker.diffuseColor;
+    if ((blocker.flags & RT_MATERIAL_TINTED_TRANSMISSION) != 0u) path.transmittance *= blocker.diffuseColor;
     if (maxComponent(path.transmittance) >= RT_MIN_BRANCH_WEIGHT) {
 #else
     if (path.transmittance >= RT_MIN_BRANCH_WEIGHT) {

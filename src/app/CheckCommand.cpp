@@ -100,6 +100,7 @@ std::string materialText(const rt::Scene& scene, const rt::Material& m, bool ver
   if (m.transmission > 0.0f) {
     text += fmt::format(", glass {:g} ior {:g}", m.transmission, m.ior);
     if (m.tintedTransmission) text += " tinted by the diffuse colour";
+    if (m.thinWalled) text += ", a thin wall";
   }
   if (!m.texture.empty()) text += ", texture " + m.texture.string();
   if (m.normalTexture >= 0) {

@@ -91,6 +91,7 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
     features.refraction |= shaded && material.transmission > 0.0f;
     features.tintedTransmission |=
         shaded && material.transmission > 0.0f && material.tintedTransmission;
+    features.thinWalls |= shaded && material.transmission > 0.0f && material.thinWalled;
   }
   features.vertices = !flat.vertices.empty();
   features.vertexColors = shaded && usesVertexColors(scene);
@@ -171,6 +172,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(metalRoughTextures, "RT_FEATURE_METAL_ROUGH_TEXTURES");
   flag(tintedMirrors, "RT_FEATURE_TINTED_MIRRORS");
   flag(tintedTransmission, "RT_FEATURE_TINTED_TRANSMISSION");
+  flag(thinWalls, "RT_FEATURE_THIN_WALLS");
   flag(alphaCutouts, "RT_FEATURE_ALPHA_CUTOUTS");
   flag(textureSamplers, "RT_FEATURE_TEXTURE_SAMPLERS");
   flag(areaLights, "RT_FEATURE_AREA_LIGHTS");

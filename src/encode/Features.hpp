@@ -43,11 +43,13 @@ struct ShaderFeatures {
   bool glow = false;                // some shaded material glows (RT_EMISSION_GLOW, _UNLIT)
   bool metalRoughTextures = false;  // some shaded material has a metallic-roughness texture
   // Some shaded glTF metal: its highlights and mirror reflections take the
-  // base colour at the point (GpuMaterial::tints).
+  // base colour at the point (GpuMaterial::flags).
   bool tintedMirrors = false;
   // Some shaded glTF glass: light through it, shadow rays' included, takes
-  // its base colour (GpuMaterial::tints).
+  // its base colour (GpuMaterial::flags).
   bool tintedTransmission = false;
+  // Some shaded glass is a thin wall (GpuMaterial::flags): its light does not bend.
+  bool thinWalls = false;
   // Some mesh instance's material cuts holes (RT_PRIM_ALPHA_CUTOUT): the
   // walks ask about each hit on it (shaders/alpha.glsl).
   bool alphaCutouts = false;

@@ -426,8 +426,9 @@ gpu::GpuMaterial toGpu(const Material& m) {
   out.metalRoughTexture = m.metalRoughTexture;
   out.metallic = m.metallic;
   out.roughness = m.roughness;
-  out.tints =
-      (m.tintedMirror ? RT_TINT_MIRROR : 0u) | (m.tintedTransmission ? RT_TINT_TRANSMISSION : 0u);
+  out.flags = (m.tintedMirror ? RT_MATERIAL_TINTED_MIRROR : 0u) |
+              (m.tintedTransmission ? RT_MATERIAL_TINTED_TRANSMISSION : 0u) |
+              (m.thinWalled ? RT_MATERIAL_THIN_WALLED : 0u);
   out.alphaTexture = m.alphaTexture;
   out.alphaMode = alphaModeOf(m);
   out.alphaFactor = m.alphaFactor;

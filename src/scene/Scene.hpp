@@ -70,6 +70,10 @@ struct Material {
   // the point, texture and vertex colours included (glTF, whose transmitted
   // light takes the base colour); the coursework files' glass is untinted.
   bool tintedTransmission = false;
+  // Light passes through the surface without bending: a thin shell, not the
+  // face of a solid (glTF transmission without KHR_materials_volume's
+  // thickness); the Fresnel reflection stays that of `ior`.
+  bool thinWalled = false;
   // Where the surface is there at all (glTF alphaMode): alpha is
   // `alphaFactor` times the alpha channel of `alphaTexture` (index into
   // Scene::textures, -1: none) at the point. Mask: there where alpha >=

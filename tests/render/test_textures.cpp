@@ -377,6 +377,44 @@ TEST_SUITE("render textures") {
     CHECK(seen.z == doctest::Approx(reflected + 0.96f * 0.96f * 0.0625f).epsilon(0.02));
   }
 
+  TEST_CASE("a thin wall of glass lets light through unbent, a solid bends it") {
+    // A glass ball (index 1.5) in front of the quadrant texture, seen off its
+    // centre, where a solid ball's refraction bends the view far aside: as a
+    // thin wall (glTF transmission without a volume) the ball shows the red
+    // quadrant behind it, dimmed by the Fresnel reflections of its four
+    // crossings (two of the camera ray, two of the shadow ray).
+    Scene scene = flatLitScene();
+    scene.settings.maxBounces = 4;
+    Material glass;
+    glass.kd = 0.0f;
+    glass.ks = 0.0f;
+    glass.transmission = 1.0f;
+    glass.ior = 1.5f;
+    glass.thinWalled = true;
+    scene.materials.push_back(glass);
+    Shape back;  // at z = -5, its red texel's centre behind the pixel at (0.2, 0.2)
+    back.geometry = Quad{{-1.2, 1.2, -5}, {1.2, 1.2, -5}, {1.2, -1.2, -5}, {-1.2, -1.2, -5}};
+    scene.shapes.push_back(back);
+    Shape ball;
+    ball.geometry = Sphere{{0, 0, 0}, 0.95f};
+    ball.material = 1;
+    scene.shapes.push_back(ball);
+    glm::vec3 thin = renderedAt(render(scene), 0.2f, 0.2f);
+    CAPTURE(thin.x);
+    CAPTURE(thin.y);
+    CAPTURE(thin.z);
+    CHECK(thin.x > 0.5f);
+    CHECK(thin.x < 0.95f);
+    CHECK(thin.y < 0.02f);
+    CHECK(thin.z < 0.02f);
+    scene.materials[1].thinWalled = false;
+    glm::vec3 solid = renderedAt(render(scene), 0.2f, 0.2f);
+    CAPTURE(solid.x);
+    CAPTURE(solid.y);
+    CAPTURE(solid.z);
+    CHECK(glm::distance(solid, thin) > 0.2f);
+  }
+
   TEST_CASE("alpha cutouts: MASK holes let camera and shadow rays through; BLEND a share") {
     Scene scene = cutoutScene();
     ImageF image = render(scene);

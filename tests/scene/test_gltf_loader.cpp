@@ -701,6 +701,31 @@ TEST_SUITE("scene gltf") {
     CHECK(hasWarning(scene, "directional lights (placed as distant point lights)"));
   }
 
+  TEST_CASE("KHR_materials_volume: a thickness makes glass solid; attenuation is ignored") {
+    GltfBuilder b = triangleModel();
+    b.doc["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_volume"};
+    b.doc["extensionsRequired"] = {"KHR_materials_volume"};
+    Json transmission = {{"KHR_materials_transmission", {{"transmissionFactor", 1}}}};
+    Json solid = transmission;
+    solid["KHR_materials_volume"] = {
+        {"thicknessFactor", 0.5}, {"attenuationColor", {1, 0.5, 0.5}}, {"attenuationDistance", 2}};
+    Json zero = transmission;
+    zero["KHR_materials_volume"] = {{"thicknessFactor", 0}};
+    b.doc["materials"] = {
+        {{"extensions", transmission}}, {{"extensions", solid}}, {{"extensions", zero}}};
+    for (int m = 0; m < 3; ++m) {
+      Json primitive = b.doc["meshes"][0]["primitives"][0];
+      primitive["material"] = m;
+      b.node({{"mesh", b.mesh(primitive)}});
+    }
+    rt::Scene scene = loadDoc("volume.gltf", b.embedded());
+    // shapes[0] is the model's own triangle, without a material.
+    CHECK(scene.materials[scene.shapes[1].material].thinWalled);
+    CHECK_FALSE(scene.materials[scene.shapes[2].material].thinWalled);
+    CHECK(scene.materials[scene.shapes[3].material].thinWalled);  // a thickness of 0: thin
+    CHECK(hasWarning(scene, "volume attenuation (KHR_materials_volume) ignored"));
+  }
+
   TEST_CASE("metallic-roughness, transmission and ior onto Blinn-Phong") {
     GltfBuilder b = triangleModel();
     b.doc["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_ior"};
@@ -746,6 +771,7 @@ TEST_SUITE("scene gltf") {
     CHECK(glass.ior == doctest::Approx(1.33));
     CHECK(glass.kd == 0.0f);
     CHECK(glass.tintedTransmission);  // glTF's transmitted light takes the base colour
+    CHECK(glass.thinWalled);          // no KHR_materials_volume: glTF's thin-walled default
     const rt::Material& defaults = scene.materials[scene.shapes[4].material];  // metal, rough
     CHECK(defaults.kd == 0.0f);
     CHECK(defaults.specularExponent == 1.0f);

@@ -35,14 +35,10 @@ constexpr int kMaxJsonDepth = 100;
 constexpr uint64_t kMaxParsedBytes = uint64_t(2) << 30;
 
 constexpr std::array kSupportedExtensions = {
-    "KHR_materials_transmission",
-    "KHR_materials_ior",
-    "KHR_lights_punctual",
-    "KHR_texture_transform",
-    "KHR_materials_emissive_strength",
-    "KHR_materials_unlit",
-    "KHR_mesh_quantization",
-    "KHR_draco_mesh_compression",
+    "KHR_materials_transmission", "KHR_materials_ior",
+    "KHR_materials_volume",  // its thickness makes glass solid; attenuation is ignored
+    "KHR_lights_punctual",        "KHR_texture_transform", "KHR_materials_emissive_strength",
+    "KHR_materials_unlit",        "KHR_mesh_quantization", "KHR_draco_mesh_compression",
     "EXT_mesh_gpu_instancing",
 };
 

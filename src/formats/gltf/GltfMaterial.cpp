@@ -75,6 +75,10 @@ void noteIgnoredFeatures(Context& context, const tinygltf::Material& gltf,
   if (hasExtension(gltf.extensions, "KHR_materials_transmission", "transmissionTexture")) {
     context.ignored("transmission textures", where);
   }
+  if (hasExtension(gltf.extensions, "KHR_materials_volume", "attenuationDistance") ||
+      hasExtension(gltf.extensions, "KHR_materials_volume", "attenuationColor")) {
+    context.ignored("volume attenuation (KHR_materials_volume)", where);
+  }
 }
 
 // alphaMode, alphaCutoff and the base colour factor's alpha (the base colour
@@ -112,6 +116,8 @@ void convertAlpha(Context& context, const tinygltf::Material& gltf, const std::s
 //   ior              = KHR_materials_ior.ior (default 1.5; below 1 is taken as 1.5)
 //   tintedMirror     : mirror reflections times specularColor, the metal's base colour
 //   tintedTransmission: transmitted light times the base colour
+//   thinWalled       : without KHR_materials_volume.thicknessFactor > 0 (glTF's thin-walled
+//                      default): transmitted light goes on unbent
 Material convertMaterial(Context& context, const tinygltf::Material& gltf, const std::string& where,
                          glm::vec2 textureMetallicRoughness) {
   const tinygltf::PbrMetallicRoughness& pbr = gltf.pbrMetallicRoughness;
@@ -126,6 +132,8 @@ Material convertMaterial(Context& context, const tinygltf::Material& gltf, const
                                        "transmissionFactor", 0.0, where),
                        where + ".extensions.KHR_materials_transmission.transmissionFactor");
   double ior = extensionNumber(context, gltf.extensions, "KHR_materials_ior", "ior", 1.5, where);
+  double thickness = extensionNumber(context, gltf.extensions, "KHR_materials_volume",
+                                     "thicknessFactor", 0.0, where);
   if (ior < 1.0) {
     context.warn(where + ".extensions.KHR_materials_ior.ior", "below 1; using 1.5");
     ior = 1.5;
@@ -140,6 +148,7 @@ Material convertMaterial(Context& context, const tinygltf::Material& gltf, const
   out.reflectivity = gpu::metalRoughReflectivity(m, r);
   out.tintedMirror = true;
   out.tintedTransmission = true;
+  out.thinWalled = !(thickness > 0.0);
   out.metallic = m;  // the kernels' specular colour mixes in the textured base colour
   out.roughness = r;
   out.transmission = t;
@@ -174,7 +183,7 @@ void makeUnlit(Material& out) {
   out.glowTimesVertexColors = true;
   out.kd = out.ks = out.reflectivity = out.transmission = 0.0f;
   out.metallic = 0.0f;
-  out.tintedMirror = out.tintedTransmission = false;
+  out.tintedMirror = out.tintedTransmission = out.thinWalled = false;
 }
 
 // A sampler's wrapS or wrapT; an unknown mode repeats, with a warning.
