@@ -39,10 +39,10 @@ const int RT_MAX_SHADOW_CROSSINGS = 1;
 // A shadow ray on its way to a light: with `throughGlass`, transmissive
 // surfaces let the light through, losing the Fresnel reflectance and
 // (1 - transmission) at each crossing, and taking the colour of glass that
-// tints (its base colour factor: the texture is not read here) (shadow rays
+// tints (its base colour factor; the texture is not read here). Shadow rays
 // go straight: refraction does not bend them, and caustics need sampled
-// bounces); without it (where sampled bounces carry that light) an any-hit
-// query decides.
+// bounces. Without `throughGlass` (where sampled bounces carry that light)
+// an any-hit query decides.
 struct ShadowPath {
   Ray ray;                      // from the last crossing on
   float remaining;              // distance from ray.origin to the light
@@ -82,7 +82,9 @@ void crossSurface(inout ShadowPath path, bool found, SurfaceHit hit, bool throug
     float reflectance = dielectricReflectance(abs(cosine), eta, cosTransmitted);
     path.transmittance *= blocker.transmission * (1.0 - reflectance);
 #ifdef RT_FEATURE_TINTED_TRANSMISSION
-    if ((blocker.flags & RT_MATERIAL_TINTED_TRANSMISSION) != 0u) path.transmittance *= blocker.diffuseColor;
+    if ((blocker.flags & RT_MATERIAL_TINTED_TRANSMISSION) != 0u) {
+      path.transmittance *= blocker.diffuseColor;
+    }
     if (maxComponent(path.transmittance) >= RT_MIN_BRANCH_WEIGHT) {
 #else
     if (path.transmittance >= RT_MIN_BRANCH_WEIGHT) {

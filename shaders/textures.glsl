@@ -140,7 +140,9 @@ void applyMetalRough(inout GpuMaterial material, vec2 uv, vec3 baseColor) {
     material.reflectivity = metalRoughReflectivity(m, r);
   }
 #endif
-  if ((material.flags & RT_MATERIAL_TINTED_MIRROR) != 0u) material.specularColor = mix(vec3(1.0), baseColor, m);
+  if ((material.flags & RT_MATERIAL_TINTED_MIRROR) != 0u) {
+    material.specularColor = mix(vec3(1.0), baseColor, m);
+  }
 }
 #endif
 
