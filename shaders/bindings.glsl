@@ -146,12 +146,19 @@ GpuMaterial loadMaterial(uint index) {
 #else
   MaterialAlpha alpha = MaterialAlpha(-1, RT_ALPHA_OPAQUE, 1.0, 0.0);
 #endif
+#ifdef RT_FEATURE_TRANSMISSION_TEXTURES
+  uvec4 transmissionRow = materialRow(index, 7u);
+#else
+  uvec4 transmissionRow = uvec4(uint(-1), 0u, 0u, 0u);
+#endif
   return GpuMaterial(diffuse.xyz, diffuse.w, specular.xyz, specular.w, emission.xyz, emission.w,
                      uintBitsToFloat(optics.x), uintBitsToFloat(optics.y),
                      uintBitsToFloat(optics.z), int(optics.w), profile.x, int(profile.y),
                      uintBitsToFloat(profile.z), int(profile.w), int(metalRough.x),
                      uintBitsToFloat(metalRough.y), uintBitsToFloat(metalRough.z), metalRough.w,
-                     alpha.texture, alpha.mode, alpha.factor, alpha.cutoff);
+                     alpha.texture, alpha.mode, alpha.factor, alpha.cutoff,
+                     int(transmissionRow.x), transmissionRow.y, transmissionRow.z,
+                     transmissionRow.w);
 }
 
 // Texel `row` (0..2) of point light `index` (see GpuPointLight).

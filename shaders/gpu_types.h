@@ -253,18 +253,24 @@ struct GpuMaterial {
   uint alphaMode;
   float alphaFactor;
   float alphaCutoff;  // RT_ALPHA_MASK: there where alpha >= alphaCutoff
+  // glTF's transmission texture (-1: none): transmission is the factor
+  // above times its red channel at the point, and kd follows (metal_rough.h).
+  int transmissionTexture;
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
-RT_ASSERT_STD430_SIZE(GpuMaterial, 112);
+RT_ASSERT_STD430_SIZE(GpuMaterial, 128);
 #define RT_MATERIAL_TINTED_MIRROR 1u
 #define RT_MATERIAL_TINTED_TRANSMISSION 2u
 #define RT_MATERIAL_THIN_WALLED 4u
 // Read as RGBA32UI texels (bindings.glsl loadMaterial): rows diffuse/kd,
 // specular/ks, emission/exponent, reflectivity/transmission/ior/texture,
 // profile/normal map/emission texture, metallic-roughness texture/factors/
-// mirror tint (read only where RT_FEATURE_METAL_ROUGH_TEXTURES or
-// RT_FEATURE_TINTED_MIRRORS is built), alpha (read by the walk only, where
-// RT_FEATURE_ALPHA_CUTOUTS is built).
-#define RT_TEXELS_PER_MATERIAL 7u
+// flags (read only where a feature needs them), alpha (read by the walk
+// only, where RT_FEATURE_ALPHA_CUTOUTS is built), transmission texture (read
+// only where RT_FEATURE_TRANSMISSION_TEXTURES is built).
+#define RT_TEXELS_PER_MATERIAL 8u
 #define RT_MATERIAL_ALPHA_ROW 6u
 RT_ASSERT_TEXELS(GpuMaterial, RT_TEXELS_PER_MATERIAL);
 

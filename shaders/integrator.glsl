@@ -285,6 +285,9 @@ bool shadeHit(inout RayStack stack, inout vec3 radiance, inout PendingRay job, S
   GpuMaterial material = loadMaterial(hitMaterial(hit));
   SurfacePoint surface = surfaceAt(job.ray, hit, material);
   vec3 baseColor = diffuseColorOf(material, surface);
+#ifdef RT_FEATURE_TRANSMISSION_TEXTURES
+  applyTransmissionTexture(material, surface.uv);
+#endif
 #if defined(RT_FEATURE_METAL_ROUGH_TEXTURES) || defined(RT_FEATURE_TINTED_MIRRORS)
   applyMetalRough(material, surface.uv, baseColor);
 #endif

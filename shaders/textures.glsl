@@ -120,6 +120,19 @@ vec3 sampleTexture(int index, vec2 uv) { return sampleTextureRgba(index, uv).rgb
 float sampleTextureAlpha(int index, vec2 uv) { return sampleTextureRgba(index, uv).a; }
 #endif
 
+#ifdef RT_FEATURE_TRANSMISSION_TEXTURES
+// A glTF material's transmission at a surface point: its factor times the
+// red channel of its transmission texture, and the diffuse weight that
+// leaves (metal_rough.h; a metallic-roughness texture's texel then refines
+// it in applyMetalRough).
+void applyTransmissionTexture(inout GpuMaterial material, vec2 uv) {
+  if (material.transmissionTexture < 0) return;
+  float t = sampleTexture(material.transmissionTexture, uv).r;
+  material.transmission = clamp(material.transmission * t, 0.0, 1.0);
+  material.kd = metalRoughKd(material.metallic, material.transmission);
+}
+#endif
+
 #if defined(RT_FEATURE_METAL_ROUGH_TEXTURES) || defined(RT_FEATURE_TINTED_MIRRORS)
 // A glTF material at a surface point whose base colour (texture, factor and
 // vertex colour) is `baseColor`: with a metallic-roughness texture, its

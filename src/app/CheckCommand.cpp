@@ -98,8 +98,12 @@ std::string materialText(const rt::Scene& scene, const rt::Material& m, bool ver
                   vec(m.diffuseColor), m.ks, vec(m.specularColor), m.specularExponent);
   if (m.reflectivity > 0.0f) text += fmt::format(", mirror {:g}", m.reflectivity);
   if (m.transmission > 0.0f) {
-    text += fmt::format(", glass {:g} ior {:g}", m.transmission, m.ior);
-    if (m.tintedTransmission) text += " tinted by the diffuse colour";
+    text += fmt::format(", glass {:g}", m.transmission);
+    if (m.transmissionTexture >= 0) {
+      text += " times the red of " + scene.textures.at(size_t(m.transmissionTexture)).source;
+    }
+    text += fmt::format(" ior {:g}", m.ior);
+    if (m.tintedTransmission) text += ", tinted by the diffuse colour";
     if (m.thinWalled) text += ", a thin wall";
   }
   if (!m.texture.empty()) text += ", texture " + m.texture.string();

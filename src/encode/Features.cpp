@@ -99,6 +99,8 @@ ShaderFeatures detectFeatures(const Scene& scene, const FlatScene& flat, bool ad
     features.normalMaps |= shaded && material.normalTexture >= 0;
     features.glow |= shaded && gpu::isGlowProfile(material.emissionProfile);
     features.metalRoughTextures |= shaded && material.metalRoughTexture >= 0;
+    features.transmissionTextures |=
+        shaded && material.transmission > 0.0f && material.transmissionTexture >= 0;
     features.textures |= shaded && samplesTextures(material);
   }
   // Cutouts read their alpha texture in every mode, binary's silhouettes too.
@@ -173,6 +175,7 @@ ShaderDefines ShaderFeatures::defines() const {
   flag(tintedMirrors, "RT_FEATURE_TINTED_MIRRORS");
   flag(tintedTransmission, "RT_FEATURE_TINTED_TRANSMISSION");
   flag(thinWalls, "RT_FEATURE_THIN_WALLS");
+  flag(transmissionTextures, "RT_FEATURE_TRANSMISSION_TEXTURES");
   flag(alphaCutouts, "RT_FEATURE_ALPHA_CUTOUTS");
   flag(textureSamplers, "RT_FEATURE_TEXTURE_SAMPLERS");
   flag(areaLights, "RT_FEATURE_AREA_LIGHTS");

@@ -50,6 +50,8 @@ struct ShaderFeatures {
   bool tintedTransmission = false;
   // Some shaded glass is a thin wall (GpuMaterial::flags): its light does not bend.
   bool thinWalls = false;
+  // Some shaded glass has a transmission texture (GpuMaterial::transmissionTexture).
+  bool transmissionTextures = false;
   // Some mesh instance's material cuts holes (RT_PRIM_ALPHA_CUTOUT): the
   // walks ask about each hit on it (shaders/alpha.glsl).
   bool alphaCutouts = false;

@@ -429,6 +429,7 @@ gpu::GpuMaterial toGpu(const Material& m) {
   out.flags = (m.tintedMirror ? RT_MATERIAL_TINTED_MIRROR : 0u) |
               (m.tintedTransmission ? RT_MATERIAL_TINTED_TRANSMISSION : 0u) |
               (m.thinWalled ? RT_MATERIAL_THIN_WALLED : 0u);
+  out.transmissionTexture = m.transmissionTexture;
   out.alphaTexture = m.alphaTexture;
   out.alphaMode = alphaModeOf(m);
   out.alphaFactor = m.alphaFactor;
@@ -491,6 +492,7 @@ uint32_t dominantAxis(const glm::vec3& v) {
 bool samplesTextures(const gpu::GpuMaterial& material) {
   return material.diffuseTexture >= 0 || material.normalTexture >= 0 ||
          material.emissionTexture >= 0 || material.metalRoughTexture >= 0 ||
+         material.transmissionTexture >= 0 ||
          (hasAlphaCutout(material) && material.alphaTexture >= 0);
 }
 

@@ -74,6 +74,10 @@ struct Material {
   // face of a solid (glTF transmission without KHR_materials_volume's
   // thickness); the Fresnel reflection stays that of `ior`.
   bool thinWalled = false;
+  // glTF's transmission texture (index into Scene::textures, linear data;
+  // -1: none): the transmission at a point is `transmission` times its red
+  // channel there, and kd follows as for metallic-roughness textures.
+  int32_t transmissionTexture = -1;
   // Where the surface is there at all (glTF alphaMode): alpha is
   // `alphaFactor` times the alpha channel of `alphaTexture` (index into
   // Scene::textures, -1: none) at the point. Mask: there where alpha >=

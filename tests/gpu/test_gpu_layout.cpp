@@ -82,10 +82,10 @@ const ProbeScene& probeScene() {
 template <typename T>
 T probe(const std::string& type, const std::string& read) {
   ShaderDefines defines = {
-      {"RT_PROBE_TYPE", type},          {"RT_PROBE_READ", read},
-      {"RT_FEATURE_AREA_LIGHTS", "1"},  {"RT_FEATURE_VERTICES", "1"},
-      {"RT_FEATURE_TEXTURES", "1"},     {"RT_FEATURE_METAL_ROUGH_TEXTURES", "1"},
-      {"RT_FEATURE_ALPHA_CUTOUTS", "1"}};
+      {"RT_PROBE_TYPE", type},           {"RT_PROBE_READ", read},
+      {"RT_FEATURE_AREA_LIGHTS", "1"},   {"RT_FEATURE_VERTICES", "1"},
+      {"RT_FEATURE_TEXTURES", "1"},      {"RT_FEATURE_METAL_ROUGH_TEXTURES", "1"},
+      {"RT_FEATURE_ALPHA_CUTOUTS", "1"}, {"RT_FEATURE_TRANSMISSION_TEXTURES", "1"}};
   std::vector<KernelBinding> bindings = SceneBuffers::bindings();
   bindings.push_back({RT_BINDING_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   ComputeKernel kernel(test::gpu(), probeCompiler().compile("layout_probe.comp", defines), bindings,

@@ -59,8 +59,8 @@ TEST_SUITE("shader-compiler") {
     every.refraction = every.thinLens = every.vertices = every.textures = true;
     every.areaLights = every.diffuseBounces = every.laneVotes = true;
     every.vertexColors = every.normalMaps = every.glow = every.metalRoughTextures = true;
-    every.tintedMirrors = every.tintedTransmission = every.thinWalls = every.alphaCutouts =
-        every.textureSamplers = true;
+    every.tintedMirrors = every.tintedTransmission = every.thinWalls = every.transmissionTextures =
+        every.alphaCutouts = every.textureSamplers = true;
     every.emitterKinds = 0xfu;
     every.whittedStackSize = 8;
     size_t files = 0;

@@ -377,6 +377,40 @@ TEST_SUITE("render textures") {
     CHECK(seen.z == doctest::Approx(reflected + 0.96f * 0.96f * 0.0625f).epsilon(0.02));
   }
 
+  TEST_CASE("a transmission texture: glass where its red is 1, the diffuse base colour where 0") {
+    // A pane over a lit green square: its left half's texels (red 1) let
+    // everything through, its right half's (red 0) leave a diffuse red
+    // surface (kd = 1 - transmission, as glTF's dielectric). Without the
+    // texture the whole pane is glass.
+    Scene scene = flatLitScene();
+    scene.textures = {{"transmission",
+                       {4, 1, {255, 0, 0, 255, 255, 0, 0, 255, 0, 0, 0, 255, 0, 0, 0, 255}},
+                       true}};
+    Material& pane = scene.materials[0];
+    pane.diffuseTexture = -1;
+    pane.diffuseColor = {1, 0, 0};
+    pane.kd = 0.0f;  // the factor's: (1 - metallic)(1 - transmission)
+    pane.ks = 0.0f;
+    pane.transmission = 1.0f;
+    pane.ior = 1.0f;
+    pane.transmissionTexture = 0;
+    Material green;
+    green.diffuseColor = {0, 1, 0};
+    scene.materials.push_back(green);
+    Shape front;
+    front.geometry = Quad{{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
+    scene.shapes.push_back(front);
+    Shape back;
+    back.geometry = Quad{{-2, 2, -1}, {2, 2, -1}, {2, -2, -1}, {-2, -2, -1}};
+    back.material = 1;
+    scene.shapes.push_back(back);
+    ImageF image = render(scene);
+    checkColor(renderedAt(image, 0.25f, 0.5f), {0, 1, 0});
+    checkColor(renderedAt(image, 0.75f, 0.5f), {1, 0, 0});
+    scene.materials[0].transmissionTexture = -1;
+    checkColor(renderedAt(render(scene), 0.75f, 0.5f), {0, 1, 0});
+  }
+
   TEST_CASE("a thin wall of glass lets light through unbent, a solid bends it") {
     // A glass ball (index 1.5) in front of the quadrant texture, seen off its
     // centre, where a solid ball's refraction bends the view far aside: as a

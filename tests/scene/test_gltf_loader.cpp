@@ -861,6 +861,34 @@ TEST_SUITE("scene gltf") {
     CHECK(glm::length(turnedUvs[2] - glm::vec2(1, -1)) < 1e-6f);
   }
 
+  TEST_CASE("transmission textures: data the kernels read where the base colour's are read") {
+    writeTexture("tex.png");
+    GltfBuilder b;
+    int pos = b.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    int uv0 = b.floats({1, 0, 0, 1, 1, 1}, "VEC2", 2);
+    b.doc["extensionsUsed"] = {"KHR_materials_transmission"};
+    b.doc["images"] = {{{"uri", "tex.png"}}};
+    b.doc["textures"] = {{{"source", 0}}};
+    Json glass = {{"transmissionFactor", 0.5}, {"transmissionTexture", {{"index", 0}}}};
+    Json elsewhere = {{"transmissionFactor", 1},
+                      {"transmissionTexture", {{"index", 0}, {"texCoord", 1}}}};
+    b.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+                           {"extensions", {{"KHR_materials_transmission", glass}}}},
+                          {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+                           {"extensions", {{"KHR_materials_transmission", elsewhere}}}}};
+    Json attributes = {{"POSITION", pos}, {"TEXCOORD_0", uv0}};
+    b.node({{"mesh", b.mesh({{"attributes", attributes}, {"material", 0}})}});
+    b.node({{"mesh", b.mesh({{"attributes", attributes}, {"material", 1}})}});
+    rt::Scene scene = loadDoc("transmission.gltf", b.embedded());
+    const rt::Material& textured = scene.materials[scene.shapes[0].material];
+    CHECK(textured.transmission == 0.5f);
+    REQUIRE(textured.transmissionTexture >= 0);
+    CHECK(scene.textures.at(size_t(textured.transmissionTexture)).linear);
+    // Other texture coordinates than the base colour's: not read, said so.
+    CHECK(scene.materials[scene.shapes[1].material].transmissionTexture == -1);
+    CHECK(hasWarning(scene, "reads other texture coordinates than the base colour texture"));
+  }
+
   TEST_CASE("metallic-roughness textures: data, their factors, the mean's terms; tinted mirrors") {
     writeTexture("tex.png");  // 2 x 2: red, green, blue, white
     GltfBuilder b;

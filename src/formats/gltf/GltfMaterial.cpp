@@ -72,9 +72,6 @@ bool hasExtension(const tinygltf::ExtensionMap& extensions, const std::string& n
 void noteIgnoredFeatures(Context& context, const tinygltf::Material& gltf,
                          const std::string& where) {
   if (gltf.occlusionTexture.index >= 0) context.ignored("occlusion maps", where);
-  if (hasExtension(gltf.extensions, "KHR_materials_transmission", "transmissionTexture")) {
-    context.ignored("transmission textures", where);
-  }
   if (hasExtension(gltf.extensions, "KHR_materials_volume", "attenuationDistance") ||
       hasExtension(gltf.extensions, "KHR_materials_volume", "attenuationColor")) {
     context.ignored("volume attenuation (KHR_materials_volume)", where);
@@ -283,6 +280,7 @@ uint32_t MaterialTable::material(int index, const std::string& where) {
     } else {
       addNormalMap(index, converted);
       addMetalRoughTexture(index, converted);
+      addTransmissionTexture(index, converted);
     }
   }
   scene_.materials.push_back(std::move(converted));
@@ -343,6 +341,39 @@ void MaterialTable::addNormalMap(int index, Material& converted) {
   double scale = finiteNumber(context_, info.scale, where + ".scale");
   converted.normalTexture = texture(info.index, Encoding::Linear, where);
   converted.normalScale = static_cast<float>(std::clamp(scale, -1e3, 1e3));
+}
+
+// KHR_materials_transmission's transmissionTexture of glTF material `index`
+// (a textureInfo inside the extension: index, texCoord, extensions), for the
+// kernels to read texel by texel (its red channel times the factor).
+void MaterialTable::addTransmissionTexture(int index, Material& converted) {
+  const tinygltf::ExtensionMap& extensions = context_.model().materials[size_t(index)].extensions;
+  if (!hasExtension(extensions, "KHR_materials_transmission", "transmissionTexture")) return;
+  std::string where =
+      item("materials", index) + ".extensions.KHR_materials_transmission.transmissionTexture";
+  const tinygltf::Value& info =
+      extensions.at("KHR_materials_transmission").Get("transmissionTexture");
+  auto integer = [&](const char* key, int fallback) {
+    if (!info.Has(key)) return fallback;
+    const tinygltf::Value& v = info.Get(key);
+    if (!v.IsNumber()) context_.fail(where + "." + key, "expected an integer");
+    double value = v.GetNumberAsDouble();
+    if (value != std::floor(value) || std::abs(value) > 1e9) {
+      context_.fail(where + "." + key, "expected an integer");
+    }
+    return static_cast<int>(value);
+  };
+  if (!info.IsObject()) context_.fail(where, "expected an object");
+  int texture = integer("index", -1);
+  if (texture < 0) context_.fail(where + ".index", "missing or negative");
+  tinygltf::ExtensionMap infoExtensions;
+  if (info.Has("extensions") && info.Get("extensions").IsObject()) {
+    const tinygltf::Value& nested = info.Get("extensions");
+    for (const std::string& key : nested.Keys()) infoExtensions[key] = nested.Get(key);
+  }
+  if (converted.transmission <= 0.0f) return;  // nothing to modulate
+  if (!readsSharedUvs(index, integer("texCoord", 0), infoExtensions, where)) return;
+  converted.transmissionTexture = this->texture(texture, Encoding::Linear, where);
 }
 
 // The metallic-roughness texture of glTF material `index`, for the kernels

@@ -45,6 +45,7 @@ class MaterialTable {
   void addNormalMap(int index, Material& converted);
   void addGlow(int index, glm::vec3 emissive, Material& converted);
   void addMetalRoughTexture(int index, Material& converted);
+  void addTransmissionTexture(int index, Material& converted);
   glm::vec2 metallicRoughnessAverage(const tinygltf::TextureInfo& info, const std::string& where);
   // The image of glTF texture `textureIndex`, or -1 when it has none we can read.
   int imageOf(int textureIndex, const std::string& where);
