@@ -155,6 +155,30 @@ Scene cutoutScene(int copies = 1) {
   return scene;
 }
 
+// A glass pane (material 0: index 1, so no Fresnel reflection and no
+// bending; kd and ks 0) at z = 0 covering `paneRight` (x from -1.1 to it),
+// before a lit square of colour `behind` (material 1) at z = -1.
+Scene glassPaneScene(double paneRight, glm::vec3 behind) {
+  Scene scene = flatLitScene();
+  Material& glass = scene.materials[0];
+  glass.diffuseTexture = -1;
+  glass.kd = 0.0f;
+  glass.ks = 0.0f;
+  glass.transmission = 1.0f;
+  glass.ior = 1.0f;
+  Material square;
+  square.diffuseColor = behind;
+  scene.materials.push_back(square);
+  Shape pane;
+  pane.geometry = Quad{{-1.1, 1.1, 0}, {paneRight, 1.1, 0}, {paneRight, -1.1, 0}, {-1.1, -1.1, 0}};
+  scene.shapes.push_back(pane);
+  Shape back;
+  back.geometry = Quad{{-2, 2, -1}, {2, 2, -1}, {2, -2, -1}, {-2, -2, -1}};
+  back.material = 1;
+  scene.shapes.push_back(back);
+  return scene;
+}
+
 }  // namespace
 
 TEST_SUITE("render textures") {
@@ -338,25 +362,9 @@ TEST_SUITE("render textures") {
     // half of a white lit square, the light behind the camera: seen through
     // the pane, the square takes the pane's colour twice, once on the camera
     // ray's way and once on the shadow ray's. The right half is as it is.
-    Scene scene = flatLitScene();
-    Material& glass = scene.materials[0];
-    glass.diffuseTexture = -1;
-    glass.kd = 0.0f;
-    glass.ks = 0.0f;
-    glass.transmission = 1.0f;
-    glass.ior = 1.0f;
-    glass.diffuseColor = {1.0f, 0.5f, 0.25f};
-    glass.tintedTransmission = true;
-    Material white;
-    white.diffuseColor = glm::vec3(1.0f);
-    scene.materials.push_back(white);
-    Shape pane;
-    pane.geometry = Quad{{-1.1, 1.1, 0}, {0, 1.1, 0}, {0, -1.1, 0}, {-1.1, -1.1, 0}};
-    scene.shapes.push_back(pane);
-    Shape square;
-    square.geometry = Quad{{-2, 2, -1}, {2, 2, -1}, {2, -2, -1}, {-2, -2, -1}};
-    square.material = 1;
-    scene.shapes.push_back(square);
+    Scene scene = glassPaneScene(0.0, glm::vec3(1.0f));
+    scene.materials[0].diffuseColor = {1.0f, 0.5f, 0.25f};
+    scene.materials[0].tintedTransmission = true;
     ImageF image = render(scene);
     checkColor(renderedAt(image, 0.25f, 0.5f), {1.0f, 0.25f, 0.0625f});
     checkColor(renderedAt(image, 0.75f, 0.5f), {1, 1, 1});
@@ -382,28 +390,13 @@ TEST_SUITE("render textures") {
     // everything through, its right half's (red 0) leave a diffuse red
     // surface (kd = 1 - transmission, as glTF's dielectric). Without the
     // texture the whole pane is glass.
-    Scene scene = flatLitScene();
+    Scene scene = glassPaneScene(1.1, {0, 1, 0});
     scene.textures = {{"transmission",
                        {4, 1, {255, 0, 0, 255, 255, 0, 0, 255, 0, 0, 0, 255, 0, 0, 0, 255}},
                        true}};
     Material& pane = scene.materials[0];
-    pane.diffuseTexture = -1;
-    pane.diffuseColor = {1, 0, 0};
-    pane.kd = 0.0f;  // the factor's: (1 - metallic)(1 - transmission)
-    pane.ks = 0.0f;
-    pane.transmission = 1.0f;
-    pane.ior = 1.0f;
+    pane.diffuseColor = {1, 0, 0};  // kd stays the factor's: (1 - metallic)(1 - transmission)
     pane.transmissionTexture = 0;
-    Material green;
-    green.diffuseColor = {0, 1, 0};
-    scene.materials.push_back(green);
-    Shape front;
-    front.geometry = Quad{{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
-    scene.shapes.push_back(front);
-    Shape back;
-    back.geometry = Quad{{-2, 2, -1}, {2, 2, -1}, {2, -2, -1}, {-2, -2, -1}};
-    back.material = 1;
-    scene.shapes.push_back(back);
     ImageF image = render(scene);
     checkColor(renderedAt(image, 0.25f, 0.5f), {0, 1, 0});
     checkColor(renderedAt(image, 0.75f, 0.5f), {1, 0, 0});
