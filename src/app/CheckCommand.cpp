@@ -84,13 +84,6 @@ std::string alphaText(const rt::Scene& scene, const rt::Material& m) {
   return text;
 }
 
-// Whether `geometry` is a mesh with vertex colours (they count as white on
-// any other shape).
-bool hasVertexColors(const rt::Geometry& geometry, const rt::Scene& scene) {
-  const auto* mesh = std::get_if<rt::MeshInstance>(&geometry);
-  return mesh && !scene.meshes.at(mesh->mesh).colors.empty();
-}
-
 // `vertexColors`: whether the shape using `m` has vertex colours.
 std::string materialText(const rt::Scene& scene, const rt::Material& m, bool vertexColors) {
   std::string text =
@@ -167,9 +160,10 @@ void printShapes(const rt::Scene& scene) {
     if (!shape.label.empty() && shape.label != from) from += " '" + shape.label + "'";
     std::printf("  %zu%s: %s\n", i, from.empty() ? "" : (" [" + from + "]").c_str(),
                 geometryText(shape.geometry, scene).c_str());
-    std::printf("     material: %s\n", materialText(scene, scene.materials.at(shape.material),
-                                                    hasVertexColors(shape.geometry, scene))
-                                           .c_str());
+    std::printf("     material: %s\n",
+                materialText(scene, scene.materials.at(shape.material),
+                             rt::hasVertexColors(shape.geometry, scene.meshes))
+                    .c_str());
   }
 }
 

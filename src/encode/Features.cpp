@@ -61,8 +61,7 @@ uint32_t lightReplicasFor(const RenderSettings& settings, bool adaptive, bool bo
 // Some shape places a mesh with vertex colours.
 bool usesVertexColors(const Scene& scene) {
   return std::any_of(scene.shapes.begin(), scene.shapes.end(), [&](const Shape& shape) {
-    const auto* instance = std::get_if<MeshInstance>(&shape.geometry);
-    return instance && !scene.meshes.at(instance->mesh).colors.empty();
+    return hasVertexColors(shape.geometry, scene.meshes);
   });
 }
 

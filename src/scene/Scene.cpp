@@ -72,6 +72,11 @@ float surfaceArea(const Geometry& geometry, const std::vector<TriangleMesh>& mes
 
 // A Lambertian light of intensity I over area A has radiance
 // 2 pi I / (4 pi A) = I / (2 A) (README "Area lights").
+bool hasVertexColors(const Geometry& geometry, const std::vector<TriangleMesh>& meshes) {
+  const auto* instance = std::get_if<MeshInstance>(&geometry);
+  return instance && !meshes.at(instance->mesh).colors.empty();
+}
+
 bool addRadianceEmitter(Scene& scene, uint32_t shape, const glm::vec3& radiance) {
   const float area = surfaceArea(scene.shapes.at(shape).geometry, scene.meshes);
   if (!(area > 0.0f)) return false;

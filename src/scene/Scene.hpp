@@ -336,6 +336,10 @@ uint32_t addEmitterShape(Scene& scene, Geometry geometry, std::string label);
 // The area of any shape; meshes are looked up in `meshes`.
 float surfaceArea(const Geometry& geometry, const std::vector<TriangleMesh>& meshes);
 
+// Whether `geometry` places a mesh with vertex colours (any other shape has
+// none: its colours count as white); meshes are looked up in `meshes`.
+bool hasVertexColors(const Geometry& geometry, const std::vector<TriangleMesh>& meshes);
+
 // Makes shape `shape` an area light whose surface glows with `radiance` (a
 // Lambertian light, four shadow rays a hit): file formats that give an
 // emitting material's radiance (JSON emitters, OBJ `Ke`). False, and no
