@@ -180,13 +180,7 @@ void addSpecularContinuations(inout Continuations next, PendingRay parent, Surfa
   vec3 mirrorDir = reflect(d, facing);
 #ifdef RT_FEATURE_REFRACTION
   if (material.transmission > 0.0) {
-#ifdef RT_FEATURE_THIN_WALLS
-    // A thin wall is entered from either side as from the outside, and its
-    // light leaves it as it came.
-    bool thinWall = (material.flags & RT_MATERIAL_THIN_WALLED) != 0u;
-    entering = entering || thinWall;
-#endif
-    float eta = entering ? 1.0 / material.ior : material.ior;
+    float eta = interfaceEta(material, entering);
     float cosIncident = dot(-d, facing);
     float cosTransmitted;
     float reflectance = dielectricReflectance(cosIncident, eta, cosTransmitted);
@@ -200,9 +194,7 @@ void addSpecularContinuations(inout Continuations next, PendingRay parent, Surfa
     mirrorWeight += transmitted * reflectance;
     if (refracts) {
       vec3 refractDir = normalize(eta * d + (eta * cosIncident - cosTransmitted) * facing);
-#ifdef RT_FEATURE_THIN_WALLS
-      if (thinWall) refractDir = d;
-#endif
+      if (isThinWall(material)) refractDir = d;  // its light leaves it as it came
       vec3 refracted = transmitted * (1.0 - reflectance);
 #ifdef RT_FEATURE_TINTED_TRANSMISSION
       // The light that passes takes the colour; the Fresnel reflection does not.

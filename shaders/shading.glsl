@@ -72,12 +72,7 @@ void crossSurface(inout ShadowPath path, bool found, SurfaceHit hit, bool throug
   if (throughGlass) {
     GpuMaterial blocker = loadMaterial(hitMaterial(hit));
     float cosine = dot(path.ray.direction, hit.normal);
-    bool entering = cosine < 0.0;
-#ifdef RT_FEATURE_THIN_WALLS
-    // A thin wall is crossed from either side as from the outside.
-    entering = entering || (blocker.flags & RT_MATERIAL_THIN_WALLED) != 0u;
-#endif
-    float eta = entering ? 1.0 / blocker.ior : blocker.ior;
+    float eta = interfaceEta(blocker, cosine < 0.0);
     float cosTransmitted;
     float reflectance = dielectricReflectance(abs(cosine), eta, cosTransmitted);
     path.transmittance *= blocker.transmission * (1.0 - reflectance);
