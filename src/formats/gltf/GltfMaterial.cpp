@@ -355,13 +355,8 @@ void MaterialTable::addTransmissionTexture(int index, Material& converted) {
       extensions.at("KHR_materials_transmission").Get("transmissionTexture");
   auto integer = [&](const char* key, int fallback) {
     if (!info.Has(key)) return fallback;
-    const tinygltf::Value& v = info.Get(key);
-    if (!v.IsNumber()) context_.fail(where + "." + key, "expected an integer");
-    double value = v.GetNumberAsDouble();
-    if (value != std::floor(value) || std::abs(value) > 1e9) {
-      context_.fail(where + "." + key, "expected an integer");
-    }
-    return static_cast<int>(value);
+    if (!info.Get(key).IsInt()) context_.fail(where + "." + key, "expected an integer");
+    return info.Get(key).GetNumberAsInt();
   };
   if (!info.IsObject()) context_.fail(where, "expected an object");
   int texture = integer("index", -1);
